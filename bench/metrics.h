@@ -1,0 +1,26 @@
+// The metrics of one run (SPEC section 4), SI units. NaN means "not defined for this run"
+// (no cruise phase; never settled within the simulated time) and is written as null.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace shapebench::bench {
+
+struct Metrics {
+  double static_displacement_m = NAN;
+  double peak_deflection_m = NAN;
+  double peak_ratio = NAN;
+  double residual_amplitude_m = NAN;
+  double residual_ratio = NAN;
+  double cruise_residual_ratio = NAN;
+  double motion_time_s = NAN;
+  double settling_time_s = NAN;
+
+  // (name, value) in the SPEC's order: the one list the table, JSON, CSV and checks use.
+  std::vector<std::pair<std::string, double>> Named() const;
+};
+
+}  // namespace shapebench::bench

@@ -1,0 +1,69 @@
+// JP2551868B2 (seed 004), paras. 36-49: acceleration patterns tied to the natural period
+// T that keep the peak deflection at the static one and leave no vibration. Every method
+// is expressed as the patent's parameters (para. 49): step 1 (ST1, SR1), step 2 (ST2,
+// SR2), then the steady acceleration; at the end of a phase the steps run reversed.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+namespace shapebench::controller {
+
+enum class PatternMethod { kNone, kMethod1, kMethod2, kMethod3, kMethod4 };
+// Para. 49 mode 0..3: off, start of acc/dec only, end only, both.
+enum class PatternMode { kOff, kStart, kEnd, kBoth };
+
+struct PatternConfig {
+  PatternMethod method = PatternMethod::kNone;
+  PatternMode mode = PatternMode::kBoth;
+  double frequency_hz = 25.0;  // the natural frequency the pattern is designed for
+  double k1 = 0.675;           // method 3: 0.5 <= k1 <= 1
+  double t1_s = 0.004;         // method 4: 0 <= t1 <= T/6
+  // Resolution of the step times. The patent's ST parameters are set in 0.1 ms units
+  // (0.0001 here); 0 keeps the exact design times. Default exact: rounding method 2's
+  // T/6 = 6.667 ms to 6.7 ms already leaves about 1% residual vibration per step pair.
+  double step_resolution_s = 0.0;
+  void validate() const;  // throws ValidationError naming the field
+};
+
+// One step of a pattern: the acceleration ratio SR held for ST seconds.
+struct AccelStep {
+  double duration_s = 0.0;  // ST
+  double ratio = 0.0;       // SR, fraction of the steady acceleration
+};
+
+struct StepPattern {
+  AccelStep step1;
+  AccelStep step2;
+  bool at_start = false;  // shape the start of each acc/dec phase
+  bool at_end = false;    // shape the end of each acc/dec phase (steps reversed)
+
+  bool shapes() const { return at_start || at_end; }
+  // Velocity gained by steps 1 and 2 per unit steady acceleration: SR1*ST1 + SR2*ST2.
+  double velocity_per_accel_s() const {
+    return step1.ratio * step1.duration_s + step2.ratio * step2.duration_s;
+  }
+};
+
+StepPattern MakeStepPattern(const PatternConfig& config);
+
+// Method 3 (para. 44): t1 from cos(2 pi t1 / T) = 1 - 1 / (2 K1).
+double Method3StepTime(double k1, double period_s);
+// Method 4 (para. 45): a2 / a = 1 - 1 / (2 cos(2 pi t1 / T)).
+double Method4SecondRatio(double t1_s, double period_s);
+
+// The jerk impulses of the shaped start of a phase (para. 61): amplitudes (summing to 1)
+// at times 0, ST1, ST1 + ST2 — the continuous profile table of the pattern.
+struct Impulse {
+  double time_s = 0.0;
+  double amplitude = 0.0;
+};
+std::vector<Impulse> PatternImpulses(const StepPattern& pattern);
+
+// Residual vibration of an impulse sequence at frequency f and damping ratio zeta, as a
+// fraction of the vibration an unshaped step leaves: |sum A_j e^{(zeta w + i w_d) t_j}|
+// normalised by the last impulse's decay (the standard shaper formula).
+double ResidualVibration(const std::vector<Impulse>& impulses, double frequency_hz,
+                         double damping_ratio = 0.0);
+
+}  // namespace shapebench::controller

@@ -1,0 +1,70 @@
+// Integrators of a LinearPlant driven tick by tick (FMI-style co-simulation slave):
+// the master sets the input held over the coming interpolation period, then advances the
+// plant one output substep at a time, reading the outputs after each.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "model/linear_plant.h"
+
+namespace shapebench::model {
+
+enum class IntegratorMethod { kCvode, kExact };
+enum class CvodeLmm { kAdams, kBdf };
+
+struct IntegratorConfig {
+  IntegratorMethod method = IntegratorMethod::kCvode;
+  double rtol = 1.0e-8;
+  // Per-state absolute tolerances are rtol * atol_scale * (the state's static magnitude
+  // under the run's largest acceleration; times the highest natural frequency for
+  // velocity states).
+  double atol_scale = 1.0;
+  CvodeLmm lmm = CvodeLmm::kBdf;
+  long max_num_steps = 100000;  // per call to CVode (one output substep)
+  int output_substeps = 0;      // samples per interpolation period; 0 = automatic
+  void validate() const;        // throws ValidationError naming the field
+};
+
+struct IntegratorStats {
+  long steps = 0;
+  long rhs_evals = 0;
+  long reinits = 0;
+};
+
+// CVODE trouble: `flag_name` is CVODE's own name for the return flag (CV_TOO_MUCH_WORK...).
+class SolverError : public std::runtime_error {
+ public:
+  SolverError(std::string flag_name, const std::string& what)
+      : std::runtime_error(what), flag_name_(std::move(flag_name)) {}
+  const std::string& flag_name() const { return flag_name_; }
+
+ private:
+  std::string flag_name_;
+};
+
+class PlantIntegrator {
+ public:
+  virtual ~PlantIntegrator() = default;
+  // Rest state (zero deflection) at t = 0 with the drive at the given velocity.
+  virtual void Reset(const Eigen::VectorXd& drive_velocity) = 0;
+  // The drive acceleration held constant over the coming interpolation period.
+  virtual void SetInput(const Eigen::VectorXd& drive_accel) = 0;
+  // Advances one output substep (period / substeps). Time is computed from the integer
+  // substep count, never accumulated.
+  virtual void Step() = 0;
+  virtual Eigen::VectorXd Output() const = 0;  // deflection, C x
+  virtual double Time() const = 0;
+  virtual IntegratorStats Stats() const { return {}; }
+};
+
+// `scale_accel_m_s2`: the largest acceleration magnitude of the run, sets the tolerances.
+std::unique_ptr<PlantIntegrator> MakeIntegrator(const LinearPlant& plant,
+                                                const IntegratorConfig& config,
+                                                double period_s, int substeps,
+                                                double scale_accel_m_s2);
+
+}  // namespace shapebench::model

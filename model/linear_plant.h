@@ -1,0 +1,34 @@
+// A linear time-invariant plant in state-space form, the common currency of the machine
+// models and the integrators (a constant model, separate from the integrators' state).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace shapebench::model {
+
+enum class StateKind { kPosition, kVelocity };
+
+// x' = A x + B_accel a(t) + B_vel v(t);   deflection = C x
+// a, v: acceleration and velocity of the driven axes (one column per axis); the
+// kinematic drive holds a constant over each interpolation period, so v is continuous
+// and piecewise linear. States are deflections relative to the rigid-body motion the
+// drive imposes, so they stay of the size of the deflection (tolerances make sense).
+struct LinearPlant {
+  Eigen::MatrixXd A;
+  Eigen::MatrixXd B_accel;
+  Eigen::MatrixXd B_vel;  // non-zero only where dampers load the structure from the drive
+  Eigen::MatrixXd C;
+  std::vector<StateKind> state_kinds;
+  double max_frequency_rad_s = 0.0;  // the highest natural frequency, for tolerances
+
+  int num_states() const { return static_cast<int>(A.rows()); }
+  int num_inputs() const { return static_cast<int>(B_accel.cols()); }
+  int num_outputs() const { return static_cast<int>(C.rows()); }
+
+  // Deflection per unit acceleration held constant: the static solve A x = -B_accel a.
+  Eigen::MatrixXd StaticGain() const;
+};
+
+}  // namespace shapebench::model

@@ -1,0 +1,76 @@
+// Machine models: the modal form and the lumped mass-spring-damper form (SPEC section 3),
+// both turned into a LinearPlant; modal analysis of either.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "model/linear_plant.h"
+
+namespace shapebench::model {
+
+// q_i'' + 2 zeta_i w_i q_i' + w_i^2 q_i = -a_base;  deflection = sum(gain_i * q_i)
+struct ModalMode {
+  double frequency_hz = 25.0;
+  double damping_ratio = 0.0;
+  double gain = 1.0;
+};
+
+struct ModalMachineConfig {
+  std::vector<ModalMode> modes{ModalMode{}};
+  // Throws ValidationError naming e.g. "modes[0].frequency_hz".
+  void validate() const;
+};
+
+struct LumpedBody {
+  std::string name;
+  double mass_kg = 0.0;
+};
+
+// A spring and/or a parallel viscous damper between two endpoints. An endpoint is a body
+// name, "ground" (the floor) or "driven" (the point the drive moves: the ball-screw nut).
+struct LumpedElement {
+  std::string name;
+  std::string from;
+  std::string to;
+  double stiffness_n_m = 0.0;
+  double damping_n_s_m = 0.0;
+};
+
+struct LumpedMachineConfig {
+  std::vector<LumpedBody> bodies;
+  std::vector<LumpedElement> elements;
+  // What the drive is mounted on: "ground", or a body (the bed) that then takes the
+  // drive's reaction. The "driven" endpoint sits at that body's position plus the command.
+  std::string driven_relative_to = "ground";
+  // Deflection = displacement of `output_body` relative to `output_relative_to` (a body or
+  // "ground"), less the relative motion the command itself imposes.
+  std::string output_body;
+  std::string output_relative_to = "ground";
+  void validate() const;
+};
+
+struct MachineConfig {
+  std::variant<ModalMachineConfig, LumpedMachineConfig> form = ModalMachineConfig{};
+  void validate() const;
+};
+
+LinearPlant BuildPlant(const MachineConfig& machine);
+
+struct ModeInfo {
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;
+  // Share of this mode in the static deflection per unit acceleration; sums to 1.
+  double participation = 0.0;
+};
+
+struct ModalAnalysis {
+  std::vector<ModeInfo> modes;  // ascending frequency
+  // |deflection| in m per 1 m/s^2 of acceleration along the driven axis, held constant.
+  double static_deflection_per_accel_s2 = 0.0;
+};
+
+ModalAnalysis AnalyzeModes(const MachineConfig& machine);
+
+}  // namespace shapebench::model
