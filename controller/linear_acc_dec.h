@@ -1,7 +1,7 @@
 // Pre-interpolation linear acc/dec (seed 004 paras. 21-22, 52): the path speed ramps to
 // the feed with the steady acceleration feed / accel_time, shaped at the start and/or end
 // of each phase by a StepPattern; para. 50's shortening when the feed is low or the move
-// short. The ideal profile is continuous-time; it is then sampled on the tick grid.
+// short. The ideal profile is continuous-time; it is then realised on the tick grid.
 #pragma once
 
 #include <vector>
@@ -19,6 +19,10 @@ struct AccelSegment {
 
 struct IdealProfile {
   std::vector<AccelSegment> segments;
+  // The same profile as acceleration steps (jerk impulses, m/s^2 each), grouped: one
+  // group per shaped start or end of a phase, one per unshaped corner.
+  std::vector<std::vector<Impulse>> jerk_groups;
+
   double Duration() const;
   double VelocityAt(double t_s) const;
   double DistanceAt(double t_s) const;
@@ -26,22 +30,29 @@ struct IdealProfile {
   double MaxAbsAccel() const;
 };
 
-// One acc (or dec) phase from 0 to `speed_m_s`, shaped by `pattern`, with para. 50's
-// order of shortening: the steady acceleration first, then step 2, then step 1.
-// Accelerations are positive; a deceleration phase is the same with the sign flipped.
-std::vector<AccelSegment> AccelPhase(double speed_m_s, double accel_m_s2,
-                                     const StepPattern& pattern);
+// One acc phase from rest to `speed_m_s` starting at t = 0, shaped by `pattern`, with
+// para. 50's order of shortening: the steady acceleration first, then step 2, then
+// step 1. A dec phase is the same with the signs flipped (the patent: "deceleration is
+// performed in the same pattern").
+IdealProfile AccelPhase(double speed_m_s, double accel_m_s2, const StepPattern& pattern);
+
+// Para. 50 shortens the steady acceleration, then step 2, then step 1. Cutting into
+// step 1 leaves nothing of the pattern's cancellation, so the bench refuses it: these are
+// the lowest peak speed, and the shortest rest-to-rest move, that keep step 1 whole.
+double LowestShapedSpeed(double accel_m_s2, const StepPattern& pattern);
+double ShortestShapedMove(double accel_m_s2, const StepPattern& pattern);
 
 // Rest-to-rest move of `distance_m` (> 0) at up to `feed_m_s`: acc phase, cruise, dec
-// phase (the mirror of the acc phase). A move too short for the feed lowers the peak
-// speed (para. 50: "the same concept applies when the travel distance is short").
+// phase. A move too short for the feed lowers the peak speed (para. 50: "the same
+// concept applies when the travel distance is short").
 IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s2,
                             const StepPattern& pattern);
 
-// Samples the profile's velocity at the ticks, with the cruise (or the peak speed)
-// adjusted so that the sampled trajectory covers exactly `distance_m`. Steps that fall
-// between ticks are realised as the period's mean acceleration (velocity exact at ticks).
+// The profile on the tick grid (grid_realization.h, designed for `design_frequency_hz`),
+// with the cruise (or the peak speed) adjusted so that the ticks cover exactly
+// `distance_m`.
 CommandTrajectory SampleOnTicks(double distance_m, double feed_m_s, double accel_m_s2,
-                                const StepPattern& pattern, double period_s);
+                                const StepPattern& pattern, double period_s,
+                                double design_frequency_hz);
 
 }  // namespace shapebench::controller

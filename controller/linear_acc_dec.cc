@@ -1,0 +1,229 @@
+// Pre-interpolation linear acc/dec with the vibration-suppressing steps (seed 004
+// paras. 21-22, 49-50, 52); see the header.
+#include "controller/linear_acc_dec.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "controller/grid_realization.h"
+
+namespace shapebench::controller {
+namespace {
+
+void Append(IdealProfile& profile, double duration_s, double accel_m_s2) {
+  if (duration_s > 0.0) profile.segments.push_back({duration_s, accel_m_s2});
+}
+
+double PhaseDuration(double speed_m_s, double accel_m_s2, const StepPattern& pattern) {
+  return AccelPhase(speed_m_s, accel_m_s2, pattern).Duration();
+}
+
+// Appends `phase` (scaled by `sign`) to `profile`, starting at `start_s`.
+void AppendPhase(IdealProfile& profile, const IdealProfile& phase, double sign, double start_s) {
+  for (const AccelSegment& s : phase.segments) profile.segments.push_back({s.duration_s, sign * s.accel_m_s2});
+  for (const std::vector<Impulse>& group : phase.jerk_groups) {
+    std::vector<Impulse> shifted;
+    for (const Impulse& i : group) shifted.push_back({start_s + i.time_s, sign * i.amplitude});
+    profile.jerk_groups.push_back(shifted);
+  }
+}
+
+}  // namespace
+
+double IdealProfile::Duration() const {
+  double total = 0.0;
+  for (const AccelSegment& s : segments) total += s.duration_s;
+  return total;
+}
+
+double IdealProfile::VelocityAt(double t_s) const {
+  double t0 = 0.0;
+  double v0 = 0.0;
+  for (const AccelSegment& s : segments) {
+    if (t_s < t0 + s.duration_s) return v0 + s.accel_m_s2 * std::max(0.0, t_s - t0);
+    t0 += s.duration_s;
+    v0 += s.accel_m_s2 * s.duration_s;
+  }
+  return 0.0;  // at rest after the move (exactly, whatever the rounding of the sums)
+}
+
+double IdealProfile::DistanceAt(double t_s) const {
+  double t0 = 0.0;
+  double v0 = 0.0;
+  double x0 = 0.0;
+  for (const AccelSegment& s : segments) {
+    const double dt = std::min(std::max(0.0, t_s - t0), s.duration_s);
+    if (t_s < t0 + s.duration_s) return x0 + v0 * dt + 0.5 * s.accel_m_s2 * dt * dt;
+    x0 += v0 * s.duration_s + 0.5 * s.accel_m_s2 * s.duration_s * s.duration_s;
+    v0 += s.accel_m_s2 * s.duration_s;
+    t0 += s.duration_s;
+  }
+  return x0;
+}
+
+double IdealProfile::MaxAbsAccel() const {
+  double max_accel = 0.0;
+  for (const AccelSegment& s : segments) max_accel = std::max(max_accel, std::abs(s.accel_m_s2));
+  return max_accel;
+}
+
+IdealProfile AccelPhase(double speed_m_s, double accel_m_s2, const StepPattern& pattern) {
+  const int shaped_ends = (pattern.at_start ? 1 : 0) + (pattern.at_end ? 1 : 0);
+  AccelStep step1 = pattern.step1;
+  AccelStep step2 = pattern.step2;
+  // Para. 50: when the steps alone would overshoot the speed, shorten the steady
+  // acceleration first (to zero), then step 2, then step 1.
+  double steady_s = speed_m_s / accel_m_s2 - shaped_ends * pattern.velocity_per_accel_s();
+  if (steady_s < 0.0) {
+    steady_s = 0.0;
+    const double per_end = speed_m_s / accel_m_s2 / shaped_ends;  // velocity / a per end
+    const double after_step1 = per_end - step1.ratio * step1.duration_s;
+    if (after_step1 >= 0.0 && step2.ratio > 0.0) {
+      step2.duration_s = std::min(step2.duration_s, after_step1 / step2.ratio);
+    } else {
+      step2.duration_s = 0.0;  // a zero-acceleration step gains nothing: omitted
+      step1.duration_s = std::min(step1.duration_s, per_end / step1.ratio);
+    }
+  }
+  const double a = accel_m_s2;
+  IdealProfile phase;
+  double t = 0.0;
+  if (pattern.at_start) {
+    Append(phase, step1.duration_s, step1.ratio * a);
+    Append(phase, step2.duration_s, step2.ratio * a);
+    phase.jerk_groups.push_back({{0.0, step1.ratio * a},
+                                 {step1.duration_s, (step2.ratio - step1.ratio) * a},
+                                 {step1.duration_s + step2.duration_s, (1.0 - step2.ratio) * a}});
+    t = step1.duration_s + step2.duration_s;
+  } else {
+    phase.jerk_groups.push_back({{0.0, a}});
+  }
+  Append(phase, steady_s, a);
+  t += steady_s;
+  if (pattern.at_end) {  // para. 49: the end of a phase runs the steps in reverse order
+    Append(phase, step2.duration_s, step2.ratio * a);
+    Append(phase, step1.duration_s, step1.ratio * a);
+    phase.jerk_groups.push_back({{t, (step2.ratio - 1.0) * a},
+                                 {t + step2.duration_s, (step1.ratio - step2.ratio) * a},
+                                 {t + step2.duration_s + step1.duration_s, -step1.ratio * a}});
+  } else {
+    phase.jerk_groups.push_back({{t, -a}});
+  }
+  return phase;
+}
+
+double LowestShapedSpeed(double accel_m_s2, const StepPattern& pattern) {
+  const int shaped_ends = (pattern.at_start ? 1 : 0) + (pattern.at_end ? 1 : 0);
+  return shaped_ends * accel_m_s2 * pattern.step1.ratio * pattern.step1.duration_s;
+}
+
+double ShortestShapedMove(double accel_m_s2, const StepPattern& pattern) {
+  const double speed = LowestShapedSpeed(accel_m_s2, pattern);
+  return speed * PhaseDuration(speed, accel_m_s2, pattern);
+}
+
+IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s2,
+                            const StepPattern& pattern) {
+  // Whatever the pattern, the dec phase mirrors the acc phase, so a move covers
+  // peak speed x (phase duration + cruise duration).
+  double speed = feed_m_s;
+  double cruise_s = distance_m / feed_m_s - PhaseDuration(feed_m_s, accel_m_s2, pattern);
+  if (cruise_s < 0.0) {
+    // Short move: the peak speed v solves v * phase_duration(v) = distance (increasing).
+    double lo = 0.0;
+    double hi = feed_m_s;
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * feed_m_s; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (mid * PhaseDuration(mid, accel_m_s2, pattern) < distance_m ? lo : hi) = mid;
+    }
+    speed = 0.5 * (lo + hi);
+    cruise_s = 0.0;
+  }
+  const IdealProfile phase = AccelPhase(speed, accel_m_s2, pattern);
+  IdealProfile profile;
+  AppendPhase(profile, phase, 1.0, 0.0);
+  Append(profile, cruise_s, 0.0);
+  AppendPhase(profile, phase, -1.0, phase.Duration() + cruise_s);
+  return profile;
+}
+
+namespace {
+
+// The trajectory the ticks see: the jerk groups realised on the grid, integrated.
+CommandTrajectory Realize(const IdealProfile& profile, double period_s, double design_frequency_hz) {
+  std::vector<double> jumps;  // acceleration change at each tick
+  for (const std::vector<Impulse>& group : profile.jerk_groups) {
+    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design_frequency_hz)) {
+      const auto tick = static_cast<std::size_t>(std::max(0L, g.tick));
+      if (jumps.size() <= tick) jumps.resize(tick + 1, 0.0);
+      jumps[tick] += g.amplitude;
+    }
+  }
+  CommandTrajectory trajectory;
+  trajectory.period_s = period_s;
+  trajectory.velocity_m_s.assign(std::max<std::size_t>(jumps.size(), 2), 0.0);
+  double accel = 0.0;
+  for (std::size_t k = 1; k < trajectory.velocity_m_s.size(); ++k) {
+    accel += jumps[k - 1];
+    trajectory.velocity_m_s[k] = trajectory.velocity_m_s[k - 1] + accel * period_s;
+  }
+  // The last jump brings the acceleration back to zero at rest; rounding of the sums
+  // would leave ~1e-17 m/s there.
+  trajectory.velocity_m_s.back() = 0.0;
+  return trajectory;
+}
+
+double RealizedDistance(const CommandTrajectory& trajectory) {
+  double sum = 0.0;
+  for (std::size_t k = 1; k <= trajectory.num_ticks(); ++k) sum += trajectory.increment_m(k);
+  return sum;
+}
+
+}  // namespace
+
+CommandTrajectory SampleOnTicks(double distance_m, double feed_m_s, double accel_m_s2,
+                                const StepPattern& pattern, double period_s,
+                                double design_frequency_hz) {
+  // The grid trajectory covers slightly more or less than the ideal one when steps fall
+  // between ticks. Plan for a nominal distance X whose realised distance S(X) is the
+  // requested one: S is continuous and increasing with S(X) ~ X, so regula falsi with a
+  // bisection fallback converges in a few evaluations.
+  auto realize = [&](double nominal_m) {
+    return Realize(PlanRestToRest(nominal_m, feed_m_s, accel_m_s2, pattern), period_s,
+                   design_frequency_hz);
+  };
+  auto error = [&](double nominal_m) { return RealizedDistance(realize(nominal_m)) - distance_m; };
+  const double x0 = distance_m;
+  const double f0 = error(x0);
+  if (f0 == 0.0) return realize(x0);
+  double step = std::abs(f0) * 2.0 + 1e-15 * distance_m;
+  double x1 = x0 - (f0 > 0 ? step : -step);
+  double f1 = error(x1);
+  for (int i = 0; i < 60 && (f0 > 0) == (f1 > 0); ++i) {
+    step *= 2.0;
+    x1 = std::max(0.5 * x0 * 1e-3, x0 - (f0 > 0 ? step : -step));
+    f1 = error(x1);
+  }
+  double lo = f0 < 0 ? x0 : x1;
+  double hi = f0 < 0 ? x1 : x0;
+  double f_lo = f0 < 0 ? f0 : f1;
+  double f_hi = f0 < 0 ? f1 : f0;
+  double best = std::abs(f0) < std::abs(f1) ? x0 : x1;
+  double best_f = std::min(std::abs(f0), std::abs(f1));
+  for (int i = 0; i < 100 && best_f > 1e-15 * distance_m; ++i) {
+    double x = lo - f_lo * (hi - lo) / (f_hi - f_lo);
+    if (!(x > lo && x < hi) || i % 3 == 2) x = 0.5 * (lo + hi);
+    const double f = error(x);
+    if (std::abs(f) < best_f) {
+      best = x;
+      best_f = std::abs(f);
+    }
+    if (f == 0.0) break;
+    (f < 0 ? lo : hi) = x;
+    (f < 0 ? f_lo : f_hi) = f;
+    if (hi - lo <= 1e-16 * distance_m) break;
+  }
+  return realize(best);
+}
+
+}  // namespace shapebench::controller

@@ -1,0 +1,89 @@
+#include "controller/controller.h"
+
+#include <gtest/gtest.h>
+
+#include "common/validation_error.h"
+
+namespace shapebench::controller {
+namespace {
+
+ControllerConfig Method1() {
+  ControllerConfig c;
+  c.feed_mm_min = 30000;
+  c.accel_time_s = 0.3;
+  c.pattern.method = PatternMethod::kMethod1;
+  return c;
+}
+
+std::string FieldOf(const ControllerConfig& c, const MoveConfig& m) {
+  try {
+    GenerateCommand(c, m);
+  } catch (const ValidationError& e) {
+    return e.field();
+  }
+  return "";
+}
+
+// Tests that a move too short to keep step 1 after para. 50's shortening is refused
+// naming move.distance_mm, while one just long enough is planned.
+TEST(ControllerTest, TooShortMoveForThePatternIsRefused) {
+  // Method 1 at both ends: lowest speed 2 * a * 0.5 * T/2 = a T / 2; phase T (no steady).
+  const double a = 0.5 / 0.3;
+  const double shortest_mm = (a * 0.04 / 2) * 0.04 * 1e3;
+  MoveConfig move;
+  move.distance_mm = shortest_mm * 0.9;
+  EXPECT_EQ(FieldOf(Method1(), move), "move.distance_mm");
+  move.distance_mm = shortest_mm * 1.1;
+  EXPECT_EQ(FieldOf(Method1(), move), "");
+}
+
+// Tests that a feed too low for the pattern is refused naming controller.feed_mm_min.
+TEST(ControllerTest, TooLowFeedForThePatternIsRefused) {
+  ControllerConfig c = Method1();
+  c.accel_time_s = 0.3;
+  c.feed_mm_min = 60;
+  // Lowest shaped speed a T / 2 = feed * 0.04 / (2 * 0.3): below the feed, so it passes.
+  EXPECT_EQ(FieldOf(c, MoveConfig{}), "");
+  c.accel_time_s = 0.01;  // a T / 2 = feed * 0.04 / 0.02 = 2 x feed: refused
+  EXPECT_EQ(FieldOf(c, MoveConfig{}), "controller.feed_mm_min");
+}
+
+// Tests that validate() names the offending field with its sub-struct path.
+TEST(ControllerTest, ValidateNamesNestedFields) {
+  ControllerConfig c;
+  c.period_s = 0.0;
+  EXPECT_THROW(c.validate(), ValidationError);
+  c = ControllerConfig{};
+  c.pattern.method = PatternMethod::kMethod3;
+  c.pattern.k1 = 2.0;
+  try {
+    c.validate();
+    FAIL();
+  } catch (const ValidationError& e) {
+    EXPECT_EQ(e.field(), "pattern.k1");
+  }
+  c = ControllerConfig{};
+  c.pattern.method = PatternMethod::kMethod1;
+  c.accel_time_s = 0.0;
+  try {
+    c.validate();
+    FAIL();
+  } catch (const ValidationError& e) {
+    EXPECT_EQ(e.field(), "accel_time_s");
+  }
+}
+
+// Tests that a negative distance moves the other way, the same profile mirrored.
+TEST(ControllerTest, NegativeDistanceMirrorsTheMove) {
+  MoveConfig forward, backward;
+  forward.distance_mm = 50;
+  backward.distance_mm = -50;
+  const CommandTrajectory f = GenerateCommand(Method1(), forward);
+  const CommandTrajectory b = GenerateCommand(Method1(), backward);
+  ASSERT_EQ(f.velocity_m_s.size(), b.velocity_m_s.size());
+  for (std::size_t k = 0; k < f.velocity_m_s.size(); ++k) EXPECT_EQ(f.velocity_m_s[k], -b.velocity_m_s[k]);
+  EXPECT_NEAR(b.Positions().back(), -0.05, 1e-15);
+}
+
+}  // namespace
+}  // namespace shapebench::controller
