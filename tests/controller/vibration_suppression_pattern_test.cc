@@ -47,10 +47,11 @@ TEST(VibrationSuppressionPatternTest, Methods1And2MatchThePatent) {
 }
 
 // Tests that method 3 with K1 = 0.675 gives t1 = 5T/24 as the patent states (para. 43; the
-// patent rounds, so 0.1% of T), and that K1 = 0.5 and 1 are methods 1 and 2 (para. 44).
+// patent rounds, so 0.1% of T), and that K1 = 0.5 and 1 are methods 1 and 2 (para. 44):
+// K1 = 0.5 gives two steps of a/2 for T/4 each (a/2 for T/2), K1 = 1 gives a, 0 for T/6.
 TEST(VibrationSuppressionPatternTest, Method3StepTimeFollowsTheCosineLaw) {
   EXPECT_NEAR(Method3StepTime(0.675, kT), 5.0 * kT / 24.0, 1e-3 * kT);
-  EXPECT_NEAR(Method3StepTime(0.5, kT), kT / 2, 1e-12);
+  EXPECT_NEAR(Method3StepTime(0.5, kT), kT / 4, 1e-12);
   EXPECT_NEAR(Method3StepTime(1.0, kT), kT / 6, 1e-12);
 }
 

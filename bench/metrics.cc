@@ -1,0 +1,16 @@
+#include "bench/metrics.h"
+
+namespace shapebench::bench {
+
+std::vector<std::pair<std::string, double>> Metrics::Named() const {
+  return {{"static_displacement_m", static_displacement_m},
+          {"peak_deflection_m", peak_deflection_m},
+          {"peak_ratio", peak_ratio},
+          {"residual_amplitude_m", residual_amplitude_m},
+          {"residual_ratio", residual_ratio},
+          {"cruise_residual_ratio", cruise_residual_ratio},
+          {"motion_time_s", motion_time_s},
+          {"settling_time_s", settling_time_s}};
+}
+
+}  // namespace shapebench::bench

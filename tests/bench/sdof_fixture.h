@@ -1,0 +1,24 @@
+// A single undamped 25 Hz mode driven by the kinematic drive: the patent's analysis case.
+#pragma once
+
+#include "bench/scenario.h"
+
+namespace shapebench::bench::testing {
+
+inline Scenario SdofScenario(double frequency_hz = 25.0, double damping_ratio = 0.0,
+                             model::IntegratorMethod method = model::IntegratorMethod::kExact) {
+  Scenario s;
+  model::ModalMachineConfig modal;
+  modal.modes = {model::ModalMode{frequency_hz, damping_ratio, 1.0}};
+  s.machine.form = modal;
+  s.controller.period_s = 0.001;
+  s.controller.feed_mm_min = 30000;  // 0.5 m/s
+  s.controller.accel_time_s = 0.3;   // 1.667 m/s^2 = 0.17 G (para. 21)
+  s.controller.pattern.frequency_hz = 25.0;
+  s.move.distance_mm = 213;  // cruise of 126 ms: 3.15 natural periods, not a whole number
+  s.integrator.method = method;
+  s.integrator.rtol = 1e-10;
+  return s;
+}
+
+}  // namespace shapebench::bench::testing
