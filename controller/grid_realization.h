@@ -21,8 +21,12 @@ struct GridImpulse {
 // start or end) the split weights are then corrected by the smallest change that also
 // makes the group's vibration phasor at `design_frequency_hz` equal the ideal group's,
 // so a pattern that cancels vibration at that frequency still cancels it exactly on the
-// grid (the plain split leaves ~1% for method 2 at 25 Hz and 1 ms).
+// grid (the plain split leaves ~1% for method 2 at 25 Hz and 1 ms). The correction is
+// the least-squares change of the acceleration over the group's span, made where the
+// acceleration is below `accel_limit_m_s2` when that suffices, so that the run's largest
+// acceleration is not raised. `accel_before_m_s2`: the acceleration before the group.
 std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double period_s,
-                                       double design_frequency_hz);
+                                       double design_frequency_hz, double accel_before_m_s2,
+                                       double accel_limit_m_s2);
 
 }  // namespace shapebench::controller

@@ -152,12 +152,15 @@ namespace {
 // The trajectory the ticks see: the jerk groups realised on the grid, integrated.
 CommandTrajectory Realize(const IdealProfile& profile, double period_s, double design_frequency_hz) {
   std::vector<double> jumps;  // acceleration change at each tick
+  const double accel_limit = profile.MaxAbsAccel();
+  double accel_before = 0.0;  // groups are in time order; each adds its net change
   for (const std::vector<Impulse>& group : profile.jerk_groups) {
-    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design_frequency_hz)) {
+    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design_frequency_hz, accel_before, accel_limit)) {
       const auto tick = static_cast<std::size_t>(std::max(0L, g.tick));
       if (jumps.size() <= tick) jumps.resize(tick + 1, 0.0);
       jumps[tick] += g.amplitude;
     }
+    for (const Impulse& i : group) accel_before += i.amplitude;
   }
   CommandTrajectory trajectory;
   trajectory.period_s = period_s;
