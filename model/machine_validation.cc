@@ -1,0 +1,190 @@
+// validate() of the machine configs: every physically invalid value is rejected with the
+// field that holds it, so the scenario loader can point at the offending YAML line.
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <variant>
+#include <vector>
+
+#include "common/validation_error.h"
+#include "model/machine.h"
+
+namespace shapebench::model {
+namespace {
+
+std::string Got(double value) {
+  std::ostringstream out;
+  out << " (got " << value << ")";
+  return out.str();
+}
+
+std::string Indexed(const char* list, size_t i, const char* field) {
+  return std::string(list) + "[" + std::to_string(i) + "]" + (*field ? "." : "") + field;
+}
+
+bool IsReserved(const std::string& name) { return name == "ground" || name == "driven"; }
+
+// The graph of springs (k > 0) between bodies and ground, "driven" standing for the node it
+// is mounted on. K is positive definite exactly when every body reaches ground through it.
+std::vector<bool> RestrainedBodies(const LumpedMachineConfig& config,
+                                   const std::unordered_map<std::string, int>& index) {
+  const int n = static_cast<int>(config.bodies.size());
+  const int ground = n;
+  auto node = [&](const std::string& name) {
+    const std::string& resolved = name == "driven" ? config.driven_relative_to : name;
+    return resolved == "ground" ? ground : index.at(resolved);
+  };
+  std::vector<std::vector<int>> neighbours(n + 1);
+  for (const LumpedElement& e : config.elements) {
+    if (!(e.stiffness_n_m > 0.0)) continue;
+    const int a = node(e.from);
+    const int b = node(e.to);
+    if (a == b) continue;
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  std::vector<bool> reached(n + 1, false);
+  std::vector<int> stack{ground};
+  reached[ground] = true;
+  while (!stack.empty()) {
+    const int at = stack.back();
+    stack.pop_back();
+    for (int next : neighbours[at]) {
+      if (!reached[next]) {
+        reached[next] = true;
+        stack.push_back(next);
+      }
+    }
+  }
+  reached.pop_back();
+  return reached;
+}
+
+void ValidateBodies(const LumpedMachineConfig& config,
+                    std::unordered_map<std::string, int>& index) {
+  if (config.bodies.empty()) {
+    throw ValidationError("bodies", "must list at least one body");
+  }
+  for (size_t i = 0; i < config.bodies.size(); ++i) {
+    const LumpedBody& body = config.bodies[i];
+    if (body.name.empty()) {
+      throw ValidationError(Indexed("bodies", i, "name"), "must not be empty");
+    }
+    if (IsReserved(body.name)) {
+      throw ValidationError(Indexed("bodies", i, "name"),
+                            "\"" + body.name +
+                                "\" is reserved for an element endpoint; "
+                                "choose another body name");
+    }
+    if (!index.emplace(body.name, static_cast<int>(i)).second) {
+      throw ValidationError(Indexed("bodies", i, "name"),
+                            "duplicate body name \"" + body.name + "\"");
+    }
+    if (!(body.mass_kg > 0.0) || !std::isfinite(body.mass_kg)) {
+      throw ValidationError(Indexed("bodies", i, "mass_kg"),
+                            "must be finite and > 0" + Got(body.mass_kg));
+    }
+  }
+}
+
+void ValidateElements(const LumpedMachineConfig& config,
+                      const std::unordered_map<std::string, int>& index) {
+  auto check_endpoint = [&](size_t i, const char* field, const std::string& name) {
+    if (name != "ground" && name != "driven" && index.count(name) == 0) {
+      throw ValidationError(
+          Indexed("elements", i, field),
+          "unknown endpoint \"" + name + "\"; allowed: a body name, \"ground\" or \"driven\"");
+    }
+  };
+  auto check_coefficient = [&](size_t i, const char* field, double value) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      throw ValidationError(Indexed("elements", i, field), "must be finite and >= 0" + Got(value));
+    }
+  };
+  bool touches_driven = false;
+  for (size_t i = 0; i < config.elements.size(); ++i) {
+    const LumpedElement& e = config.elements[i];
+    check_endpoint(i, "from", e.from);
+    check_endpoint(i, "to", e.to);
+    if (e.from == e.to) {
+      throw ValidationError(Indexed("elements", i, "to"),
+                            "must differ from \"from\" (both are \"" + e.to + "\")");
+    }
+    check_coefficient(i, "stiffness_n_m", e.stiffness_n_m);
+    check_coefficient(i, "damping_n_s_m", e.damping_n_s_m);
+    if (e.stiffness_n_m == 0.0 && e.damping_n_s_m == 0.0) {
+      throw ValidationError(Indexed("elements", i, ""),
+                            "stiffness_n_m and damping_n_s_m are both 0; give at least one "
+                            "a positive value");
+    }
+    touches_driven = touches_driven || e.from == "driven" || e.to == "driven";
+  }
+  if (!touches_driven) {
+    throw ValidationError("elements",
+                          "no element has the endpoint \"driven\"; the drive would not move "
+                          "the machine");
+  }
+}
+
+void ValidateReferences(const LumpedMachineConfig& config,
+                        const std::unordered_map<std::string, int>& index) {
+  if (config.driven_relative_to != "ground" && index.count(config.driven_relative_to) == 0) {
+    throw ValidationError("driven_relative_to", "unknown \"" + config.driven_relative_to +
+                                                    "\"; allowed: \"ground\" or a body name");
+  }
+  if (index.count(config.output_body) == 0) {
+    throw ValidationError("output.body",
+                          "unknown body \"" + config.output_body + "\"; allowed: a body name");
+  }
+  if (config.output_relative_to != "ground" && index.count(config.output_relative_to) == 0) {
+    throw ValidationError("output.relative_to", "unknown \"" + config.output_relative_to +
+                                                    "\"; allowed: \"ground\" or a body name");
+  }
+  if (config.output_relative_to == config.output_body) {
+    throw ValidationError("output.relative_to",
+                          "must differ from output.body (both are \"" + config.output_body + "\")");
+  }
+}
+
+}  // namespace
+
+void ModalMachineConfig::validate() const {
+  if (modes.empty()) throw ValidationError("modes", "must list at least one mode");
+  for (size_t i = 0; i < modes.size(); ++i) {
+    const ModalMode& mode = modes[i];
+    if (!(mode.frequency_hz > 0.0) || !std::isfinite(mode.frequency_hz)) {
+      throw ValidationError(Indexed("modes", i, "frequency_hz"),
+                            "must be finite and > 0" + Got(mode.frequency_hz));
+    }
+    if (!(mode.damping_ratio >= 0.0 && mode.damping_ratio < 1.0)) {
+      throw ValidationError(Indexed("modes", i, "damping_ratio"),
+                            "must be in [0, 1) (underdamped)" + Got(mode.damping_ratio));
+    }
+    if (!std::isfinite(mode.gain)) {
+      throw ValidationError(Indexed("modes", i, "gain"), "must be finite" + Got(mode.gain));
+    }
+  }
+}
+
+void LumpedMachineConfig::validate() const {
+  std::unordered_map<std::string, int> index;
+  ValidateBodies(*this, index);
+  ValidateElements(*this, index);
+  ValidateReferences(*this, index);
+  const std::vector<bool> restrained = RestrainedBodies(*this, index);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!restrained[i]) {
+      throw ValidationError(Indexed("bodies", i, "name"),
+                            "body \"" + bodies[i].name +
+                                "\" is not restrained: no chain of springs (stiffness_n_m > 0) "
+                                "ties it to \"ground\" or \"driven\", so it has no rest position");
+    }
+  }
+}
+
+void MachineConfig::validate() const {
+  std::visit([](const auto& config) { config.validate(); }, form);
+}
+
+}  // namespace shapebench::model
