@@ -102,9 +102,14 @@ TEST_P(GridRealizationTest, KeepsDistanceRestAndTheVibrationZero) {
   EXPECT_NEAR(command.Positions().back(), c.distance_m, 1e-15 * 10);
   EXPECT_EQ(command.velocity_m_s.front(), 0.0);
   EXPECT_EQ(command.velocity_m_s.back(), 0.0);
-  // The grid correction of off-grid steps does not raise the largest acceleration.
-  EXPECT_LE(command.MaxAbsAccel(), 0.5 / 0.3 * (1 + 1e-12));
-  if (c.mode == PatternMode::kBoth) EXPECT_LT(GridResidual(command, 25.0), 1e-9);
+  // The grid correction of off-grid steps does not raise the largest acceleration where
+  // the phase has a steady part to spare; in a move shortened by para. 50 the step groups
+  // touch and one period may rise by about (w dt)^2 / 2 = 1%.
+  const bool shortened = c.distance_m < 0.05;
+  EXPECT_LE(command.MaxAbsAccel(), 0.5 / 0.3 * (shortened ? 1.02 : 1 + 1e-12));
+  if (c.mode == PatternMode::kBoth) {
+    EXPECT_LT(GridResidual(command, 25.0), 1e-9);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

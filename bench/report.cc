@@ -1,0 +1,71 @@
+#include "bench/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+
+#include "bench/atomic_file.h"
+
+namespace shapebench::bench {
+namespace {
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::string MetricUnit(const std::string& name) {
+  if (EndsWith(name, "_m")) return "m";
+  if (EndsWith(name, "_s")) return "s";
+  return "";
+}
+
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
+  const auto named = metrics.Named();
+  std::size_t width = 0;
+  for (const auto& entry : named) width = std::max(width, entry.first.size());
+  for (const auto& [name, value] : named) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%.6g", value);
+    out << std::left << std::setw(static_cast<int>(width) + 2) << name;
+    if (std::isnan(value)) {
+      out << "n/a\n";
+    } else {
+      const std::string unit = MetricUnit(name);
+      out << number << (unit.empty() ? "" : " " + unit) << "\n";
+    }
+  }
+}
+
+nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : metrics.Named()) {
+    if (std::isfinite(value)) {
+      json[name] = value;
+    } else {
+      json[name] = nullptr;
+    }
+  }
+  return json;
+}
+
+void WriteTraceCsv(const std::string& path, const Trace& trace) {
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m\n";
+    char line[160];
+    const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
+                                       trace.command_velocity_m_s.size(),
+                                       trace.command_accel_m_s2.size(), trace.deflection_m.size()});
+    for (std::size_t i = 0; i < rows; ++i) {
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g\n", trace.time_s[i],
+                    trace.command_position_m[i], trace.command_velocity_m_s[i],
+                    trace.command_accel_m_s2[i], trace.deflection_m[i]);
+      out << line;
+    }
+  });
+}
+
+}  // namespace shapebench::bench

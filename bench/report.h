@@ -1,0 +1,44 @@
+// What a run leaves behind: the metrics table, metrics JSON, the trace CSV, the
+// deflection plot, and JUnit XML for checks. Files are written atomically.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/checks.h"
+#include "bench/cosim.h"
+#include "bench/metrics.h"
+#include "bench/scenario.h"
+
+namespace shapebench::bench {
+
+// One aligned line per metric: name, value, unit ("n/a" for NaN).
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
+
+// The unit of a metric, from its name's suffix: "m", "s", or "" (ratios).
+std::string MetricUnit(const std::string& name);
+
+// {"static_displacement_m": ..., ...} in Metrics::Named() order (ordered_json keeps it);
+// NaN -> null.
+nlohmann::ordered_json MetricsJson(const Metrics& metrics);
+
+// t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m (%.17g).
+void WriteTraceCsv(const std::string& path, const Trace& trace);
+
+// Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
+// +/- static_displacement dashed; pngcairo 1000x600 via gnuplot. Throws
+// std::runtime_error when gnuplot is missing or fails.
+void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
+                         const Scenario& scenario);
+
+// JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
+// is one <testcase name="run"> with an <error>.
+void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports);
+
+// Escapes text for XML attributes and content; drops what XML 1.0 cannot hold.
+std::string XmlEscape(const std::string& text);
+
+}  // namespace shapebench::bench

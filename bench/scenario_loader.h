@@ -1,0 +1,40 @@
+// YAML -> Scenario (SPEC section 3) with exact error reporting: every error is a
+// ConfigError located at FILE:LINE:COL (or --set:N:1 for a --set value) with the key
+// path, e.g. "scen.yaml:7:19: controller.pattern.k1: must be in [0.5, 1]".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bench/config_error.h"
+#include "bench/override.h"
+#include "bench/scenario.h"
+#include "common/validation_error.h"
+#include "model/machine.h"
+
+namespace shapebench::bench {
+
+struct LoadOptions {
+  // Plan the move (controller::GenerateCommand) so that a move too short for its pattern
+  // is a load error. `pattern` turns it off: it shows the pattern whatever the move.
+  bool plan_move = true;
+};
+
+// Reads, overrides (in order) and validates a scenario. `machine:` may be a mapping or a
+// path to a machine file relative to the scenario's directory; --set machine.KEY applies
+// to the loaded machine.
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
+                      const LoadOptions& options = {});
+
+// The machine of a machine file (top level has `modes` or `bodies`) or of a scenario.
+// Key paths are scenario paths either way ("machine.modes[0].gain"); for a machine file
+// a --set path without the leading "machine." is accepted too.
+model::MachineConfig LoadMachine(const std::string& path, const std::vector<Override>& overrides);
+
+// Locates a ValidationError raised later about a loaded scenario (its field a scenario
+// key path, e.g. from RunScenario) in the scenario's sources.
+ConfigError LocateValidationError(const std::string& path,
+                                  const std::vector<Override>& overrides,
+                                  const ValidationError& error);
+
+}  // namespace shapebench::bench

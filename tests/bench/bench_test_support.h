@@ -1,0 +1,82 @@
+// Shared helpers of the bench tests: scratch directories, fixture paths, and running
+// the built CLI (SHAPEBENCH_BINARY) as a child process.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace shapebench::bench::testing {
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "shapebench_test_XXXXXX").string();
+    path_ = mkdtemp(pattern.data());
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  std::string File(const std::string& name) const { return (path_ / name).string(); }
+  // Writes `text` to `name` (parent directories created) and returns its path.
+  std::string Write(const std::string& name, const std::string& text) const {
+    const std::filesystem::path file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file.string();
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::string DataPath(const std::string& name) {
+  return std::string(SHAPEBENCH_SOURCE_DIR) + "/tests/bench/data/" + name;
+}
+
+inline std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string ShellQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr.
+inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir) {
+  ScratchDir capture;
+  std::string command = "cd " + ShellQuoted(work_dir) + " && " + ShellQuoted(SHAPEBENCH_BINARY);
+  for (const auto& arg : args) command += " " + ShellQuoted(arg);
+  command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
+  const int status = std::system(command.c_str());
+  CliResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadText(capture.File("out"));
+  result.err = ReadText(capture.File("err"));
+  return result;
+}
+
+}  // namespace shapebench::bench::testing
