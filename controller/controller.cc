@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/format.h"
 #include "common/validation_error.h"
 #include "controller/exponential_acc_dec.h"
 #include "controller/linear_acc_dec.h"
@@ -11,11 +12,7 @@
 namespace shapebench::controller {
 namespace {
 
-std::string Num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string Num(double v) { return FormatNumber(v); }
 
 bool Finite(double v) { return std::isfinite(v); }
 

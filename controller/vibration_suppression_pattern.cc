@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/format.h"
 #include "common/validation_error.h"
 
 namespace shapebench::controller {
@@ -12,11 +13,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string Num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string Num(double v) { return FormatNumber(v); }
 
 double Quantize(double duration_s, double resolution_s) {
   if (resolution_s <= 0.0) return duration_s;

@@ -53,12 +53,8 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
   const int n = num_states_;
   const int m = num_inputs_;
   const int nz = n + m;
-  A_z_ = Eigen::MatrixXd::Zero(nz, nz);
-  A_z_.topLeftCorner(n, n) = plant.A;
-  A_z_.topRightCorner(n, m) = plant.B_vel;
-  B_z_ = Eigen::MatrixXd::Zero(nz, m);
-  B_z_.topRows(n) = plant.B_accel;
-  B_z_.bottomRows(m).setIdentity();
+  A_z_ = plant.AugmentedA();
+  B_z_ = plant.AugmentedB();
   accel_ = Eigen::VectorXd::Zero(m);
 
   SUNContext ctx = nullptr;

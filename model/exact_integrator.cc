@@ -54,13 +54,11 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
   const int n = num_states_;
   const int m = num_inputs_;
   const int nz = n + m;
-  // z' = A_z z + B_z a with A_z = [[A, B_vel], [0, 0]], B_z = [B_accel; I]. Van Loan:
+  // z' = A_z z + B_z a (LinearPlant::AugmentedA/B). Van Loan:
   // exp([[A_z, B_z], [0, 0]] h) = [[Phi, Gamma], [0, I]], Gamma = int_0^h e^{A_z s} ds B_z.
   Eigen::MatrixXd block = Eigen::MatrixXd::Zero(nz + m, nz + m);
-  block.topLeftCorner(n, n) = plant.A;
-  block.block(0, n, n, m) = plant.B_vel;
-  block.block(0, nz, n, m) = plant.B_accel;
-  block.block(n, nz, m, m).setIdentity();
+  block.topLeftCorner(nz, nz) = plant.AugmentedA();
+  block.topRightCorner(nz, m) = plant.AugmentedB();
   const double h = period_s / substeps;
   block *= h;
   const Eigen::VectorXd d = BalancingScales(block);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/format.h"
 #include "common/validation_error.h"
 #include "model/cvode_integrator.h"
 #include "model/exact_integrator.h"
@@ -10,11 +11,7 @@
 namespace shapebench::model {
 namespace {
 
-std::string Got(double value) {
-  std::ostringstream out;
-  out << " (got " << value << ")";
-  return out.str();
-}
+std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
 
 void CheckPlantShapes(const LinearPlant& plant) {
   const int n = plant.num_states();

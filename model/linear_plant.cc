@@ -9,4 +9,22 @@ Eigen::MatrixXd LinearPlant::StaticGain() const {
   return C * x_per_accel;
 }
 
+Eigen::MatrixXd LinearPlant::AugmentedA() const {
+  const Eigen::Index n = A.rows();
+  const Eigen::Index m = B_accel.cols();
+  Eigen::MatrixXd a_z = Eigen::MatrixXd::Zero(n + m, n + m);
+  a_z.topLeftCorner(n, n) = A;
+  a_z.topRightCorner(n, m) = B_vel;
+  return a_z;
+}
+
+Eigen::MatrixXd LinearPlant::AugmentedB() const {
+  const Eigen::Index n = A.rows();
+  const Eigen::Index m = B_accel.cols();
+  Eigen::MatrixXd b_z = Eigen::MatrixXd::Zero(n + m, m);
+  b_z.topRows(n) = B_accel;
+  b_z.bottomRows(m).setIdentity();
+  return b_z;
+}
+
 }  // namespace shapebench::model

@@ -29,6 +29,12 @@ struct LinearPlant {
 
   // Deflection per unit acceleration held constant: the static solve A x = -B_accel a.
   Eigen::MatrixXd StaticGain() const;
+
+  // The plant with the drive velocity appended to the state (v' = a), so that the input
+  // is the acceleration alone: z = [x; v], z' = AugmentedA() z + AugmentedB() a, with
+  // AugmentedA = [[A, B_vel], [0, 0]] and AugmentedB = [B_accel; I].
+  Eigen::MatrixXd AugmentedA() const;
+  Eigen::MatrixXd AugmentedB() const;
 };
 
 }  // namespace shapebench::model

@@ -7,17 +7,14 @@
 #include <variant>
 #include <vector>
 
+#include "common/format.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
 
 namespace shapebench::model {
 namespace {
 
-std::string Got(double value) {
-  std::ostringstream out;
-  out << " (got " << value << ")";
-  return out.str();
-}
+std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
 
 std::string Indexed(const char* list, size_t i, const char* field) {
   return std::string(list) + "[" + std::to_string(i) + "]" + (*field ? "." : "") + field;
