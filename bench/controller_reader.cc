@@ -8,7 +8,8 @@ using controller::PatternMode;
 using controller::PostInterpType;
 
 controller::PatternConfig ReadPattern(const NodeReader& pattern) {
-  pattern.ExpectMap({"method", "mode", "frequency_hz", "k1", "t1_s", "step_resolution_s"});
+  pattern.ExpectMap(
+      {"method", "mode", "frequency_hz", "k1", "t1_s", "step_resolution_s", "realization"});
   controller::PatternConfig config;
   // Written as YAML ints (1) or strings ("1"): both read as the scalar's text.
   pattern.Read<PatternMethod>("method",
@@ -28,16 +29,34 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern) {
   pattern.Read("k1", &config.k1);
   pattern.Read("t1_s", &config.t1_s);
   pattern.Read("step_resolution_s", &config.step_resolution_s);
+  pattern.Read<controller::PatternRealization>(
+      "realization",
+      {{"stepped", controller::PatternRealization::kStepped},
+       {"profile_table", controller::PatternRealization::kProfileTable}},
+      &config.realization);
   return config;
 }
 
 controller::PostInterpConfig ReadPostInterp(const NodeReader& post_interp) {
-  post_interp.ExpectMap({"type", "time_constant_s"});
+  post_interp.ExpectMap({"type", "time_constant_s", "table", "moving_average_s",
+                         "max_table_length", "distribution"});
   controller::PostInterpConfig config;
-  post_interp.Read<PostInterpType>(
-      "type", {{"none", PostInterpType::kNone}, {"exponential", PostInterpType::kExponential}},
-      &config.type);
+  post_interp.Read<PostInterpType>("type",
+                                   {{"none", PostInterpType::kNone},
+                                    {"exponential", PostInterpType::kExponential},
+                                    {"profile_table", PostInterpType::kProfileTable}},
+                                   &config.type);
   post_interp.Read("time_constant_s", &config.time_constant_s);
+  if (auto table = post_interp.Child("table")) {
+    for (const NodeReader& alpha : table->Elements()) config.table.push_back(alpha.AsNumber());
+  }
+  post_interp.Read("moving_average_s", &config.moving_average_s);
+  post_interp.Read("max_table_length", &config.max_table_length);
+  post_interp.Read<controller::Distribution>(
+      "distribution",
+      {{"per_axis", controller::Distribution::kPerAxis},
+       {"tangential", controller::Distribution::kTangential}},
+      &config.distribution);
   return config;
 }
 
@@ -45,11 +64,14 @@ controller::PostInterpConfig ReadPostInterp(const NodeReader& post_interp) {
 
 controller::ControllerConfig ReadController(const NodeReader& controller) {
   controller.ExpectMap(
-      {"period_s", "feed_mm_min", "accel_time_s", "pattern", "post_interp"});
+      {"period_s", "feed_mm_min", "accel_time_s", "rapid_feed_mm_min",
+       "corner_velocity_change_mm_min", "pattern", "post_interp"});
   controller::ControllerConfig config;
   controller.Read("period_s", &config.period_s);
   controller.Read("feed_mm_min", &config.feed_mm_min);
   controller.Read("accel_time_s", &config.accel_time_s);
+  controller.Read("rapid_feed_mm_min", &config.rapid_feed_mm_min);
+  controller.Read("corner_velocity_change_mm_min", &config.corner_velocity_change_mm_min);
   if (auto pattern = controller.Child("pattern")) config.pattern = ReadPattern(*pattern);
   if (auto post_interp = controller.Child("post_interp")) {
     config.post_interp = ReadPostInterp(*post_interp);
@@ -58,9 +80,10 @@ controller::ControllerConfig ReadController(const NodeReader& controller) {
 }
 
 controller::MoveConfig ReadMove(const NodeReader& move) {
-  move.ExpectMap({"distance_mm"});
+  move.ExpectMap({"distance_mm", "axis"});
   controller::MoveConfig config;
   move.Read("distance_mm", &config.distance_mm);
+  move.Read<int>("axis", {{"x", 0}, {"y", 1}, {"z", 2}}, &config.axis);
   return config;
 }
 

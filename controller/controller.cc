@@ -1,13 +1,18 @@
 #include "controller/controller.h"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "common/format.h"
 #include "common/validation_error.h"
-#include "controller/exponential_acc_dec.h"
+#include "controller/block_planner.h"
+#include "controller/interpolator.h"
 #include "controller/linear_acc_dec.h"
+#include "controller/path_geometry.h"
+#include "controller/profile_table.h"
+#include "controller/pulse_filter.h"
+#include "controller/tangential_distribution.h"
 
 namespace shapebench::controller {
 namespace {
@@ -16,6 +21,35 @@ std::string Num(double v) { return FormatNumber(v); }
 
 bool Finite(double v) { return std::isfinite(v); }
 
+bool TableRealization(const ControllerConfig& c) {
+  return c.pattern.realization == PatternRealization::kProfileTable &&
+         c.pattern.method != PatternMethod::kNone && c.pattern.mode != PatternMode::kOff;
+}
+
+StepPattern PreInterpolationPattern(const ControllerConfig& c) {
+  if (c.pattern.realization != PatternRealization::kStepped) return StepPattern{};
+  return MakeStepPattern(c.pattern);
+}
+
+// The pattern's table (profile_table realization), cascaded with post_interp's filter.
+PulseFilter PostInterpFilter(const ControllerConfig& c) {
+  PulseFilter filter;
+  if (TableRealization(c)) {
+    PatternConfig both = c.pattern;
+    both.mode = PatternMode::kBoth;
+    filter.table = ProfileTableFromPattern(MakeStepPattern(both), c.period_s, c.pattern.frequency_hz);
+  }
+  const PostInterpConfig& post = c.post_interp;
+  if (post.type == PostInterpType::kProfileTable) {
+    const std::vector<double> table =
+        post.table.empty() ? MovingAverageTable(post.moving_average_s, c.period_s) : post.table;
+    filter.table = ConvolveTables(filter.table, table);
+  } else if (post.type == PostInterpType::kExponential) {
+    filter.time_constant_s = post.time_constant_s;
+  }
+  return filter;
+}
+
 }  // namespace
 
 void PostInterpConfig::validate() const {
@@ -23,6 +57,25 @@ void PostInterpConfig::validate() const {
     throw ValidationError("time_constant_s", "must be > 0 for exponential acc/dec (got " +
                                                  Num(time_constant_s) + ")");
   }
+  if (max_table_length < 1) {
+    throw ValidationError("max_table_length", "must be >= 1 (got " + std::to_string(max_table_length) + ")");
+  }
+  if (type == PostInterpType::kProfileTable) {
+    if (table.empty() == (moving_average_s == 0.0)) {
+      throw ValidationError(table.empty() ? "type" : "moving_average_s",
+                            "profile_table needs exactly one of `table` (the jerk coefficients) "
+                            "and `moving_average_s` (> 0); to build the table from the pattern, "
+                            "set controller.pattern.realization: profile_table");
+    }
+    if (!table.empty()) ValidateProfileTable(table, max_table_length);
+    if (!(Finite(moving_average_s) && moving_average_s >= 0.0)) {
+      throw ValidationError("moving_average_s", "must be > 0 s (got " + Num(moving_average_s) + ")");
+    }
+  }
+}
+
+double ControllerConfig::accel_m_s2() const {
+  return accel_time_s > 0.0 ? feed_m_s() / accel_time_s : feed_m_s() / period_s;
 }
 
 void ControllerConfig::validate() const {
@@ -35,12 +88,21 @@ void ControllerConfig::validate() const {
   if (!(Finite(accel_time_s) && accel_time_s >= 0.0)) {
     throw ValidationError("accel_time_s", "must be >= 0 (0 = a feed step; got " + Num(accel_time_s) + ")");
   }
+  if (!(Finite(rapid_feed_mm_min) && rapid_feed_mm_min > 0.0)) {
+    throw ValidationError("rapid_feed_mm_min", "must be > 0 (got " + Num(rapid_feed_mm_min) + ")");
+  }
+  if (!(Finite(corner_velocity_change_mm_min) && corner_velocity_change_mm_min >= 0.0)) {
+    throw ValidationError("corner_velocity_change_mm_min",
+                          "must be >= 0 (0 stops at every corner; got " +
+                              Num(corner_velocity_change_mm_min) + ")");
+  }
   try {
     pattern.validate();
   } catch (const ValidationError& e) {
     throw e.Prefixed("pattern");
   }
-  if (MakeStepPattern(pattern).shapes() && accel_time_s == 0.0) {
+  const bool shaped = MakeStepPattern(pattern).shapes();
+  if (shaped && pattern.realization == PatternRealization::kStepped && accel_time_s == 0.0) {
     throw ValidationError("accel_time_s", "must be > 0 when a pattern is active: the steps are "
                                           "fractions of the steady acceleration feed / accel_time_s");
   }
@@ -48,6 +110,34 @@ void ControllerConfig::validate() const {
     post_interp.validate();
   } catch (const ValidationError& e) {
     throw e.Prefixed("post_interp");
+  }
+  if (post_interp.type == PostInterpType::kProfileTable && post_interp.table.empty()) {
+    const long n = std::lround(post_interp.moving_average_s / period_s);
+    if (n < 1 || n > post_interp.max_table_length) {
+      throw ValidationError("post_interp.moving_average_s",
+                            "gives " + std::to_string(n) + " coefficients at period_s " +
+                                Num(period_s) + "; allowed: 1 to max_table_length (" +
+                                std::to_string(post_interp.max_table_length) + ")");
+    }
+  }
+  if (TableRealization(*this)) {
+    if (pattern.mode != PatternMode::kBoth) {
+      throw ValidationError("pattern.mode",
+                            "the profile_table realization shapes the start and the end of every "
+                            "speed change (mode both); modes start and end need realization stepped");
+    }
+    PatternConfig both = pattern;
+    const std::size_t length =
+        ProfileTableFromPattern(MakeStepPattern(both), period_s, pattern.frequency_hz).size();
+    if (static_cast<long>(length) > post_interp.max_table_length) {
+      throw ValidationError("pattern.realization",
+                            "the pattern's profile table needs " + std::to_string(length) +
+                                " coefficients at period_s " + Num(period_s) +
+                                ", more than post_interp.max_table_length (" +
+                                std::to_string(post_interp.max_table_length) +
+                                "); allowed: a longer period, a larger max_table_length, or "
+                                "realization stepped");
+    }
   }
 }
 
@@ -57,44 +147,107 @@ void MoveConfig::validate() const {
   }
 }
 
-CommandTrajectory GenerateCommand(const ControllerConfig& controller, const MoveConfig& move) {
-  const double feed_m_s = controller.feed_m_s();
-  // accel_time_s = 0 commands a feed step: the fastest the tick grid can carry is a ramp
-  // over one interpolation period.
-  const double accel_m_s2 = controller.accel_time_s > 0.0 ? feed_m_s / controller.accel_time_s
-                                                          : feed_m_s / controller.period_s;
+Program MoveProgram(const MoveConfig& move, int axis) {
+  Program program;
+  ProgramBlock block;
+  block.kind = MotionKind::kLinear;
+  block.end_m(axis) = move.distance_mm * 1e-3;
+  program.blocks.push_back(block);
+  return program;
+}
+
+Eigen::Vector3d MultiAxisCommand::velocity_m_s(std::size_t k) const {
+  return {axes[0].velocity_m_s[k], axes[1].velocity_m_s[k], axes[2].velocity_m_s[k]};
+}
+
+Eigen::Vector3d MultiAxisCommand::accel_m_s2(std::size_t k) const {
+  return {axes[0].accel_m_s2(k), axes[1].accel_m_s2(k), axes[2].accel_m_s2(k)};
+}
+
+std::vector<Eigen::Vector3d> MultiAxisCommand::Positions() const {
+  std::vector<Eigen::Vector3d> positions(num_ticks() + 1, start_m);
+  for (std::size_t k = 1; k <= num_ticks(); ++k) {
+    positions[k] = positions[k - 1];
+    for (int a = 0; a < kNumAxes; ++a) positions[k](a) += axes[a].increment_m(k);
+  }
+  return positions;
+}
+
+void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
+  if (controller.pattern.realization != PatternRealization::kStepped) return;
   const StepPattern pattern = MakeStepPattern(controller.pattern);
-  const double distance_m = std::abs(move.distance_mm) * 1e-3;
-  if (pattern.shapes()) {
-    const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
-    if (feed_m_s < lowest_speed * (1.0 - 1e-12)) {
-      throw ValidationError(
-          "controller.feed_mm_min",
-          "feed " + Num(controller.feed_mm_min) + " mm/min is too low for the pattern: after para. 50's "
-          "shortening (steady acceleration, then step 2) the feed must be at least " +
-              Num(lowest_speed * 60000.0) + " mm/min, or step 1 is cut and nothing of the shaping is left; "
-              "allowed: a higher feed, a longer accel_time_s, or pattern.mode off");
+  if (!pattern.shapes()) return;
+  const double accel_m_s2 = controller.accel_m_s2();
+  const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
+  if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
+    throw ValidationError(
+        "controller.feed_mm_min",
+        "feed " + Num(controller.feed_mm_min) + " mm/min is too low for the pattern: after para. 50's "
+        "shortening (steady acceleration, then step 2) the feed must be at least " +
+            Num(lowest_speed * 60000.0) + " mm/min, or step 1 is cut and nothing of the shaping is left; "
+            "allowed: a higher feed, a longer accel_time_s, or pattern.mode off");
+  }
+  const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
+  if (distance_m < shortest_m * (1.0 - 1e-12)) {
+    throw ValidationError(
+        "move.distance_mm",
+        "a move of " + Num(distance_m * 1e3) + " mm is too short for the pattern: after para. 50's "
+        "shortening (steady acceleration, then step 2) it needs at least " + Num(shortest_m * 1e3) +
+            " mm, or step 1 is cut and nothing of the shaping is left; allowed: a longer move, a "
+            "longer accel_time_s, or pattern.mode off");
+  }
+}
+
+MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program) {
+  const double dt = controller.period_s;
+  const PathGeometry path(program);
+  PlannerSettings settings;
+  settings.period_s = dt;
+  settings.accel_m_s2 = controller.accel_m_s2();
+  settings.pattern = PreInterpolationPattern(controller);
+  settings.design_frequency_hz = controller.pattern.frequency_hz;
+  settings.default_feed_m_s = controller.feed_m_s();
+  settings.rapid_feed_m_s = controller.rapid_feed_mm_min / 60000.0;
+  settings.corner_velocity_change_m_s = controller.corner_velocity_change_mm_min / 60000.0;
+  const SpeedPlan plan = PlanPathSpeed(program, path, settings);
+  const InterpolatedPulses pulses = Interpolate(path, plan, dt);
+
+  const PulseFilter filter = PostInterpFilter(controller);
+  std::vector<Eigen::Vector3d> out;
+  if (filter.is_identity()) {
+    out = pulses.axis_pulses_m;
+  } else if (controller.post_interp.distribution == Distribution::kTangential) {
+    out = DistributeTangentially(pulses.axis_pulses_m, pulses.tangential_pulses_m, filter, dt);
+  } else {
+    for (int a = 0; a < kNumAxes; ++a) {
+      std::vector<double> axis(pulses.axis_pulses_m.size());
+      for (std::size_t k = 0; k < axis.size(); ++k) axis[k] = pulses.axis_pulses_m[k](a);
+      const std::vector<double> filtered = filter.Apply(axis, dt);
+      if (out.size() < filtered.size()) out.resize(filtered.size(), Eigen::Vector3d::Zero());
+      for (std::size_t k = 0; k < filtered.size(); ++k) out[k](a) = filtered[k];
     }
-    const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
-    if (distance_m < shortest_m * (1.0 - 1e-12)) {
-      throw ValidationError(
-          "move.distance_mm",
-          "a move of " + Num(std::abs(move.distance_mm)) + " mm is too short for the pattern: after para. 50's "
-          "shortening (steady acceleration, then step 2) it needs at least " + Num(shortest_m * 1e3) +
-              " mm, or step 1 is cut and nothing of the shaping is left; allowed: a longer move, a "
-              "longer accel_time_s, or pattern.mode off");
-    }
   }
-  CommandTrajectory command =
-      SampleOnTicks(distance_m, feed_m_s, accel_m_s2, pattern, controller.period_s,
-                    controller.pattern.frequency_hz);
-  if (controller.post_interp.type == PostInterpType::kExponential) {
-    command = ApplyExponentialAccDec(command, controller.post_interp.time_constant_s);
+  // The drive's velocity sample at tick k is the pulse rate of period k; a command ends
+  // at rest.
+  if (out.empty() || out.back() != Eigen::Vector3d::Zero()) out.push_back(Eigen::Vector3d::Zero());
+  MultiAxisCommand command;
+  command.period_s = dt;
+  command.start_m = program.start_m;
+  for (int a = 0; a < kNumAxes; ++a) {
+    CommandTrajectory& axis = command.axes[a];
+    axis.period_s = dt;
+    axis.velocity_m_s.assign(out.size() + 1, 0.0);
+    for (std::size_t k = 0; k < out.size(); ++k) axis.velocity_m_s[k + 1] = out[k](a) / dt;
   }
-  if (move.distance_mm < 0.0) {
-    for (double& v : command.velocity_m_s) v = -v;
-  }
+  command.path_position_m = pulses.path_position_m;
+  command.block = pulses.block;
+  command.block_feed_m_s = plan.block_feed_m_s;
   return command;
+}
+
+CommandTrajectory GenerateCommand(const ControllerConfig& controller, const MoveConfig& move) {
+  CheckShapedMove(controller, std::abs(move.distance_mm) * 1e-3);
+  return GenerateProgramCommand(controller, MoveProgram(move, 0)).axes[0];
 }
 
 }  // namespace shapebench::controller

@@ -1,37 +1,92 @@
-// The CNC controller for one straight move along the driven axis: feed, pre-interpolation
-// linear acc/dec with the vibration-suppressing pattern, post-interpolation acc/dec.
+// The CNC controller of seeds 004 and 000: feed-rate control and look-ahead block
+// planning, pre-interpolation linear acc/dec with the vibration-suppressing pattern,
+// interpolation every period, post-interpolation acc/dec (exponential or a profile
+// table; per axis or tangential). Its output is the per-axis command the drive follows.
 #pragma once
 
+#include <array>
+#include <vector>
+
+#include <Eigen/Dense>
+
 #include "controller/command_trajectory.h"
+#include "controller/program.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::controller {
 
-enum class PostInterpType { kNone, kExponential };
+enum class PostInterpType { kNone, kExponential, kProfileTable };
+// per_axis: each axis' pulses filtered on their own (the conventional way; pulls arcs
+// inward); tangential: seed 000's queue (filtered dS releases the queued segments).
+enum class Distribution { kPerAxis, kTangential };
 
 struct PostInterpConfig {
   PostInterpType type = PostInterpType::kNone;
   double time_constant_s = 1.0 / 30.0;  // exponential: 1/K, K = 30 1/s (para. 29)
+  // profile_table: the jerk coefficients (one per period, summing to 1), or
+  // moving_average_s > 0 for n = moving_average_s / period equal ones (linear acc/dec).
+  std::vector<double> table;
+  double moving_average_s = 0.0;
+  int max_table_length = 64;  // alpha_0 .. alpha_63 (para. 58)
+  Distribution distribution = Distribution::kPerAxis;
   void validate() const;
 };
 
 struct ControllerConfig {
   double period_s = 0.001;       // interpolation period
-  double feed_mm_min = 6000.0;   // commanded feed (mm/min at the YAML boundary)
-  double accel_time_s = 0.05;    // linear acc/dec: time to reach the feed; 0 = a step
+  double feed_mm_min = 6000.0;   // commanded feed (mm/min at the YAML boundary); programs:
+                                 // until the first F word, and the acc/dec reference
+  double accel_time_s = 0.05;    // linear acc/dec: time to reach feed_mm_min; 0 = a step
+  double rapid_feed_mm_min = 30000.0;  // G0
+  // Corner rule: the largest velocity change per axis at a block junction (taken within
+  // one period). 0 stops wherever the direction changes; collinear blocks never stop.
+  double corner_velocity_change_mm_min = 0.0;
   PatternConfig pattern;
   PostInterpConfig post_interp;
   void validate() const;  // throws ValidationError naming the field
   double feed_m_s() const { return feed_mm_min / 60000.0; }
+  // The steady acceleration of linear acc/dec: feed / accel_time (a one-period ramp for
+  // accel_time_s = 0, the fastest the tick grid carries).
+  double accel_m_s2() const;
 };
 
 struct MoveConfig {
   double distance_mm = 100.0;  // signed: negative moves the other way
+  int axis = -1;               // 0..2; -1: the machine's driven axis (the bench decides)
   void validate() const;
 };
 
-// Throws ValidationError with a scenario-root key path ("move.distance_mm", ...) when the
-// move cannot be planned (e.g. too short for its pattern).
+// The one-block program `move:` stands for: a straight move from the origin along `axis`.
+Program MoveProgram(const MoveConfig& move, int axis);
+
+// What the controller hands the drives: per axis, the velocity at every tick (the pulse
+// of the period just ended / period), all axes the same length (N + 1 samples).
+struct MultiAxisCommand {
+  double period_s = 0.001;
+  Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
+  std::array<CommandTrajectory, kNumAxes> axes;
+  // The interpolator's state per tick k = 0..M (M <= N: the post-interpolation tail
+  // follows): path position before post-interpolation acc/dec, and its block.
+  std::vector<double> path_position_m;
+  std::vector<int> block;
+  std::vector<double> block_feed_m_s;  // the feed each block was planned at
+
+  std::size_t num_ticks() const { return axes[0].num_ticks(); }
+  Eigen::Vector3d velocity_m_s(std::size_t k) const;
+  Eigen::Vector3d accel_m_s2(std::size_t k) const;  // held over period k (k >= 1)
+  // Positions p_0 .. p_N (start + trapezoids), summed in tick order.
+  std::vector<Eigen::Vector3d> Positions() const;
+};
+
+// Throws ValidationError with a scenario-root key path when the program cannot be run.
+MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program);
+
+// Para. 50 taken to its end cuts step 1 and leaves nothing of the shaping: the bench
+// refuses a single move (or feed) too short (low) for its stepped pattern, naming
+// `move.distance_mm` or `controller.feed_mm_min`.
+void CheckShapedMove(const ControllerConfig& controller, double distance_m);
+
+// The single-axis command of `move:` (the foundation's interface, kept for its tests).
 CommandTrajectory GenerateCommand(const ControllerConfig& controller, const MoveConfig& move);
 
 }  // namespace shapebench::controller

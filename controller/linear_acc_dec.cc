@@ -18,17 +18,19 @@ double PhaseDuration(double speed_m_s, double accel_m_s2, const StepPattern& pat
   return AccelPhase(speed_m_s, accel_m_s2, pattern).Duration();
 }
 
-// Appends `phase` (scaled by `sign`) to `profile`, starting at `start_s`.
-void AppendPhase(IdealProfile& profile, const IdealProfile& phase, double sign, double start_s) {
-  for (const AccelSegment& s : phase.segments) profile.segments.push_back({s.duration_s, sign * s.accel_m_s2});
+}  // namespace
+
+void IdealProfile::AppendPhase(const IdealProfile& phase, double sign) {
+  const double start_s = Duration();
+  for (const AccelSegment& s : phase.segments) segments.push_back({s.duration_s, sign * s.accel_m_s2});
   for (const std::vector<Impulse>& group : phase.jerk_groups) {
     std::vector<Impulse> shifted;
     for (const Impulse& i : group) shifted.push_back({start_s + i.time_s, sign * i.amplitude});
-    profile.jerk_groups.push_back(shifted);
+    jerk_groups.push_back(shifted);
   }
 }
 
-}  // namespace
+void IdealProfile::AppendCruise(double duration_s) { Append(*this, duration_s, 0.0); }
 
 double IdealProfile::Duration() const {
   double total = 0.0;
@@ -141,16 +143,14 @@ IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s
   }
   const IdealProfile phase = AccelPhase(speed, accel_m_s2, pattern);
   IdealProfile profile;
-  AppendPhase(profile, phase, 1.0, 0.0);
-  Append(profile, cruise_s, 0.0);
-  AppendPhase(profile, phase, -1.0, phase.Duration() + cruise_s);
+  profile.AppendPhase(phase, 1.0);
+  profile.AppendCruise(cruise_s);
+  profile.AppendPhase(phase, -1.0);
   return profile;
 }
 
-namespace {
-
-// The trajectory the ticks see: the jerk groups realised on the grid, integrated.
-CommandTrajectory Realize(const IdealProfile& profile, double period_s, double design_frequency_hz) {
+CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
+                                 double design_frequency_hz) {
   std::vector<double> jumps;  // acceleration change at each tick
   const double accel_limit = profile.MaxAbsAccel();
   double accel_before = 0.0;  // groups are in time order; each adds its net change
@@ -176,6 +176,8 @@ CommandTrajectory Realize(const IdealProfile& profile, double period_s, double d
   return trajectory;
 }
 
+namespace {
+
 double RealizedDistance(const CommandTrajectory& trajectory) {
   double sum = 0.0;
   for (std::size_t k = 1; k <= trajectory.num_ticks(); ++k) sum += trajectory.increment_m(k);
@@ -187,13 +189,20 @@ double RealizedDistance(const CommandTrajectory& trajectory) {
 CommandTrajectory SampleOnTicks(double distance_m, double feed_m_s, double accel_m_s2,
                                 const StepPattern& pattern, double period_s,
                                 double design_frequency_hz) {
+  return RealizeExactDistance(
+      [&](double nominal_m) { return PlanRestToRest(nominal_m, feed_m_s, accel_m_s2, pattern); },
+      distance_m, period_s, design_frequency_hz);
+}
+
+CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>& plan,
+                                       double distance_m, double period_s,
+                                       double design_frequency_hz) {
   // The grid trajectory covers slightly more or less than the ideal one when steps fall
   // between ticks. Plan for a nominal distance X whose realised distance S(X) is the
   // requested one: S is continuous and increasing with S(X) ~ X, so regula falsi with a
   // bisection fallback converges in a few evaluations.
   auto realize = [&](double nominal_m) {
-    return Realize(PlanRestToRest(nominal_m, feed_m_s, accel_m_s2, pattern), period_s,
-                   design_frequency_hz);
+    return RealizeOnTicks(plan(nominal_m), period_s, design_frequency_hz);
   };
   auto error = [&](double nominal_m) { return RealizedDistance(realize(nominal_m)) - distance_m; };
   const double x0 = distance_m;

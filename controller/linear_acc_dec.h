@@ -4,6 +4,7 @@
 // short. The ideal profile is continuous-time; it is then realised on the tick grid.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "controller/command_trajectory.h"
@@ -28,6 +29,11 @@ struct IdealProfile {
   double DistanceAt(double t_s) const;
   double Distance() const { return DistanceAt(Duration()); }
   double MaxAbsAccel() const;
+
+  // Appends `phase` (a profile from rest, e.g. AccelPhase) at the end, its accelerations
+  // and jerks scaled by `sign` (-1: the mirrored dec phase).
+  void AppendPhase(const IdealProfile& phase, double sign);
+  void AppendCruise(double duration_s);
 };
 
 // One acc phase from rest to `speed_m_s` starting at t = 0, shaped by `pattern`, with
@@ -54,5 +60,16 @@ IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s
 CommandTrajectory SampleOnTicks(double distance_m, double feed_m_s, double accel_m_s2,
                                 const StepPattern& pattern, double period_s,
                                 double design_frequency_hz);
+
+// The general form: `plan(nominal_m)` gives a rest-to-rest profile planned for a nominal
+// distance (continuous and increasing in it); the result is the grid realization whose
+// ticks cover exactly `distance_m` (regula falsi on the nominal distance).
+CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>& plan,
+                                       double distance_m, double period_s,
+                                       double design_frequency_hz);
+
+// The profile on the tick grid: the jerk groups realised by RealizeOnGrid, integrated.
+CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
+                                 double design_frequency_hz);
 
 }  // namespace shapebench::controller

@@ -12,6 +12,11 @@ namespace shapebench::controller {
 enum class PatternMethod { kNone, kMethod1, kMethod2, kMethod3, kMethod4 };
 // Para. 49 mode 0..3: off, start of acc/dec only, end only, both.
 enum class PatternMode { kOff, kStart, kEnd, kBoth };
+// How the pattern reaches the command (seed 004): `stepped`, acceleration steps of the
+// pre-interpolation linear acc/dec (paras. 36-50); `profile_table`, the pattern's jerk
+// impulses as a post-interpolation profile table convolved with the move pulses
+// (paras. 52-61). A table shapes every speed change at both ends (mode both).
+enum class PatternRealization { kStepped, kProfileTable };
 
 struct PatternConfig {
   PatternMethod method = PatternMethod::kNone;
@@ -23,6 +28,7 @@ struct PatternConfig {
   // (0.0001 here); 0 keeps the exact design times. Default exact: rounding method 2's
   // T/6 = 6.667 ms to 6.7 ms already leaves about 1% residual vibration per step pair.
   double step_resolution_s = 0.0;
+  PatternRealization realization = PatternRealization::kStepped;
   void validate() const;  // throws ValidationError naming the field
 };
 

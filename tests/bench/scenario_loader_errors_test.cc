@@ -51,8 +51,8 @@ TEST(ScenarioLoaderErrors, MalformedYaml) {
 TEST(ScenarioLoaderErrors, UnknownKeyListsAllowedKeys) {
   const std::string path = DataPath("unknown_key.yaml");
   ExpectError(LoadError(path), path, 3, 3, "controller.feed_rate",
-              "unknown key 'feed_rate'; allowed: period_s, feed_mm_min, accel_time_s, pattern, "
-              "post_interp");
+              "unknown key 'feed_rate'; allowed: period_s, feed_mm_min, accel_time_s, "
+              "rapid_feed_mm_min, corner_velocity_change_mm_min, pattern, post_interp");
 }
 
 // Tests that an unknown top-level key lists the scenario keys.

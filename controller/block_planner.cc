@@ -1,0 +1,173 @@
+#include "controller/block_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "controller/linear_acc_dec.h"
+
+namespace shapebench::controller {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A stretch of path run at one feed: merged blocks with no speed limit between them.
+struct Segment {
+  double length_m = 0.0;
+  double feed_m_s = 0.0;
+};
+
+// Distance covered by one acc/dec phase from speed u to speed w (shaped as AccelPhase):
+// a dec phase mirrors the acc phase, so it covers u * T - (distance of the phase from rest).
+double PhaseDistance(double u, double w, const PlannerSettings& s) {
+  if (u == w) return 0.0;
+  const IdealProfile phase = AccelPhase(std::abs(w - u), s.accel_m_s2, s.pattern);
+  const double duration = phase.Duration();
+  return w > u ? u * duration + phase.Distance() : u * duration - phase.Distance();
+}
+
+// The largest x in [lo, hi] with f(x) <= target, f increasing; lo must satisfy it.
+template <typename F>
+double LargestWithin(double lo, double hi, double target, F f) {
+  if (f(hi) <= target) return hi;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) <= target ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// Junction speeds (limits in, feasible speeds out; junction[0] = junction[n] = 0), then
+// one profile: per segment an acc phase to its peak, a cruise, a dec phase to its exit.
+IdealProfile PlanMotion(const std::vector<Segment>& segments, std::vector<double> junction,
+                        const PlannerSettings& s) {
+  const std::size_t n = segments.size();
+  // Backward: each entry speed must allow slowing to the exit within the segment.
+  for (std::size_t i = n; i-- > 0;) {
+    const double w = junction[i + 1];
+    const double cap = junction[i];
+    if (cap > w && PhaseDistance(cap, w, s) > segments[i].length_m) {
+      junction[i] = LargestWithin(w, cap, segments[i].length_m,
+                                  [&](double u) { return PhaseDistance(u, w, s); });
+    }
+  }
+  // Forward: each exit speed must be reachable from the entry within the segment.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = junction[i];
+    const double cap = junction[i + 1];
+    if (cap > u && PhaseDistance(u, cap, s) > segments[i].length_m) {
+      junction[i + 1] = LargestWithin(u, cap, segments[i].length_m,
+                                      [&](double w) { return PhaseDistance(u, w, s); });
+    }
+  }
+  IdealProfile profile;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = junction[i];
+    const double w = junction[i + 1];
+    const double length = segments[i].length_m;
+    auto covered = [&](double peak) { return PhaseDistance(u, peak, s) + PhaseDistance(peak, w, s); };
+    const double peak = LargestWithin(std::max(u, w), segments[i].feed_m_s, length, covered);
+    const double cruise_s = peak > 0.0 ? std::max(0.0, (length - covered(peak)) / peak) : 0.0;
+    if (peak > u) profile.AppendPhase(AccelPhase(peak - u, s.accel_m_s2, s.pattern), 1.0);
+    profile.AppendCruise(cruise_s);
+    if (peak > w) profile.AppendPhase(AccelPhase(peak - w, s.accel_m_s2, s.pattern), -1.0);
+  }
+  return profile;
+}
+
+// One motion (rest to rest) on the tick grid, covering exactly its length.
+CommandTrajectory RealizeMotion(const std::vector<Segment>& segments,
+                                const std::vector<double>& junction, const PlannerSettings& s) {
+  double total = 0.0;
+  std::size_t longest = 0;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    total += segments[i].length_m;
+    if (segments[i].length_m > segments[longest].length_m) longest = i;
+  }
+  if (segments.size() == 1) {
+    // The single move of the foundation: the same computation, bit for bit.
+    return SampleOnTicks(total, segments[0].feed_m_s, s.accel_m_s2, s.pattern, s.period_s,
+                         s.design_frequency_hz);
+  }
+  // The nominal distance goes to the longest segment; the grid's few-ppb excess or
+  // shortfall is absorbed there.
+  return RealizeExactDistance(
+      [&](double nominal_m) {
+        std::vector<Segment> adjusted = segments;
+        adjusted[longest].length_m = std::max(0.0, adjusted[longest].length_m + nominal_m - total);
+        return PlanMotion(adjusted, junction, s);
+      },
+      total, s.period_s, s.design_frequency_hz);
+}
+
+}  // namespace
+
+double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& after,
+                        double corner_velocity_change_m_s) {
+  const double change = (after - before).cwiseAbs().maxCoeff();
+  if (change <= 1e-9) return kInf;
+  return corner_velocity_change_m_s / change;
+}
+
+SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
+                        const PlannerSettings& settings) {
+  SpeedPlan plan;
+  for (const ProgramBlock& block : program.blocks) {
+    plan.block_feed_m_s.push_back(block.kind == MotionKind::kRapid ? settings.rapid_feed_m_s
+                                  : std::isnan(block.feed_m_s)     ? settings.default_feed_m_s
+                                                                   : block.feed_m_s);
+  }
+  plan.speed_m_s.push_back(0.0);
+  std::vector<Segment> segments;
+  std::vector<double> junction;  // junction[i]: the speed limit where segment i starts
+  double travelled_m = 0.0;
+  auto finish_motion = [&]() {
+    if (segments.empty()) return;
+    junction.push_back(0.0);
+    const CommandTrajectory motion = RealizeMotion(segments, junction, settings);
+    plan.speed_m_s.insert(plan.speed_m_s.end(), motion.velocity_m_s.begin() + 1,
+                          motion.velocity_m_s.end());
+    for (const Segment& segment : segments) travelled_m += segment.length_m;
+    plan.stops.emplace_back(plan.speed_m_s.size() - 1, travelled_m);
+    segments.clear();
+    junction.clear();
+  };
+  const PathElement* previous = nullptr;
+  for (const PathElement& element : path.elements()) {
+    if (element.kind == MotionKind::kDwell) {
+      finish_motion();
+      // A dwell of any length holds at least until the next tick.
+      const auto ticks = static_cast<std::size_t>(std::ceil(element.dwell_s / settings.period_s - 1e-9));
+      plan.speed_m_s.insert(plan.speed_m_s.end(), ticks, 0.0);
+      previous = nullptr;
+      continue;
+    }
+    if (element.length_m == 0.0) continue;
+    const double feed = plan.block_feed_m_s[element.block];
+    if (segments.empty()) {
+      segments.push_back({element.length_m, feed});
+      junction.assign(1, 0.0);
+      previous = &element;
+      continue;
+    }
+    const double corner = CornerSpeedLimit(previous->TangentAtFraction(1.0),
+                                           element.TangentAtFraction(0.0),
+                                           settings.corner_velocity_change_m_s);
+    if (corner <= 0.0) {
+      finish_motion();  // an exact stop at the corner
+      segments.push_back({element.length_m, feed});
+      junction.assign(1, 0.0);
+    } else if (corner >= feed && segments.back().feed_m_s == feed) {
+      segments.back().length_m += element.length_m;  // no limit: one stretch
+    } else {
+      junction.push_back(std::min({corner, segments.back().feed_m_s, feed}));
+      segments.push_back({element.length_m, feed});
+    }
+    previous = &element;
+  }
+  finish_motion();
+  if (plan.speed_m_s.size() < 2) plan.speed_m_s.push_back(0.0);
+  return plan;
+}
+
+}  // namespace shapebench::controller

@@ -1,0 +1,50 @@
+// Block planning with look-ahead (seed 004 paras. 21-22: feed-rate control, then
+// pre-interpolation linear acc/dec of the path speed). The pre-read blocks are grouped
+// into motions between stops (program start and end, dwells, corners that need a stop);
+// within a motion, the path speed may stay up across block boundaries: collinear blocks
+// join without a stop, and where the direction changes the junction speed is limited so
+// that no axis changes velocity by more than the corner allowance in one period (the
+// corner rule). Backward and forward passes make every speed change fit its block; each
+// change is one acc/dec phase shaped by the vibration-suppressing pattern (seed 004), so
+// the shaping holds across blocks as it does for a single move.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "controller/path_geometry.h"
+#include "controller/program.h"
+#include "controller/vibration_suppression_pattern.h"
+
+namespace shapebench::controller {
+
+struct PlannerSettings {
+  double period_s = 0.001;
+  double accel_m_s2 = 1.0;          // steady acceleration of linear acc/dec
+  StepPattern pattern;              // the stepped realization (none: plain linear acc/dec)
+  double design_frequency_hz = 25.0;
+  double default_feed_m_s = 0.1;    // blocks before the first F word
+  double rapid_feed_m_s = 0.5;      // G0
+  double corner_velocity_change_m_s = 0.0;  // per axis, per junction; 0: stop at corners
+};
+
+struct SpeedPlan {
+  // Path speed samples at the ticks t_k = k * period (k = 0..N), the pre-interpolation
+  // acc/dec output: the speed is linear between ticks, v_0 = v_N = 0.
+  std::vector<double> speed_m_s;
+  // Where each motion ends: the tick and the exact arc length there (the interpolator
+  // lands on it so rounding never accumulates across motions).
+  std::vector<std::pair<std::size_t, double>> stops;
+  // The feed each block runs at (m/s), for traces.
+  std::vector<double> block_feed_m_s;
+};
+
+SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
+                        const PlannerSettings& settings);
+
+// The junction speed limit between two directions (unit tangents) under the corner rule:
+// infinite when they agree (within 1e-9), else allowance / max_axis |t2 - t1|.
+double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& after,
+                        double corner_velocity_change_m_s);
+
+}  // namespace shapebench::controller

@@ -1,0 +1,172 @@
+#include "controller/path_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace shapebench::controller {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+// End points closer than this in the arc plane make a full circle (the builder's own
+// tolerance is far coarser: 1e-6 mm would already be a different program).
+constexpr double kFullCircleM = 1e-9;
+
+// Angle in [0, 2 pi).
+double Wrap(double angle) {
+  double a = std::fmod(angle, kTwoPi);
+  if (a < 0.0) a += kTwoPi;
+  return a;
+}
+
+void PlaneAxes(Plane plane, int* a0, int* a1, int* n) {
+  switch (plane) {
+    case Plane::kXY: *a0 = 0; *a1 = 1; *n = 2; return;
+    case Plane::kZX: *a0 = 2; *a1 = 0; *n = 1; return;
+    case Plane::kYZ: *a0 = 1; *a1 = 2; *n = 0; return;
+  }
+}
+
+PathElement MakeElement(const ProgramBlock& block, int index) {
+  PathElement e;
+  e.kind = block.kind;
+  e.block = index;
+  e.start_m = block.start_m;
+  e.end_m = block.end_m;
+  e.dwell_s = block.dwell_s;
+  if (block.kind == MotionKind::kDwell) {
+    e.end_m = block.start_m;
+    return e;
+  }
+  if (!e.is_arc()) {
+    const Eigen::Vector3d d = block.end_m - block.start_m;
+    e.length_m = d.norm();
+    if (e.length_m > 0.0) e.direction = d / e.length_m;
+    return e;
+  }
+  PlaneAxes(block.plane, &e.axis0, &e.axis1, &e.normal);
+  e.center_m = block.center_m;
+  const double s0 = block.start_m(e.axis0) - block.center_m(e.axis0);
+  const double s1 = block.start_m(e.axis1) - block.center_m(e.axis1);
+  const double f0 = block.end_m(e.axis0) - block.center_m(e.axis0);
+  const double f1 = block.end_m(e.axis1) - block.center_m(e.axis1);
+  e.start_radius_m = std::hypot(s0, s1);
+  e.end_radius_m = std::hypot(f0, f1);
+  e.start_angle_rad = std::atan2(s1, s0);
+  const double end_angle = std::atan2(f1, f0);
+  const bool full = std::hypot(f0 - s0, f1 - s1) <= kFullCircleM;
+  if (block.kind == MotionKind::kArcCcw) {
+    e.sweep_rad = full ? kTwoPi : Wrap(end_angle - e.start_angle_rad);
+    if (e.sweep_rad == 0.0) e.sweep_rad = kTwoPi;
+  } else {
+    e.sweep_rad = full ? -kTwoPi : -Wrap(e.start_angle_rad - end_angle);
+    if (e.sweep_rad == 0.0) e.sweep_rad = -kTwoPi;
+  }
+  e.rise_m = block.end_m(e.normal) - block.start_m(e.normal);
+  const double mean_radius = 0.5 * (e.start_radius_m + e.end_radius_m);
+  e.length_m = std::hypot(mean_radius * std::abs(e.sweep_rad), e.rise_m);
+  return e;
+}
+
+}  // namespace
+
+Eigen::Vector3d PathElement::PointAtFraction(double u) const {
+  if (u >= 1.0) return end_m;
+  if (u <= 0.0) return start_m;
+  if (!is_arc()) return start_m + (end_m - start_m) * u;
+  const double angle = start_angle_rad + u * sweep_rad;
+  const double radius = start_radius_m + u * (end_radius_m - start_radius_m);
+  Eigen::Vector3d p;
+  p(axis0) = center_m(axis0) + radius * std::cos(angle);
+  p(axis1) = center_m(axis1) + radius * std::sin(angle);
+  p(normal) = start_m(normal) + u * rise_m;
+  return p;
+}
+
+Eigen::Vector3d PathElement::TangentAtFraction(double u) const {
+  if (length_m == 0.0) return Eigen::Vector3d::Zero();
+  if (!is_arc()) return direction;
+  const double angle = start_angle_rad + u * sweep_rad;
+  const double radius = start_radius_m + u * (end_radius_m - start_radius_m);
+  const double dr = end_radius_m - start_radius_m;
+  Eigen::Vector3d d;
+  d(axis0) = -radius * std::sin(angle) * sweep_rad + dr * std::cos(angle);
+  d(axis1) = radius * std::cos(angle) * sweep_rad + dr * std::sin(angle);
+  d(normal) = rise_m;
+  return d.normalized();
+}
+
+double PathElement::DistanceTo(const Eigen::Vector3d& p) const {
+  if (length_m == 0.0) return (p - start_m).norm();
+  if (!is_arc()) {
+    const double along = std::clamp((p - start_m).dot(direction), 0.0, length_m);
+    return (p - (start_m + along * direction)).norm();
+  }
+  // The nearest point of a plane arc lies at p's own angle when that angle is on the arc,
+  // else at an end; for a helix this is the usual close estimate.
+  const double angle = std::atan2(p(axis1) - center_m(axis1), p(axis0) - center_m(axis0));
+  const double from_start = sweep_rad > 0.0 ? Wrap(angle - start_angle_rad) : Wrap(start_angle_rad - angle);
+  double best = std::min((p - start_m).norm(), (p - end_m).norm());
+  if (from_start <= std::abs(sweep_rad)) {
+    best = std::min(best, (p - PointAtFraction(from_start / std::abs(sweep_rad))).norm());
+  }
+  return best;
+}
+
+PathGeometry::PathGeometry(const Program& program) : start_m_(program.start_m) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < program.blocks.size(); ++i) {
+    PathElement e = MakeElement(program.blocks[i], static_cast<int>(i));
+    e.start_s_m = s;
+    s += e.length_m;
+    Eigen::Vector3d lo = e.start_m.cwiseMin(e.end_m);
+    Eigen::Vector3d hi = e.start_m.cwiseMax(e.end_m);
+    if (e.is_arc()) {
+      const double r = std::max(e.start_radius_m, e.end_radius_m);
+      for (int axis : {e.axis0, e.axis1}) {
+        lo(axis) = e.center_m(axis) - r;
+        hi(axis) = e.center_m(axis) + r;
+      }
+    }
+    box_min_.push_back(lo);
+    box_max_.push_back(hi);
+    elements_.push_back(e);
+  }
+  length_m_ = s;
+}
+
+std::size_t PathGeometry::ElementAt(double s_m, std::size_t hint) const {
+  if (elements_.empty()) return 0;
+  std::size_t i = std::min(hint, elements_.size() - 1);
+  while (i > 0 && s_m < elements_[i].start_s_m) --i;
+  // Forward past elements that end before s, and past zero-length ones (dwells).
+  while (i + 1 < elements_.size() &&
+         (s_m > elements_[i].end_s_m() || (elements_[i].length_m == 0.0 && s_m >= elements_[i].start_s_m))) {
+    ++i;
+  }
+  return i;
+}
+
+Eigen::Vector3d PathGeometry::PointAt(double s_m, std::size_t* hint) const {
+  if (elements_.empty()) return start_m_;
+  const std::size_t i = ElementAt(s_m, hint ? *hint : 0);
+  if (hint) *hint = i;
+  const PathElement& e = elements_[i];
+  if (e.length_m == 0.0) return e.end_m;
+  return e.PointAtFraction((s_m - e.start_s_m) / e.length_m);
+}
+
+double PathGeometry::DistanceTo(const Eigen::Vector3d& p) const {
+  if (elements_.empty()) return (p - start_m_).norm();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < elements_.size(); ++i) {
+    const Eigen::Vector3d outside =
+        (box_min_[i] - p).cwiseMax(p - box_max_[i]).cwiseMax(Eigen::Vector3d::Zero());
+    if (outside.norm() >= best) continue;
+    best = std::min(best, elements_[i].DistanceTo(p));
+  }
+  return best;
+}
+
+}  // namespace shapebench::controller

@@ -1,0 +1,44 @@
+// A part program as the planner sees it: blocks with absolute end points in metres, the
+// modal state (G90/G91, G17-G19, F) already resolved. Built from `program:` (YAML list),
+// `program_file:` (G-code) or `move:` (one block) by ProgramBuilder.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace shapebench::controller {
+
+constexpr int kNumAxes = 3;  // x, y, z: index 0, 1, 2 everywhere
+
+enum class MotionKind { kRapid, kLinear, kArcCw, kArcCcw, kDwell };  // G0 G1 G2 G3 G4
+
+// The arc plane and its axes (first, second, normal): G17 XY (x, y, z), G18 ZX (z, x, y),
+// G19 YZ (y, z, x). CW/CCW are seen from the positive normal axis, as on Fanuc.
+enum class Plane { kXY, kZX, kYZ };
+
+struct ProgramBlock {
+  MotionKind kind = MotionKind::kLinear;
+  Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d end_m = Eigen::Vector3d::Zero();
+  // Arcs: the absolute centre; its normal-axis coordinate equals start_m's. An arc whose
+  // end equals its start (in the plane) is a full circle. A change of the normal-axis
+  // coordinate makes a helix.
+  Eigen::Vector3d center_m = Eigen::Vector3d::Zero();
+  Plane plane = Plane::kXY;
+  // The F word in effect, m/s; NaN when none was programmed yet (the planner then uses
+  // controller.feed_mm_min). Rapid blocks run at controller.rapid_feed_mm_min instead.
+  double feed_m_s = NAN;
+  double dwell_s = 0.0;  // G4
+  // Where the block came from, for messages: the G-code line (1-based) or the index of
+  // the `program:` entry (0-based).
+  int source_line = 0;
+};
+
+struct Program {
+  Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
+  std::vector<ProgramBlock> blocks;
+};
+
+}  // namespace shapebench::controller
