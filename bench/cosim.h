@@ -5,9 +5,11 @@
 
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "bench/metrics.h"
 #include "bench/scenario.h"
-#include "controller/command_trajectory.h"
+#include "controller/controller.h"
 #include "model/integrator.h"
 
 namespace shapebench::bench {
@@ -15,14 +17,26 @@ namespace shapebench::bench {
 // Sampled at every output substep, from t = 0 to the end of the simulated tail.
 struct Trace {
   std::vector<double> time_s;
+  // The scalar view of the run (OutputDirection): along the view's axis, the command
+  // position, velocity and acceleration; for the magnitude view, the distance the
+  // command has travelled, its speed and |acceleration|. Deflection as the metrics see it.
   std::vector<double> command_position_m;
   std::vector<double> command_velocity_m_s;
   std::vector<double> command_accel_m_s2;  // held over the period the sample ends
   std::vector<double> deflection_m;
+  // Per axis: the commanded (drive reference) position, the actual tool position
+  // relative to the workpiece, and the structural deflection.
+  std::vector<Eigen::Vector3d> command_m;
+  std::vector<Eigen::Vector3d> actual_m;
+  std::vector<Eigen::Vector3d> deflection_axes_m;
+  // The block the interpolator is in (-1 after the program) and its planned feed.
+  std::vector<int> block;
+  std::vector<double> planned_feed_mm_min;
 };
 
 struct RunResult {
-  controller::CommandTrajectory command;
+  controller::Program program;
+  controller::MultiAxisCommand command;
   Trace trace;
   Metrics metrics;
   model::IntegratorStats stats;
@@ -33,7 +47,8 @@ struct RunResult {
 RunResult RunScenario(const Scenario& scenario);
 
 // Output substeps per period when integrator.output_substeps is 0: at least 200 samples
-// per period of the fastest mode that carries >= 1% of the static deflection, at most 64.
-int AutoSubsteps(const model::MachineConfig& machine, double period_s);
+// per period of the fastest mode (any axis) that carries >= 1% of its axis' static
+// deflection, at most 64; 1 for a rigid machine.
+int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s);
 
 }  // namespace shapebench::bench

@@ -1,6 +1,7 @@
 #include "bench/machine_reader.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shapebench::bench {
@@ -8,6 +9,11 @@ namespace {
 
 const std::vector<std::string> kLumpedKeys = {"bodies", "elements", "driven_relative_to",
                                               "output"};
+
+const std::vector<std::pair<std::string, int>>& AxisChoices() {
+  static const std::vector<std::pair<std::string, int>> kChoices = {{"x", 0}, {"y", 1}, {"z", 2}};
+  return kChoices;
+}
 
 model::ModalMachineConfig ReadModal(const NodeReader& machine) {
   model::ModalMachineConfig modal;
@@ -55,11 +61,13 @@ model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
   return lumped;
 }
 
-}  // namespace
-
-model::MachineConfig ReadMachine(const NodeReader& machine) {
+// One axis' model: `modes` or `bodies` (+ elements, ...); `extra_keys` are allowed beside
+// them and read by the caller.
+model::MachineConfig ReadForm(const NodeReader& machine,
+                              const std::vector<std::string>& extra_keys) {
   std::vector<std::string> allowed = {"modes"};
   allowed.insert(allowed.end(), kLumpedKeys.begin(), kLumpedKeys.end());
+  allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
   machine.ExpectMap(allowed);
 
   model::MachineConfig config;
@@ -75,10 +83,72 @@ model::MachineConfig ReadMachine(const NodeReader& machine) {
   } else if (machine.Has("bodies")) {
     config.form = ReadLumped(machine);
   } else {
+    const bool top_level = !extra_keys.empty();  // the single form, where 'axes' could stand
     throw machine.Error(
-        "expected 'modes' (modal form) or 'bodies' (lumped mass-spring-damper form)");
+        std::string("expected 'modes' (modal form) or 'bodies' (lumped mass-spring-damper "
+                    "form)") +
+        (top_level ? ", or 'axes' (one of those per axis x, y, z)" : ""));
   }
   return config;
+}
+
+model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
+  std::vector<std::string> single_keys = {"modes", "axis"};
+  single_keys.insert(single_keys.end(), kLumpedKeys.begin(), kLumpedKeys.end());
+  for (const auto& key : single_keys) {
+    if (auto child = machine.Child(key)) {
+      throw child->Error("'" + key +
+                         "' belongs to the single-axis form; this machine lists 'axes': put "
+                         "each axis' model under axes.x, axes.y or axes.z");
+    }
+  }
+  machine.ExpectMap({"axes", "driven_axis"});
+  model::MultiAxisMachineConfig config;
+  config.axes = {};
+  config.single_form = false;
+  const NodeReader axes = *machine.Child("axes");
+  axes.ExpectMap({"x", "y", "z"});
+  for (const auto& [name, axis] : AxisChoices()) {
+    if (auto form = axes.Child(name)) {
+      if (auto misplaced = form->Child("axis")) {
+        throw misplaced->Error("'axis' belongs to the single-axis form; under 'axes' the key (" +
+                               name + ") names the axis");
+      }
+      config.axes[axis] = ReadForm(*form, {});
+    }
+  }
+  machine.Read<int>("driven_axis", AxisChoices(), &config.driven_axis);
+  return config;
+}
+
+}  // namespace
+
+model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
+  if (machine.IsMap() && machine.Has("axes")) return ReadAxesForm(machine);
+  if (auto driven = machine.Child("driven_axis")) {
+    throw driven->Error(
+        "'driven_axis' belongs to the multi-axis form (axes:); a single-form machine is "
+        "driven along its 'axis' (default y)");
+  }
+  model::MultiAxisMachineConfig config;
+  config.axes = {};
+  config.single_form = true;
+  const model::MachineConfig form = ReadForm(machine, {"axis"});
+  machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
+  config.axes[config.driven_axis] = form;
+  return config;
+}
+
+model::MachineConfig ReadMachine(const NodeReader& machine) {
+  const model::MultiAxisMachineConfig config = ReadMachineAxes(machine);
+  const auto& driven = config.axes[config.driven_axis];
+  if (!driven) {
+    const auto at = machine.Child("driven_axis");
+    throw (at ? *at : machine)
+        .Error(std::string("the driven axis ") + model::AxisName(config.driven_axis) +
+               " has no model under 'axes'");
+  }
+  return *driven;
 }
 
 }  // namespace shapebench::bench

@@ -10,7 +10,12 @@ std::vector<std::pair<std::string, double>> Metrics::Named() const {
           {"residual_ratio", residual_ratio},
           {"cruise_residual_ratio", cruise_residual_ratio},
           {"motion_time_s", motion_time_s},
-          {"settling_time_s", settling_time_s}};
+          {"settling_time_s", settling_time_s},
+          {"max_contour_error_m", max_contour_error_m},
+          {"radial_error_m", radial_error_m},
+          {"peak_deflection_x_m", peak_deflection_x_m},
+          {"peak_deflection_y_m", peak_deflection_y_m},
+          {"peak_deflection_z_m", peak_deflection_z_m}};
 }
 
 }  // namespace shapebench::bench

@@ -18,6 +18,13 @@ struct Metrics {
   double cruise_residual_ratio = NAN;
   double motion_time_s = NAN;
   double settling_time_s = NAN;
+  // Pipeline metrics (SPEC section 4).
+  double max_contour_error_m = NAN;  // distance of the tool path from the programmed path
+  double radial_error_m = NAN;       // programmed minus mean actual radius, worst arc
+  // Peak |deflection| per axis component.
+  double peak_deflection_x_m = NAN;
+  double peak_deflection_y_m = NAN;
+  double peak_deflection_z_m = NAN;
 
   // (name, value) in the SPEC's order: the one list the table, JSON, CSV and checks use.
   std::vector<std::pair<std::string, double>> Named() const;

@@ -1,19 +1,32 @@
 // The `modes` command's report: natural frequencies, damping ratios and static
-// participation of the machine model (SPEC section 2).
+// participation of the machine model (SPEC section 2), for every modelled axis.
 #pragma once
 
 #include <ostream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "model/machine.h"
+#include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
 
-void PrintModesTable(std::ostream& out, const model::ModalAnalysis& analysis);
+// One row per mode (axis, mode number within the axis, frequency, damping, participation
+// in that axis' static deflection), then each axis' static deflection per m/s^2, the
+// driven axis marked.
+void PrintModesTable(std::ostream& out, const std::vector<model::AxisModes>& axes,
+                     int driven_axis);
 
-// Exactly {"modes": [{"frequency_hz", "damping_ratio", "participation"}, ...],
-//          "static_deflection_per_accel_s2": ...}.
+// {"modes": [{"axis": "y", "frequency_hz", "damping_ratio", "participation"}, ...],
+//  "static_deflection_per_accel_s2": <the driven axis'>,
+//  "static_deflection_per_accel_s2_by_axis": {"x": ..., "y": ..., "z": ...}}
+// (modes by axis, then ascending frequency; only modelled axes; 0 for an unmodelled
+// driven axis).
+nlohmann::ordered_json ModesJson(const std::vector<model::AxisModes>& axes, int driven_axis);
+
+// One axis without axis names (SPEC section 2's original shape).
+void PrintModesTable(std::ostream& out, const model::ModalAnalysis& analysis);
 nlohmann::ordered_json ModesJson(const model::ModalAnalysis& analysis);
 
 }  // namespace shapebench::bench

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "controller/grid_realization.h"
+#include "controller/profile_table.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::bench {
@@ -90,31 +90,37 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
     out << line;
   }
 
-  // Per unit a, as at the start of an acceleration from rest: nothing before the group,
-  // and the steady acceleration is the largest one.
-  const std::vector<controller::GridImpulse> table = controller::RealizeOnGrid(
-      impulses, controller.period_s, config.frequency_hz, /*accel_before_m_s2=*/0.0,
-      /*accel_limit_m_s2=*/1.0);
-  out << "\nprofile table on the " << Num(controller.period_s) << " s period grid "
-      << "(alpha_n at t = n * period_s; alpha_n not listed are 0)\n"
-      << "  each impulse split between its neighbouring ticks, corrected to keep the design\n"
-      << "  frequency's vibration phasor (controller::RealizeOnGrid, as the run uses it)\n"
+  // The profile_table realization: the same impulses as jerk coefficients on the period
+  // grid (paras. 52-61), exactly as the controller builds the table.
+  const std::vector<double> table =
+      pattern.shapes() ? controller::ProfileTableFromPattern(pattern, controller.period_s, config.frequency_hz)
+                       : std::vector<double>{1.0};
+  const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
+  out << "\nrealizations (in use: " << (table_in_use ? "profile_table" : "stepped") << ")\n"
+      << "  stepped: the steps above in the pre-interpolation linear acc/dec (paras. 36-50),\n"
+      << "    each shaped start and end put on the tick grid keeping its vibration phasor\n"
+      << "  profile_table: the impulses as jerk coefficients convolved with the move pulses\n"
+      << "    after interpolation (paras. 52-61); it shapes every start and end (mode both)\n"
+      << "\nprofile table on the " << Num(controller.period_s) << " s period grid "
+      << "(alpha_n at t = n * period_s; alpha_n not listed are 0; " << table.size()
+      << " coefficients, at most post_interp.max_table_length = " << controller.post_interp.max_table_length
+      << ")\n"
       << "  n      t_s            alpha_n\n";
   std::vector<controller::Impulse> table_impulses;
-  for (const auto& entry : table) {
-    const double time_s = static_cast<double>(entry.tick) * controller.period_s;
-    table_impulses.push_back({time_s, entry.amplitude});
-    if (entry.amplitude == 0.0) continue;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    const double time_s = static_cast<double>(n) * controller.period_s;
+    table_impulses.push_back({time_s, table[n]});
+    if (table[n] == 0.0) continue;
     char line[96];
-    std::snprintf(line, sizeof line, "  %-5ld  %-13.9g  %.9g\n", entry.tick, time_s,
-                  entry.amplitude);
+    std::snprintf(line, sizeof line, "  %-5zu  %-13.9g  %.9g\n", n, time_s, table[n]);
     out << line;
   }
 
   out << "\nresidual vibration at " << Num(config.frequency_hz)
       << " Hz (undamped; fraction of an unshaped step's)\n"
-      << "  jerk impulses   " << Num(controller::ResidualVibration(impulses, config.frequency_hz), "%.3e")
-      << "\n  profile table   "
+      << "  stepped (the step times as set)   "
+      << Num(controller::ResidualVibration(impulses, config.frequency_hz), "%.3e")
+      << "\n  profile_table (on the grid)      "
       << Num(controller::ResidualVibration(table_impulses, config.frequency_hz), "%.3e") << "\n";
 }
 

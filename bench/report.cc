@@ -54,15 +54,26 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
 
 void WriteTraceCsv(const std::string& path, const Trace& trace) {
   WriteFileAtomically(path, [&](std::ostream& out) {
-    out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m\n";
-    char line[160];
+    out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
+           "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
+           "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n";
+    char line[512];
     const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
                                        trace.command_velocity_m_s.size(),
-                                       trace.command_accel_m_s2.size(), trace.deflection_m.size()});
+                                       trace.command_accel_m_s2.size(), trace.deflection_m.size(),
+                                       trace.command_m.size(), trace.actual_m.size(),
+                                       trace.deflection_axes_m.size(), trace.block.size(),
+                                       trace.planned_feed_mm_min.size()});
     for (std::size_t i = 0; i < rows; ++i) {
-      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g\n", trace.time_s[i],
-                    trace.command_position_m[i], trace.command_velocity_m_s[i],
-                    trace.command_accel_m_s2[i], trace.deflection_m[i]);
+      const Eigen::Vector3d& c = trace.command_m[i];
+      const Eigen::Vector3d& a = trace.actual_m[i];
+      const Eigen::Vector3d& d = trace.deflection_axes_m[i];
+      std::snprintf(line, sizeof line,
+                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                    "%.17g,%.17g,%d,%.17g\n",
+                    trace.time_s[i], trace.command_position_m[i], trace.command_velocity_m_s[i],
+                    trace.command_accel_m_s2[i], trace.deflection_m[i], c.x(), c.y(), c.z(), a.x(),
+                    a.y(), a.z(), d.x(), d.y(), d.z(), trace.block[i], trace.planned_feed_mm_min[i]);
       out << line;
     }
   });

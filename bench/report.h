@@ -25,7 +25,9 @@ std::string MetricUnit(const std::string& name);
 // NaN -> null.
 nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 
-// t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m (%.17g).
+// t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
+// deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
+// block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.
 void WriteTraceCsv(const std::string& path, const Trace& trace);
 
 // Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
@@ -33,6 +35,11 @@ void WriteTraceCsv(const std::string& path, const Trace& trace);
 // std::runtime_error when gnuplot is missing or fails.
 void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
                          const Scenario& scenario);
+
+// The XY path (programmed vs actual tool path), the deviation from the programmed path
+// magnified so it shows at the path's scale (the circle-test plot of ISO 230-4); mm.
+void WritePathPlot(const std::string& path_png, const RunResult& result,
+                   const Scenario& scenario);
 
 // JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
 // is one <testcase name="run"> with an <error>.

@@ -6,9 +6,10 @@
 #include <vector>
 
 #include "controller/controller.h"
+#include "controller/program.h"
 #include "model/drive.h"
 #include "model/integrator.h"
-#include "model/machine.h"
+#include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
 
@@ -19,15 +20,36 @@ struct Check {
   std::optional<double> max;
 };
 
+// Which scalar the deflection metrics (peak, residual, ...) and the plot use:
+// `magnitude` |d| of the tool-tip deflection vector; `x`, `y`, `z` one signed component;
+// `auto` the signed component along the only axis that moves when one axis does
+// (`move:`), else the magnitude. The peak metrics are the same either way for a
+// single-axis move; only the sign shown in trace and plot differs.
+enum class OutputDirection { kAuto, kMagnitude, kX, kY, kZ };
+
+struct OutputConfig {
+  OutputDirection direction = OutputDirection::kAuto;
+};
+
 struct Scenario {
-  model::MachineConfig machine;
+  model::MultiAxisMachineConfig machine;
   model::DriveConfig drive;
   controller::ControllerConfig controller;
+  // `move:` (the one-block shorthand) runs unless a program is given.
   controller::MoveConfig move;
+  std::optional<controller::Program> program;
+  OutputConfig output;
   model::IntegratorConfig integrator;
   std::vector<Check> checks;
   std::string name;         // the file's stem, for reports
   std::string source_file;  // as given on the command line
+
+  // The axis `move:` runs along.
+  int move_axis() const { return move.axis >= 0 ? move.axis : machine.driven_axis; }
+  // The program that runs: `program`, or the one block of `move:`.
+  controller::Program RunProgram() const {
+    return program ? *program : controller::MoveProgram(move, move_axis());
+  }
 };
 
 }  // namespace shapebench::bench

@@ -1,6 +1,8 @@
 #include "bench/scenario_loader.h"
 
+#include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "bench/config_document.h"
 #include "bench/controller_reader.h"
@@ -8,6 +10,7 @@
 #include "bench/machine_reader.h"
 #include "bench/metrics.h"
 #include "bench/node_reader.h"
+#include "bench/program_reader.h"
 #include "controller/controller.h"
 
 namespace shapebench::bench {
@@ -15,8 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kScenarioKeys = {"name",       "machine", "drive", "controller",
-                                                "move",       "integrator", "checks"};
+const std::vector<std::string> kScenarioKeys = {
+    "name", "machine", "drive", "controller", "move", "program", "program_file", "output",
+    "integrator", "checks"};
 
 bool HasKey(const YAML::Node& map, const std::string& key) {
   if (!map.IsMap()) return false;
@@ -94,23 +98,38 @@ ConfigDocument BuildScenarioDocument(const std::string& path,
   return document;
 }
 
-model::MachineConfig ReadMachineEntry(const NodeReader& machine) {
-  if (!machine.IsMap()) {
-    throw machine.Error(
-        "expected a mapping (modes: or bodies:) or the path of a machine file");
-  }
-  return ReadMachine(machine);
-}
+const std::vector<std::string> kServoKeys = {"position_gain", "velocity_feedforward",
+                                             "velocity_loop_hz", "motor_mass_kg"};
 
 model::DriveConfig ReadDrive(const NodeReader& drive) {
+  std::vector<std::string> allowed = {"type"};
+  allowed.insert(allowed.end(), kServoKeys.begin(), kServoKeys.end());
+  drive.ExpectMap(allowed);
   model::DriveConfig config;
-  // The servo's own keys (SPEC: position_gain, ...) would otherwise hide this message.
-  if (auto type = drive.Child("type"); type && type->IsScalar() && type->node().Scalar() == "servo") {
-    throw type->Error("'servo' is not available yet; allowed: kinematic");
+  drive.Read<model::DriveType>(
+      "type", {{"kinematic", model::DriveType::kKinematic}, {"servo", model::DriveType::kServo}},
+      &config.type);
+  if (config.type != model::DriveType::kServo) {
+    for (const auto& key : kServoKeys) {
+      if (auto child = drive.Child(key)) {
+        throw child->Error("'" + key +
+                           "' is a servo setting; it needs type: servo (the kinematic drive "
+                           "follows the command exactly)");
+      }
+    }
+    return config;
   }
-  drive.ExpectMap({"type"});
-  if (auto type = drive.Child("type")) {
-    config.type = type->AsChoice<model::DriveType>({{"kinematic", model::DriveType::kKinematic}});
+  model::ServoConfig& servo = config.servo;
+  drive.Read("position_gain", &servo.position_gain_1_s);
+  drive.Read("velocity_feedforward", &servo.velocity_feedforward);
+  drive.Read("velocity_loop_hz", &servo.velocity_loop_hz);
+  drive.Read("motor_mass_kg", &servo.motor_mass_kg);
+  try {
+    config.validate();
+  } catch (const ValidationError& error) {
+    // Its field is the YAML key (a default is always valid, so the key is there).
+    const auto child = drive.Child(error.field());
+    throw (child ? *child : drive).Error(error.message());
   }
   return config;
 }
@@ -162,10 +181,35 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   scenario.source_file = path;
   scenario.name = fs::path(path).stem().string();
   top.Read("name", &scenario.name);
-  if (auto machine = top.Child("machine")) scenario.machine = ReadMachineEntry(*machine);
+  if (auto machine = top.Child("machine")) scenario.machine = ReadMachineAxesEntry(*machine);
   if (auto drive = top.Child("drive")) scenario.drive = ReadDrive(*drive);
   if (auto controller = top.Child("controller")) scenario.controller = ReadController(*controller);
+  // One of move (the one-block shorthand), program and program_file says what runs.
+  std::optional<NodeReader> what_runs;
+  for (const char* key : {"move", "program", "program_file"}) {
+    auto child = top.Child(key);
+    if (!child) continue;
+    if (what_runs) {
+      throw child->Error("give only one of move, program and program_file (" + what_runs->path() +
+                         " is given already)");
+    }
+    what_runs = child;
+  }
   if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
+  if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
+  if (auto program_file = top.Child("program_file")) {
+    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string());
+  }
+  if (auto output = top.Child("output")) {
+    output->ExpectMap({"direction"});
+    output->Read<OutputDirection>("direction",
+                                  {{"auto", OutputDirection::kAuto},
+                                   {"magnitude", OutputDirection::kMagnitude},
+                                   {"x", OutputDirection::kX},
+                                   {"y", OutputDirection::kY},
+                                   {"z", OutputDirection::kZ}},
+                                  &scenario.output.direction);
+  }
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
   if (auto checks = top.Child("checks")) scenario.checks = ReadChecks(*checks);
 
@@ -173,15 +217,24 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   Validated(document, "controller", [&] { scenario.controller.validate(); });
   Validated(document, "move", [&] { scenario.move.validate(); });
   Validated(document, "integrator", [&] { scenario.integrator.validate(); });
-  if (options.plan_move) {
+  if (options.plan_move && !scenario.program) {
     // Its fields are scenario-root paths already ("move.distance_mm").
-    Validated(document, "",
-              [&] { controller::GenerateCommand(scenario.controller, scenario.move); });
+    Validated(document, "", [&] {
+      controller::CheckShapedMove(scenario.controller, std::abs(scenario.move.distance_mm) * 1e-3);
+    });
   }
   return scenario;
 }
 
 }  // namespace
+
+model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine) {
+  if (!machine.IsMap()) {
+    throw machine.Error(
+        "expected a mapping (modes:, bodies: or axes:) or the path of a machine file");
+  }
+  return ReadMachineAxes(machine);
+}
 
 Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
                       const LoadOptions& options) {
@@ -189,16 +242,17 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
   return ReadScenario(document, path, options);
 }
 
-model::MachineConfig LoadMachine(const std::string& path,
-                                 const std::vector<Override>& overrides) {
+model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
+                                              const std::vector<Override>& overrides) {
   YAML::Node root = ConfigDocument::ParseFile(path);
-  const bool machine_file = HasKey(root, "modes") || HasKey(root, "bodies");
+  const bool machine_file =
+      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes");
   if (!machine_file) {
     const ConfigDocument document = BuildScenarioDocument(path, overrides);
     NodeReader top(document, document.root(), "");
     top.ExpectMap(kScenarioKeys);
-    model::MachineConfig machine;
-    if (auto entry = top.Child("machine")) machine = ReadMachineEntry(*entry);
+    model::MultiAxisMachineConfig machine;  // without `machine:`: the default machine
+    if (auto entry = top.Child("machine")) machine = ReadMachineAxesEntry(*entry);
     Validated(document, "machine", [&] { machine.validate(); });
     return machine;
   }
@@ -215,9 +269,21 @@ model::MachineConfig LoadMachine(const std::string& path,
   }
   NodeReader machine_node(document, document.root(), "");
   machine_node.ExpectMap({"machine"});
-  model::MachineConfig machine = ReadMachineEntry(*machine_node.Child("machine"));
+  model::MultiAxisMachineConfig machine = ReadMachineAxesEntry(*machine_node.Child("machine"));
   Validated(document, "machine", [&] { machine.validate(); });
   return machine;
+}
+
+model::MachineConfig LoadMachine(const std::string& path,
+                                 const std::vector<Override>& overrides) {
+  const model::MultiAxisMachineConfig machine = LoadMachineAxes(path, overrides);
+  const auto& driven = machine.axes[machine.driven_axis];
+  if (!driven) {
+    throw ConfigError(path, 0, 0, "machine",
+                      std::string("the driven axis ") + model::AxisName(machine.driven_axis) +
+                          " is rigid (no model); the single-axis view needs its model");
+  }
+  return *driven;
 }
 
 ConfigError LocateValidationError(const std::string& path,

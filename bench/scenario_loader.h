@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "bench/config_error.h"
+#include "bench/node_reader.h"
 #include "bench/override.h"
 #include "bench/scenario.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
+#include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
 
@@ -26,9 +28,19 @@ struct LoadOptions {
 Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
                       const LoadOptions& options = {});
 
-// The machine of a machine file (top level has `modes` or `bodies`) or of a scenario.
-// Key paths are scenario paths either way ("machine.modes[0].gain"); for a machine file
-// a --set path without the leading "machine." is accepted too.
+// The `machine:` entry of a scenario (a mapping; a machine file has been spliced in
+// already): either form of machine_reader.h. Validation is the caller's.
+model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine);
+
+// The machine of a machine file (top level has `modes`, `bodies` or `axes`) or of a
+// scenario, validated. Key paths are scenario paths either way ("machine.modes[0].gain",
+// "machine.axes.x.bodies[1].mass_kg"); for a machine file a --set path without the
+// leading "machine." is accepted too.
+model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
+                                              const std::vector<Override>& overrides);
+
+// The same, reduced to the driven axis' model (the single-axis view); a ConfigError when
+// the driven axis is rigid.
 model::MachineConfig LoadMachine(const std::string& path, const std::vector<Override>& overrides);
 
 // Locates a ValidationError raised later about a loaded scenario (its field a scenario

@@ -97,19 +97,20 @@ Eigen::Vector3d PathElement::TangentAtFraction(double u) const {
   return d.normalized();
 }
 
-double PathElement::DistanceTo(const Eigen::Vector3d& p) const {
-  if (length_m == 0.0) return (p - start_m).norm();
+Eigen::Vector3d PathElement::NearestPoint(const Eigen::Vector3d& p) const {
+  if (length_m == 0.0) return start_m;
   if (!is_arc()) {
     const double along = std::clamp((p - start_m).dot(direction), 0.0, length_m);
-    return (p - (start_m + along * direction)).norm();
+    return start_m + along * direction;
   }
   // The nearest point of a plane arc lies at p's own angle when that angle is on the arc,
   // else at an end; for a helix this is the usual close estimate.
   const double angle = std::atan2(p(axis1) - center_m(axis1), p(axis0) - center_m(axis0));
   const double from_start = sweep_rad > 0.0 ? Wrap(angle - start_angle_rad) : Wrap(start_angle_rad - angle);
-  double best = std::min((p - start_m).norm(), (p - end_m).norm());
+  Eigen::Vector3d best = (p - start_m).norm() <= (p - end_m).norm() ? start_m : end_m;
   if (from_start <= std::abs(sweep_rad)) {
-    best = std::min(best, (p - PointAtFraction(from_start / std::abs(sweep_rad))).norm());
+    const Eigen::Vector3d on_arc = PointAtFraction(from_start / std::abs(sweep_rad));
+    if ((p - on_arc).norm() < (p - best).norm()) best = on_arc;
   }
   return best;
 }
@@ -157,16 +158,22 @@ Eigen::Vector3d PathGeometry::PointAt(double s_m, std::size_t* hint) const {
   return e.PointAtFraction((s_m - e.start_s_m) / e.length_m);
 }
 
-double PathGeometry::DistanceTo(const Eigen::Vector3d& p) const {
-  if (elements_.empty()) return (p - start_m_).norm();
+Eigen::Vector3d PathGeometry::NearestPoint(const Eigen::Vector3d& p) const {
+  if (elements_.empty()) return start_m_;
   double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d nearest = start_m_;
   for (std::size_t i = 0; i < elements_.size(); ++i) {
     const Eigen::Vector3d outside =
         (box_min_[i] - p).cwiseMax(p - box_max_[i]).cwiseMax(Eigen::Vector3d::Zero());
     if (outside.norm() >= best) continue;
-    best = std::min(best, elements_[i].DistanceTo(p));
+    const Eigen::Vector3d candidate = elements_[i].NearestPoint(p);
+    const double distance = (p - candidate).norm();
+    if (distance < best) {
+      best = distance;
+      nearest = candidate;
+    }
   }
-  return best;
+  return nearest;
 }
 
 }  // namespace shapebench::controller

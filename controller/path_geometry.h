@@ -40,8 +40,10 @@ struct PathElement {
   Eigen::Vector3d PointAtFraction(double u) const;
   // The unit tangent at `u` in [0, 1] (zero for a dwell).
   Eigen::Vector3d TangentAtFraction(double u) const;
-  // Euclidean distance from `p` to the element.
-  double DistanceTo(const Eigen::Vector3d& p) const;
+  // The point of the element nearest to `p` (for a helix, the close estimate at p's
+  // angle), and the distance to it.
+  Eigen::Vector3d NearestPoint(const Eigen::Vector3d& p) const;
+  double DistanceTo(const Eigen::Vector3d& p) const { return (p - NearestPoint(p)).norm(); }
 };
 
 class PathGeometry {
@@ -58,8 +60,9 @@ class PathGeometry {
   std::size_t ElementAt(double s_m, std::size_t hint = 0) const;
   Eigen::Vector3d PointAt(double s_m, std::size_t* hint = nullptr) const;
 
-  // The distance from `p` to the whole path (contour error).
-  double DistanceTo(const Eigen::Vector3d& p) const;
+  // The nearest point of the whole path to `p`, and the distance (contour error).
+  Eigen::Vector3d NearestPoint(const Eigen::Vector3d& p) const;
+  double DistanceTo(const Eigen::Vector3d& p) const { return (p - NearestPoint(p)).norm(); }
 
  private:
   Eigen::Vector3d start_m_;

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace shapebench::model {
 namespace {
@@ -44,7 +45,8 @@ std::string PlainWords(int flag) {
 }  // namespace
 
 CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfig& config,
-                                 double period_s, int substeps, double scale_accel_m_s2)
+                                 double period_s, int substeps, double scale_accel_m_s2,
+                                 double scale_velocity_m_s)
     : num_states_(plant.num_states()),
       num_inputs_(plant.num_inputs()),
       period_s_(period_s),
@@ -70,7 +72,7 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
   void* mem = memory_.get();
 
   View(y_.get()).setZero();
-  View(atol_.get()) = AbsoluteTolerances(plant, config, scale_accel_m_s2);
+  View(atol_.get()) = AbsoluteTolerances(plant, config, scale_accel_m_s2, scale_velocity_m_s);
   Check(CVodeSetErrHandlerFn(mem, RecordError, this), "CVodeSetErrHandlerFn");
   Check(CVodeInit(mem, Rhs, 0.0, y_.get()), "CVodeInit");
   Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
@@ -83,30 +85,58 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
 
 // Error weights: CVODE's norm is |e_i| / (rtol |y_i| + atol_i), and deflection states start
 // at 0, so atol sets the accuracy near rest. Scale it by what each state reaches statically
-// under the run's largest acceleration: positions x_s, velocities x_s times the highest
-// natural frequency (a mode's velocity amplitude is w times its displacement amplitude).
+// under the run's largest acceleration (held, A x = -B_accel a) or under its largest
+// commanded speed (held, A x = -B_vel v: a servo's following error lives on the velocity,
+// a structure's only on the acceleration), whichever is larger: positions x_s, velocities
+// x_s times the group's frequency (a mode's velocity amplitude is w times its displacement
+// amplitude). States share the scale within their tolerance group (LinearPlant), so a
+// group's states that happen to be 0 statically still get a sane atol; a group that is 0
+// altogether gets a 1 pm floor.
 Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
                                                     const IntegratorConfig& config,
-                                                    double scale_accel_m_s2) const {
+                                                    double scale_accel_m_s2,
+                                                    double scale_velocity_m_s) const {
   // One column per driven axis: the static state under that axis' acceleration alone.
-  const Eigen::MatrixXd x_static = plant.A.fullPivLu().solve(-plant.B_accel) * scale_accel_m_s2;
-  double position_m = 0.0;
+  const auto lu = plant.A.fullPivLu();
+  const Eigen::MatrixXd x_static = lu.solve(-plant.B_accel) * scale_accel_m_s2;
+  // With a velocity scale: the static state under the largest speed held, and the offset a
+  // held acceleration adds through the velocity ramping meanwhile (x = p + q t with
+  // A q = -B_vel a, A p = q - B_accel a): under a servo's ideal inner loops the structure
+  // sees the acceleration only through that.
+  Eigen::MatrixXd x_static_v = Eigen::MatrixXd::Zero(num_states_, num_inputs_);
+  Eigen::MatrixXd x_ramp = Eigen::MatrixXd::Zero(num_states_, num_inputs_);
+  if (scale_velocity_m_s > 0.0) {
+    const Eigen::MatrixXd x_per_velocity = lu.solve(-plant.B_vel);
+    x_static_v = x_per_velocity * scale_velocity_m_s;
+    x_ramp = lu.solve(x_per_velocity) * scale_accel_m_s2;
+  }
+  const int groups = plant.NumToleranceGroups();
+  std::vector<double> position_m(groups, 0.0);
   for (int i = 0; i < num_states_; ++i) {
     if (plant.state_kinds[i] == StateKind::kPosition) {
-      position_m = std::max(position_m, x_static.row(i).cwiseAbs().maxCoeff());
+      double& scale = position_m[plant.ToleranceGroup(i)];
+      scale = std::max(scale, x_static.row(i).cwiseAbs().maxCoeff());
+      scale = std::max(scale, x_static_v.row(i).cwiseAbs().maxCoeff());
+      scale = std::max(scale, x_ramp.row(i).cwiseAbs().maxCoeff());
     }
   }
-  if (!(position_m > 0.0)) position_m = 1.0e-12;  // no acceleration: a 1 pm floor
-  const double base = config.rtol * config.atol_scale * position_m;
-  const double velocity = base * std::max(plant.max_frequency_rad_s, 1.0);
+  std::vector<double> base(groups);
+  std::vector<double> velocity(groups);
+  for (int g = 0; g < groups; ++g) {
+    if (!(position_m[g] > 0.0)) position_m[g] = 1.0e-12;  // nothing moves it: a 1 pm floor
+    base[g] = config.rtol * config.atol_scale * position_m[g];
+    velocity[g] = base[g] * std::max(plant.GroupFrequency(g), 1.0);
+  }
   Eigen::VectorXd atol(num_states_ + num_inputs_);
   for (int i = 0; i < num_states_; ++i) {
-    atol(i) = plant.state_kinds[i] == StateKind::kPosition ? base : velocity;
+    const int g = plant.ToleranceGroup(i);
+    atol(i) = plant.state_kinds[i] == StateKind::kPosition ? base[g] : velocity[g];
   }
   // The drive velocity is linear in t between re-inits, which every LMM integrates exactly,
   // and it reaches the deflection only through B_vel (damping over mass, at most ~2 w); the
-  // velocity-state tolerance keeps its share of the deflection error below `base`.
-  atol.tail(num_inputs_).setConstant(velocity);
+  // velocity-state tolerance (the tightest group's) keeps its share of the deflection error
+  // below `base`.
+  atol.tail(num_inputs_).setConstant(*std::min_element(velocity.begin(), velocity.end()));
   return atol;
 }
 

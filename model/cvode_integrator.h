@@ -40,7 +40,7 @@ struct MemoryDeleter {
 class CvodeIntegrator final : public PlantIntegrator {
  public:
   CvodeIntegrator(const LinearPlant& plant, const IntegratorConfig& config, double period_s,
-                  int substeps, double scale_accel_m_s2);
+                  int substeps, double scale_accel_m_s2, double scale_velocity_m_s = 0.0);
   CvodeIntegrator(const CvodeIntegrator&) = delete;  // CVODE holds a pointer to this
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
 
@@ -61,7 +61,7 @@ class CvodeIntegrator final : public PlantIntegrator {
   void Reinit();
   void Check(int flag, const char* call) const;
   Eigen::VectorXd AbsoluteTolerances(const LinearPlant& plant, const IntegratorConfig& config,
-                                     double scale_accel_m_s2) const;
+                                     double scale_accel_m_s2, double scale_velocity_m_s) const;
 
   int num_states_;
   int num_inputs_;

@@ -1,14 +1,31 @@
-// The drive between command and plant.
+// The drive between command and plant, one per axis.
 #pragma once
 
 namespace shapebench::model {
 
-enum class DriveType { kKinematic };
+enum class DriveType { kKinematic, kServo };
+
+// Per axis: a position loop (gain Kp) with velocity feedforward, a velocity loop (PI)
+// and the motor, whose position is the "driven" point of the structure (it acts through
+// the structure's elements attached to "driven": ball screw and nut). Continuous-time.
+//   v_ref = Kp (x_cmd - x_motor) + velocity_feedforward * v_cmd
+//   F_motor = Kv (v_ref - v_motor) + Ki * integral(v_ref - v_motor)
+struct ServoConfig {
+  double position_gain_1_s = 30.0;    // Kp; T2 = 1 / Kp
+  double velocity_feedforward = 0.0;  // 0..1
+  // Velocity-loop bandwidth; 0 = ideal inner loops (v_motor = v_ref exactly, the motor is
+  // a velocity source and the axis a first-order lag of time constant 1/Kp).
+  double velocity_loop_hz = 200.0;
+  double motor_mass_kg = 40.0;  // rotor and screw inertia reflected to the axis
+  void validate() const;        // throws ValidationError naming the field
+};
 
 // kinematic: the driven point follows the command exactly, the command's acceleration
 // held over each interpolation period (SPEC section 3).
 struct DriveConfig {
   DriveType type = DriveType::kKinematic;
+  ServoConfig servo;  // used when type is kServo
+  void validate() const;
 };
 
 }  // namespace shapebench::model

@@ -19,9 +19,9 @@ enum class CvodeLmm { kAdams, kBdf };
 struct IntegratorConfig {
   IntegratorMethod method = IntegratorMethod::kCvode;
   double rtol = 1.0e-8;
-  // Per-state absolute tolerances are rtol * atol_scale * (the state's static magnitude
-  // under the run's largest acceleration; times the highest natural frequency for
-  // velocity states).
+  // Per-state absolute tolerances are rtol * atol_scale * (the static magnitude, under the
+  // run's largest acceleration or its largest speed, of the state's tolerance group; times
+  // the group's frequency for velocity states). See CvodeIntegrator::AbsoluteTolerances.
   double atol_scale = 1.0;
   // Adams: at the same rtol it tracks the exact solution ~20x closer than BDF on these
   // lightly damped, non-stiff plants (measured in tests/model/cvode_integrator_test.cc).
@@ -63,10 +63,16 @@ class PlantIntegrator {
   virtual IntegratorStats Stats() const { return {}; }
 };
 
-// `scale_accel_m_s2`: the largest acceleration magnitude of the run, sets the tolerances.
+// `scale_accel_m_s2`: the largest acceleration magnitude of the run, `scale_velocity_m_s`
+// its largest commanded speed; together they set the tolerances (a servo's following error
+// is proportional to the speed, so pass it whenever the plant has a servo).
+// Inputs that reach no state (the columns of an axis without states, e.g. a rigid axis
+// under the kinematic drive) are left out of the integration: the result is then exactly
+// that of the plant without them.
 std::unique_ptr<PlantIntegrator> MakeIntegrator(const LinearPlant& plant,
                                                 const IntegratorConfig& config,
                                                 double period_s, int substeps,
-                                                double scale_accel_m_s2);
+                                                double scale_accel_m_s2,
+                                                double scale_velocity_m_s = 0.0);
 
 }  // namespace shapebench::model

@@ -1,5 +1,7 @@
 #include "model/linear_plant.h"
 
+#include <algorithm>
+
 namespace shapebench::model {
 
 Eigen::MatrixXd LinearPlant::StaticGain() const {
@@ -7,6 +9,12 @@ Eigen::MatrixXd LinearPlant::StaticGain() const {
   // a restrained, stable plant; a pivoted LU solve avoids forming the inverse.
   const Eigen::MatrixXd x_per_accel = A.fullPivLu().solve(-B_accel);
   return C * x_per_accel;
+}
+
+int LinearPlant::NumToleranceGroups() const {
+  int groups = 1;
+  for (int group : tolerance_group) groups = std::max(groups, group + 1);
+  return groups;
 }
 
 Eigen::MatrixXd LinearPlant::AugmentedA() const {

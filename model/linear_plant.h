@@ -22,6 +22,13 @@ struct LinearPlant {
   Eigen::MatrixXd C;
   std::vector<StateKind> state_kinds;
   double max_frequency_rad_s = 0.0;  // the highest natural frequency, for tolerances
+  // Tolerance groups (CvodeIntegrator's absolute tolerances): states of very different
+  // sizes (a servo's following error, millimetres, beside a structural deflection,
+  // micrometres) get their own scale. Within a group the position states share the largest
+  // static magnitude of the group's position states, its velocity states that times the
+  // group's frequency. Empty: one group of all states, of frequency max_frequency_rad_s.
+  std::vector<int> tolerance_group;           // per state: 0 .. number of groups - 1
+  std::vector<double> group_frequency_rad_s;  // per group
 
   int num_states() const { return static_cast<int>(A.rows()); }
   int num_inputs() const { return static_cast<int>(B_accel.cols()); }
@@ -29,6 +36,13 @@ struct LinearPlant {
 
   // Deflection per unit acceleration held constant: the static solve A x = -B_accel a.
   Eigen::MatrixXd StaticGain() const;
+
+  // Group of state i and the number of groups, whether or not tolerance_group is set.
+  int ToleranceGroup(int i) const { return tolerance_group.empty() ? 0 : tolerance_group[i]; }
+  int NumToleranceGroups() const;
+  double GroupFrequency(int group) const {
+    return group_frequency_rad_s.empty() ? max_frequency_rad_s : group_frequency_rad_s[group];
+  }
 
   // The plant with the drive velocity appended to the state (v' = a), so that the input
   // is the acceleration alone: z = [x; v], z' = AugmentedA() z + AugmentedB() a, with

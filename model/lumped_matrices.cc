@@ -60,6 +60,13 @@ LumpedMatrices AssembleLumped(const LumpedMachineConfig& config) {
   m.g = m.K.llt().solve(-m.K_u);
   m.force_per_accel = -m.mass_kg.cwiseProduct(m.g);
   m.velocity_load = m.C * m.g + m.C_u;
+  m.rigid_stretch.resize(static_cast<Eigen::Index>(config.elements.size()));
+  for (std::size_t i = 0; i < config.elements.size(); ++i) {
+    const LumpedElement& e = config.elements[i];
+    const EndpointMap from = mapper.Map(e.from);
+    const EndpointMap to = mapper.Map(e.to);
+    m.rigid_stretch(static_cast<Eigen::Index>(i)) = (from.D - to.D).dot(m.g) + (from.d - to.d);
+  }
   const EndpointMap body = mapper.Map(config.output_body);
   const EndpointMap relative = mapper.Map(config.output_relative_to);
   m.output = (body.D - relative.D).transpose();

@@ -24,6 +24,11 @@ struct LumpedMatrices {
   Eigen::VectorXd force_per_accel;  // f = -M g
   Eigen::VectorXd velocity_load;    // C g + C_u
   Eigen::VectorXd output;           // c: deflection = c^T y
+  // Per element (config order): its stretch D g + d under the rigid motion per unit of
+  // driven motion. All 0 when the structure follows the driven point freely; then also
+  // C g + C_u = 0, and the force the elements exert on the driven point is
+  // -(K_u^T y + C_u^T y'), independent of the driven point's own position.
+  Eigen::VectorXd rigid_stretch;
 };
 
 // `config` must have passed validate() (K positive definite).

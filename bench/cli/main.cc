@@ -80,6 +80,7 @@ int RunCommand(const RunArgs& args) {
     });
     WriteTraceCsv((dir / "trace.csv").string(), result.trace);
     WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
+    WritePathPlot((dir / "path.png").string(), result, scenario);
   }
   if (args.json) {
     std::cout << MetricsJson(result.metrics).dump(2) << std::endl;
@@ -152,12 +153,14 @@ struct ModesArgs {
 };
 
 int ModesCommand(const ModesArgs& args) {
-  const model::MachineConfig machine = LoadMachine(args.file, ParseOverrides(args.sets));
-  const model::ModalAnalysis analysis = model::AnalyzeModes(machine);
+  // Every modelled axis; the static deflection SPEC names is the driven axis'.
+  const model::MultiAxisMachineConfig machine =
+      LoadMachineAxes(args.file, ParseOverrides(args.sets));
+  const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(machine);
   if (args.json) {
-    std::cout << ModesJson(analysis).dump(2) << std::endl;
+    std::cout << ModesJson(axes, machine.driven_axis).dump(2) << std::endl;
   } else {
-    PrintModesTable(std::cout, analysis);
+    PrintModesTable(std::cout, axes, machine.driven_axis);
   }
   return kExitOk;
 }

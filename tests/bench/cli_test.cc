@@ -58,7 +58,8 @@ TEST(Cli, RunSetOverrides) {
   EXPECT_NEAR(nlohmann::json::parse(r.out)["peak_ratio"].get<double>(), 2.0, 0.01);
 }
 
-// Tests that `run --out DIR` creates DIR with metrics.json, trace.csv and a PNG plot.
+// Tests that `run --out DIR` creates DIR with metrics.json, trace.csv and the PNG plots
+// (deflection over time, XY path).
 TEST(Cli, RunOutWritesFiles) {
   ScratchDir dir;
   const std::string out = dir.File("nested/out");
@@ -67,16 +68,17 @@ TEST(Cli, RunOutWritesFiles) {
   const auto metrics = nlohmann::json::parse(ReadText(out + "/metrics.json"));
   EXPECT_EQ(metrics.size(), Metrics{}.Named().size());
   const std::string csv = ReadText(out + "/trace.csv");
-  EXPECT_EQ(csv.rfind("t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m\n", 0), 0u);
+  EXPECT_EQ(csv.rfind("t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,", 0), 0u);
   const std::string png = ReadText(out + "/deflection.png");
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(ReadText(out + "/path.png").substr(1, 3), "PNG");
   std::size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
     (void)entry;
     ++files;
   }
-  EXPECT_EQ(files, 3u);  // no temporaries left behind
+  EXPECT_EQ(files, 4u);  // no temporaries left behind
 }
 
 // Tests that bad input exits 2 with a located error on stderr and writes nothing.
@@ -197,23 +199,29 @@ TEST(Cli, CheckWithoutChecksExits2) {
   EXPECT_FALSE(std::filesystem::exists(junit));
 }
 
-// Tests that `modes --json` has exactly the documented shape.
+// Tests that `modes --json` has exactly the documented shape: SPEC's keys, each mode with
+// its axis, and the static deflection per modelled axis (a single-form machine: Y only).
 TEST(Cli, ModesJsonShape) {
   const CliResult r = RunCli({"modes", DataPath("machines/two_modes.yaml"), "--json"}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   ASSERT_TRUE(json.is_object());
-  ASSERT_EQ(json.size(), 2u);
+  ASSERT_EQ(json.size(), 3u);
   ASSERT_TRUE(json["modes"].is_array());
   ASSERT_EQ(json["modes"].size(), 2u);
   for (const auto& mode : json["modes"]) {
-    ASSERT_EQ(mode.size(), 3u);
+    ASSERT_EQ(mode.size(), 4u);
+    EXPECT_EQ(mode["axis"], "y");
     EXPECT_TRUE(mode["frequency_hz"].is_number());
     EXPECT_TRUE(mode["damping_ratio"].is_number());
     EXPECT_TRUE(mode["participation"].is_number());
   }
   EXPECT_NEAR(json["modes"][0]["frequency_hz"].get<double>(), 25.0, 1e-6);
   EXPECT_TRUE(json["static_deflection_per_accel_s2"].is_number());
+  const nlohmann::json& by_axis = json["static_deflection_per_accel_s2_by_axis"];
+  ASSERT_TRUE(by_axis.is_object());
+  ASSERT_EQ(by_axis.size(), 1u);
+  EXPECT_EQ(by_axis["y"], json["static_deflection_per_accel_s2"]);
 }
 
 // Tests that `modes` reads a scenario's machine too, with --set, and prints a table.

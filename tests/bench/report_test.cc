@@ -58,12 +58,20 @@ TEST(Report, TraceCsv) {
   trace.command_velocity_m_s = {0.0, 2.0};
   trace.command_accel_m_s2 = {0.0, -4.0};
   trace.deflection_m = {0.0, 1e-6};
+  trace.command_m = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0.5, 0.25, 0)};
+  trace.actual_m = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0.5, 0.25, 1e-6)};
+  trace.deflection_axes_m = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 1e-6)};
+  trace.block = {0, -1};
+  trace.planned_feed_mm_min = {6000, 0};
   const std::string path = dir.File("trace.csv");
   WriteTraceCsv(path, trace);
   EXPECT_EQ(ReadText(path),
-            "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m\n"
-            "0,0,0,0,0\n"
-            "0.10000000000000001,0.33333333333333331,2,-4,9.9999999999999995e-07\n");
+            "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
+            "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
+            "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n"
+            "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,6000\n"
+            "0.10000000000000001,0.33333333333333331,2,-4,9.9999999999999995e-07,0.5,0.25,0,"
+            "0.5,0.25,9.9999999999999995e-07,0,0,9.9999999999999995e-07,-1,0\n");
 }
 
 // Tests that XML special characters and bytes XML cannot hold are escaped or dropped.

@@ -60,7 +60,8 @@ TEST(ScenarioLoaderErrors, UnknownTopLevelKey) {
   ScratchDir dir;
   const std::string path = dir.Write("s.yaml", "move: {distance_mm: 5}\nmachnie: {}\n");
   ExpectError(LoadError(path), path, 2, 1, "machnie",
-              "allowed: name, machine, drive, controller, move, integrator, checks");
+              "allowed: name, machine, drive, controller, move, program, program_file, output, "
+              "integrator, checks");
 }
 
 // Tests that a non-number where a number belongs says so at the value's own position.
@@ -89,14 +90,41 @@ TEST(ScenarioLoaderErrors, WrongTypeChoice) {
   ExpectError(LoadError(steps), steps, 1, 29, "integrator.max_num_steps", "expected an integer");
 }
 
-// Tests that the servo drive is refused with what is available.
-TEST(ScenarioLoaderErrors, ServoDriveNotAvailable) {
+// Tests that the drive's type lists its choices and that servo settings need the servo.
+TEST(ScenarioLoaderErrors, DriveTypeAndServoKeys) {
   ScratchDir dir;
-  const std::string path = dir.Write("s.yaml", "drive: {type: servo}\n");
-  ExpectError(LoadError(path), path, 1, 15, "drive.type",
-              "'servo' is not available yet; allowed: kinematic");
-  const std::string gains = dir.Write("g.yaml", "drive: {position_gain: 30, type: servo}\n");
-  ExpectError(LoadError(gains), gains, 1, 34, "drive.type", "'servo' is not available yet");
+  const std::string type = dir.Write("t.yaml", "drive: {type: stepper}\n");
+  ExpectError(LoadError(type), type, 1, 15, "drive.type", "expected one of kinematic|servo");
+  const std::string kinematic =
+      dir.Write("k.yaml", "drive: {type: kinematic, velocity_feedforward: 0.5}\n");
+  ExpectError(LoadError(kinematic), kinematic, 1, 48, "drive.velocity_feedforward",
+              "needs type: servo");
+  const std::string untyped = dir.Write("u.yaml", "drive:\n  position_gain: 30\n");
+  ExpectError(LoadError(untyped), untyped, 2, 18, "drive.position_gain", "needs type: servo");
+  const std::string unknown = dir.Write("x.yaml", "drive: {type: servo, kv: 3}\n");
+  ExpectError(LoadError(unknown), unknown, 1, 22, "drive.kv",
+              "allowed: type, position_gain, velocity_feedforward, velocity_loop_hz, "
+              "motor_mass_kg");
+}
+
+// Tests that invalid servo settings are located at their values with what is allowed.
+TEST(ScenarioLoaderErrors, ServoSettingsInvalid) {
+  ScratchDir dir;
+  const std::string gain =
+      dir.Write("g.yaml", "drive:\n  type: servo\n  position_gain: -30\n");
+  ExpectError(LoadError(gain), gain, 3, 18, "drive.position_gain",
+              "must be finite and > 0 (1/s; Kp = 1 / T2) (got -30)");
+  const std::string feedforward =
+      dir.Write("f.yaml", "drive: {type: servo, velocity_feedforward: 1.5}\n");
+  ExpectError(LoadError(feedforward), feedforward, 1, 44, "drive.velocity_feedforward",
+              "must be in [0, 1] (0 = none, 1 = full) (got 1.5)");
+  const std::string loop = dir.Write("l.yaml", "drive: {type: servo, velocity_loop_hz: -1}\n");
+  ExpectError(LoadError(loop), loop, 1, 40, "drive.velocity_loop_hz", "must be finite and >= 0");
+  const std::string mass = dir.Write("m.yaml", "drive: {type: servo, motor_mass_kg: 0}\n");
+  ExpectError(LoadError(mass), mass, 1, 37, "drive.motor_mass_kg", "must be finite and > 0");
+  ExpectError(LoadError(DataPath("uses_machine_file.yaml"),
+                        {"drive={type: servo}", "drive.velocity_feedforward=2"}),
+              "--set", 2, 1, "drive.velocity_feedforward", "must be in [0, 1]");
 }
 
 // Tests that a mode frequency <= 0 is located at the value.

@@ -38,7 +38,7 @@ checks:
   const Scenario s = LoadScenario(path, {});
   EXPECT_EQ(s.name, "full scenario");
   EXPECT_EQ(s.source_file, path);
-  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.form);
+  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form);
   ASSERT_EQ(modal.modes.size(), 2u);
   EXPECT_DOUBLE_EQ(modal.modes[1].frequency_hz, 90.0);
   EXPECT_DOUBLE_EQ(modal.modes[1].damping_ratio, 0.02);
@@ -79,7 +79,7 @@ TEST(ScenarioLoader, DefaultsComeFromTheStructs) {
   EXPECT_DOUBLE_EQ(s.controller.feed_mm_min, defaults.feed_mm_min);
   EXPECT_EQ(s.controller.pattern.method, defaults.pattern.method);
   EXPECT_EQ(s.integrator.method, model::IntegratorConfig{}.method);
-  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.form);
+  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form);
   ASSERT_EQ(modal.modes.size(), 1u);
   EXPECT_DOUBLE_EQ(modal.modes[0].frequency_hz, 25.0);
   EXPECT_TRUE(s.checks.empty());
@@ -114,7 +114,7 @@ machine:
   output: {body: column, relative_to: bed}
 )"),
                                   {});
-  const auto& lumped = std::get<model::LumpedMachineConfig>(s.machine.form);
+  const auto& lumped = std::get<model::LumpedMachineConfig>(s.machine.axes[1]->form);
   ASSERT_EQ(lumped.bodies.size(), 2u);
   EXPECT_EQ(lumped.bodies[1].name, "column");
   EXPECT_DOUBLE_EQ(lumped.bodies[0].mass_kg, 5000.0);
@@ -131,7 +131,7 @@ machine:
 // Tests that a machine file referenced by path (relative to the scenario) is loaded.
 TEST(ScenarioLoader, LoadsReferencedMachineFile) {
   const Scenario s = LoadScenario(DataPath("uses_machine_file.yaml"), {});
-  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.form);
+  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form);
   ASSERT_EQ(modal.modes.size(), 2u);
   EXPECT_DOUBLE_EQ(modal.modes[1].frequency_hz, 80.0);
   EXPECT_EQ(s.controller.pattern.method, controller::PatternMethod::kMethod2);
@@ -147,7 +147,7 @@ TEST(ScenarioLoader, OverridesApplyInOrder) {
                                                   "controller.post_interp.type=exponential",
                                                   "controller.feed_mm_min=4000",
                                                   "name=renamed"}));
-  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.form);
+  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form);
   EXPECT_DOUBLE_EQ(modal.modes[1].gain, 0.3);
   EXPECT_DOUBLE_EQ(modal.modes[0].gain, 1.0);
   EXPECT_DOUBLE_EQ(s.controller.feed_mm_min, 4000.0);
@@ -160,7 +160,7 @@ TEST(ScenarioLoader, OverrideWithStructuredValue) {
   const Scenario s = LoadScenario(
       DataPath("uses_machine_file.yaml"),
       ParseOverrides({"machine={modes: [{frequency_hz: 40}]}", "machine.modes[0].gain=2"}));
-  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.form);
+  const auto& modal = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form);
   ASSERT_EQ(modal.modes.size(), 1u);
   EXPECT_DOUBLE_EQ(modal.modes[0].frequency_hz, 40.0);
   EXPECT_DOUBLE_EQ(modal.modes[0].gain, 2.0);

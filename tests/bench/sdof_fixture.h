@@ -10,7 +10,7 @@ inline Scenario SdofScenario(double frequency_hz = 25.0, double damping_ratio = 
   Scenario s;
   model::ModalMachineConfig modal;
   modal.modes = {model::ModalMode{frequency_hz, damping_ratio, 1.0}};
-  s.machine.form = modal;
+  s.machine.axes[s.machine.driven_axis] = model::MachineConfig{modal};
   s.controller.period_s = 0.001;
   s.controller.feed_mm_min = 30000;  // 0.5 m/s
   s.controller.accel_time_s = 0.3;   // 1.667 m/s^2 = 0.17 G (para. 21)

@@ -1,0 +1,35 @@
+// A Fanuc-style G-code subset -> Program (through ProgramBuilder, which documents the
+// words and their modal behaviour).
+//
+// Lexical rules:
+//   - One block per line (LF or CRLF). Blank lines and lines holding only comments are
+//     skipped.
+//   - Comments: `( ... )` within a line (not nested; an unclosed `(` is an error) and `;`
+//     to the end of the line.
+//   - `%` alone on a line (comments may follow) may open the program before its first
+//     block and close it after its last; after the closing `%` only blank lines and
+//     comments may follow. `%` anywhere else is an error.
+//   - A word is a letter (case-insensitive) and a number. Spaces between words are
+//     optional (`G1X10Y-5.5F600`); spaces and tabs between the letter and its number are
+//     allowed (`X 10`, `X -5`), not inside the number.
+//   - Numbers: optional sign, digits with at most one decimal point (`10`, `-5.5`, `.5`,
+//     `5.`); no exponent. G and N take unsigned integers (`G01` is G1; `G1.5` is malformed).
+//   - Columns are 1-based characters (a tab counts as one). Every error about a word,
+//     including a malformed number, points at the word's letter; an unclosed comment at
+//     its `(`; a stray character at itself.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "controller/program.h"
+#include "controller/program_builder.h"
+
+namespace shapebench::controller {
+
+// Throws ProgramError with the 1-based line and column of what is wrong.
+Program ParseGcode(const std::string& text,
+                   const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+
+}  // namespace shapebench::controller

@@ -1,0 +1,130 @@
+// The multi-axis machine: per-axis plants assembled block-diagonally (axes uncoupled).
+#include "model/multi_axis_machine.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "common/validation_error.h"
+#include "model/servo_drive.h"
+
+namespace shapebench::model {
+namespace {
+
+// One axis: 1 input column, output rows [deflection; tool relative to the command].
+LinearPlant BuildAxisPlant(const std::optional<MachineConfig>& structure,
+                           const DriveConfig& drive) {
+  if (drive.type == DriveType::kServo) {
+    return BuildServoAxisPlant(structure ? &*structure : nullptr, drive.servo);
+  }
+  LinearPlant plant;
+  if (!structure) {  // rigid under the kinematic drive: it follows the command exactly
+    plant.A = Eigen::MatrixXd::Zero(0, 0);
+    plant.B_accel = Eigen::MatrixXd::Zero(0, 1);
+    plant.B_vel = Eigen::MatrixXd::Zero(0, 1);
+    plant.C = Eigen::MatrixXd::Zero(2, 0);
+    return plant;
+  }
+  plant = BuildPlant(*structure);
+  const Eigen::MatrixXd c = plant.C;
+  plant.C.resize(2, c.cols());
+  plant.C << c, c;  // the driven point is the command: no following error
+  return plant;
+}
+
+// Appends `block` (one input, two output rows) as axis `axis` of `plant`.
+void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
+  const int n0 = plant->num_states();
+  const int nb = block.num_states();
+  const int n = n0 + nb;
+  auto grow = [&](Eigen::MatrixXd* m, int rows, int cols) {
+    Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(rows, cols);
+    bigger.topLeftCorner(m->rows(), m->cols()) = *m;
+    *m = std::move(bigger);
+  };
+  grow(&plant->A, n, n);
+  grow(&plant->B_accel, n, kNumAxes);
+  grow(&plant->B_vel, n, kNumAxes);
+  grow(&plant->C, 2 * kNumAxes, n);
+  plant->A.block(n0, n0, nb, nb) = block.A;
+  plant->B_accel.block(n0, axis, nb, 1) = block.B_accel;
+  plant->B_vel.block(n0, axis, nb, 1) = block.B_vel;
+  plant->C.block(kDeflectionRow + axis, n0, 1, nb) = block.C.row(0);
+  plant->C.block(kToolErrorRow + axis, n0, 1, nb) = block.C.row(1);
+  plant->state_kinds.insert(plant->state_kinds.end(), block.state_kinds.begin(),
+                            block.state_kinds.end());
+  plant->max_frequency_rad_s = std::max(plant->max_frequency_rad_s, block.max_frequency_rad_s);
+  if (nb == 0) return;
+  const int first_group = static_cast<int>(plant->group_frequency_rad_s.size());
+  for (int i = 0; i < nb; ++i) {
+    plant->tolerance_group.push_back(first_group + block.ToleranceGroup(i));
+  }
+  for (int g = 0; g < block.NumToleranceGroups(); ++g) {
+    plant->group_frequency_rad_s.push_back(block.GroupFrequency(g));
+  }
+}
+
+}  // namespace
+
+const char* AxisName(int axis) {
+  static const char* const kNames[kNumAxes] = {"x", "y", "z"};
+  if (axis < 0 || axis >= kNumAxes) {
+    throw std::out_of_range("AxisName: axis " + std::to_string(axis) + " is not 0, 1 or 2");
+  }
+  return kNames[axis];
+}
+
+std::string MultiAxisMachineConfig::AxisPrefix(int axis) const {
+  return single_form ? std::string() : std::string("axes.") + AxisName(axis);
+}
+
+void MultiAxisMachineConfig::validate() const {
+  if (driven_axis < 0 || driven_axis >= kNumAxes) {
+    throw ValidationError("driven_axis",
+                          "must be x, y or z (0..2), got " + std::to_string(driven_axis));
+  }
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    if (!axes[axis]) continue;  // rigid
+    try {
+      axes[axis]->validate();
+    } catch (const ValidationError& error) {
+      throw error.Prefixed(AxisPrefix(axis));
+    }
+  }
+}
+
+MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const DriveConfig& drive) {
+  machine.validate();
+  drive.validate();
+  MachinePlant result;
+  LinearPlant& plant = result.plant;
+  plant.A = Eigen::MatrixXd::Zero(0, 0);
+  plant.B_accel = Eigen::MatrixXd::Zero(0, kNumAxes);
+  plant.B_vel = Eigen::MatrixXd::Zero(0, kNumAxes);
+  plant.C = Eigen::MatrixXd::Zero(2 * kNumAxes, 0);
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    const std::optional<MachineConfig>& structure = machine.axes[axis];
+    try {
+      AppendAxis(BuildAxisPlant(structure, drive), axis, &plant);
+      if (structure) {
+        // The structure relative to the driven point: the same under either drive.
+        result.static_gain(axis, axis) = BuildPlant(*structure).StaticGain()(0, 0);
+      }
+    } catch (const ValidationError& error) {
+      // The structure's own fields (the servo's are checked by drive.validate() above).
+      throw error.Prefixed(machine.AxisPrefix(axis));
+    }
+  }
+  return result;
+}
+
+std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine) {
+  machine.validate();
+  std::vector<AxisModes> result;
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    if (machine.axes[axis]) result.push_back({axis, AnalyzeModes(*machine.axes[axis])});
+  }
+  return result;
+}
+
+}  // namespace shapebench::model

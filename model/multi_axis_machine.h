@@ -1,0 +1,71 @@
+// The machine as the co-simulation sees it: a structural model per axis (X, Y, Z; an
+// axis without one is rigid), uncoupled (the lumped forms have no rotation), each with
+// its drive. SPEC section 3's single forms (`modes:` or `bodies:`) model one axis.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "model/drive.h"
+#include "model/linear_plant.h"
+#include "model/machine.h"
+
+namespace shapebench::model {
+
+constexpr int kNumAxes = 3;  // x, y, z
+const char* AxisName(int axis);  // "x", "y", "z"
+
+struct MultiAxisMachineConfig {
+  // Default: SPEC's default machine (what a scenario without `machine:` runs), the modal
+  // form's default (one 25 Hz mode) on Y, as a single form. Clear `axes` to build another.
+  std::array<std::optional<MachineConfig>, kNumAxes> axes{std::nullopt, MachineConfig{},
+                                                          std::nullopt};
+  // The axis `move:` runs along and SPEC's modes report refers to; Y by default (the
+  // moving column's axis in the patent).
+  int driven_axis = 1;
+  // Read from SPEC's single form (`modes:` or `bodies:` with an optional `axis:`): the one
+  // axis' fields are then named as in that form ("modes[0].gain", not "axes.y.modes[0].gain").
+  bool single_form = true;
+  // Throws ValidationError naming e.g. "axes.y.modes[0].frequency_hz" (or, for a
+  // single-form machine, the form's own field). Any axis may be rigid, all of them too (a
+  // rigid machine: only the drive's own dynamics remain); the driven axis' static
+  // deflection is then 0.
+  void validate() const;
+  // The key path prefix of axis `axis`'s fields: "axes.x", or "" for a single form.
+  std::string AxisPrefix(int axis) const;
+};
+
+// Output rows of MachinePlant::plant.C.
+constexpr int kDeflectionRow = 0;  // rows 0..2: structural deflection x, y, z (tool
+                                   // relative to the workpiece, less the motion of the
+                                   // driven point)
+constexpr int kToolErrorRow = 3;   // rows 3..5: tool relative to the workpiece, less the
+                                   // command position (servo lag + deflection)
+
+struct MachinePlant {
+  // Inputs: column i of B_accel / B_vel is axis i's commanded acceleration / velocity.
+  LinearPlant plant;
+  // Structural deflection per held commanded acceleration (diagonal: axes uncoupled).
+  Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
+};
+
+// Validates both (ValidationError: the machine's fields as validate() names them, the
+// drive's as DriveConfig::validate() does). Every axis gets the same drive. Per axis:
+// kinematic, BuildPlant of its structure (C row duplicated into rows 0 and 3), nothing for a
+// rigid axis; servo, BuildServoAxisPlant (servo_drive.h). Inputs of a stateless axis reach
+// no state; a rigid machine under the kinematic drive has no states at all (nothing to
+// integrate: every output is 0). Tolerance groups: one per axis' structure, one per axis'
+// servo.
+MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const DriveConfig& drive);
+
+struct AxisModes {
+  int axis = 0;
+  ModalAnalysis analysis;
+};
+// The modes of every modelled axis, in axis order.
+std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine);
+
+}  // namespace shapebench::model

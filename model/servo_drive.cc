@@ -1,0 +1,158 @@
+// BuildServoAxisPlant: the equations are in servo_drive.h.
+#include "model/servo_drive.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+#include "common/format.h"
+#include "common/validation_error.h"
+#include "model/lumped_matrices.h"
+
+namespace shapebench::model {
+namespace {
+
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+
+// What the servo needs of the structure besides its kinematic plant.
+struct StructureCoupling {
+  LinearPlant plant;          // BuildPlant: driven by the driven point's a and v
+  Eigen::RowVectorXd reaction;  // F_r = reaction * x_structure (needs free following)
+  double load_mass_kg = 0.0;  // g^T M g
+  double tool_per_driven = 1.0;  // c^T g
+};
+
+StructureCoupling Couple(const MachineConfig& structure, bool needs_free_following) {
+  StructureCoupling coupling;
+  coupling.plant = BuildPlant(structure);  // validates
+  const int n = coupling.plant.num_states();
+  coupling.reaction = Eigen::RowVectorXd::Zero(n);
+  if (const auto* lumped = std::get_if<LumpedMachineConfig>(&structure.form)) {
+    const LumpedMatrices m = AssembleLumped(*lumped);
+    const int nb = static_cast<int>(m.mass_kg.size());
+    if (needs_free_following) {
+      for (int i = 0; i < m.rigid_stretch.size(); ++i) {
+        // g entries are O(1) (rigid motion per unit driven motion), so is the stretch.
+        if (std::abs(m.rigid_stretch(i)) > 1e-9) {
+          const LumpedElement& e = lumped->elements[i];
+          throw ValidationError(
+              "elements[" + std::to_string(i) + "]",
+              "element \"" + e.name + "\" (" + e.from + " - " + e.to + ") stretches by " +
+                  FormatNumber(m.rigid_stretch(i)) +
+                  " per unit of driven motion when the structure follows the driven point "
+                  "rigidly; a servo drive with a velocity loop (velocity_loop_hz > 0) needs a "
+                  "structure that follows the driven point freely (no spring or damper from "
+                  "the moving bodies to what stays put), or use velocity_loop_hz: 0 (ideal "
+                  "inner loops)");
+        }
+      }
+    }
+    coupling.reaction.head(nb) = m.K_u.transpose();
+    coupling.reaction.segment(nb, nb) = m.C_u.transpose();
+    coupling.load_mass_kg = m.g.dot(m.mass_kg.cwiseProduct(m.g));
+    coupling.tool_per_driven = m.output.dot(m.g);
+  }
+  return coupling;
+}
+
+}  // namespace
+
+LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfig& servo) {
+  servo.validate();
+  const bool ideal = servo.velocity_loop_hz == 0.0;
+  StructureCoupling coupling;
+  coupling.plant.A = Eigen::MatrixXd::Zero(0, 0);
+  coupling.plant.B_accel = Eigen::MatrixXd::Zero(0, 1);
+  coupling.plant.B_vel = Eigen::MatrixXd::Zero(0, 1);
+  coupling.plant.C = Eigen::MatrixXd::Zero(1, 0);
+  coupling.reaction = Eigen::RowVectorXd::Zero(0);
+  if (structure != nullptr) coupling = Couple(*structure, !ideal);
+  const LinearPlant& s = coupling.plant;
+  const int ns = s.num_states();
+  const int nservo = ideal ? 1 : 3;
+  const int n = ns + nservo;
+  const int ie = ns;       // e
+  const int ied = ns + 1;  // e' (finite loop)
+  const int iz = ns + 2;   // z  (finite loop)
+
+  const double kp = servo.position_gain_1_s;
+  const double ff = servo.velocity_feedforward;
+  const Eigen::VectorXd b_a = s.B_accel.col(0);  // structure per unit s''
+  const Eigen::VectorXd b_v = s.B_vel.col(0);    // structure per unit s'
+
+  LinearPlant plant;
+  plant.A = Eigen::MatrixXd::Zero(n, n);
+  plant.B_accel = Eigen::MatrixXd::Zero(n, 1);
+  plant.B_vel = Eigen::MatrixXd::Zero(n, 1);
+  plant.C = Eigen::MatrixXd::Zero(2, n);
+  plant.A.topLeftCorner(ns, ns) = s.A;
+
+  // s' and s'' as rows over the states plus input coefficients.
+  Eigen::RowVectorXd sd_x = Eigen::RowVectorXd::Zero(n);
+  Eigen::RowVectorXd sdd_x = Eigen::RowVectorXd::Zero(n);
+  double sd_v = 0.0;
+  double sdd_a = 0.0;
+  double sdd_v = 0.0;
+  // The servo states' frequency for CVODE's velocity tolerances (LinearPlant tolerance
+  // groups): e' changes at the rate of the fastest loop.
+  double velocity_frequency = kp;
+  if (ideal) {
+    // e' = -Kp e - (1 - FF) v;  s' = FF v - Kp e;  s'' = FF a + Kp^2 e + Kp (1 - FF) v.
+    plant.A(ie, ie) = -kp;
+    plant.B_vel(ie, 0) = -(1.0 - ff);
+    sd_x(ie) = -kp;
+    sd_v = ff;
+    sdd_x(ie) = kp * kp;
+    sdd_a = ff;
+    sdd_v = kp * (1.0 - ff);
+  } else {
+    const double w_v = kTwoPi * servo.velocity_loop_hz;
+    const double m_m = servo.motor_mass_kg;
+    const double kv = (m_m + coupling.load_mass_kg) * w_v;
+    const double ki = kv * w_v / 4.0;
+    velocity_frequency = std::max(kp, w_v);
+    // m_m s'' = Kv (-Kp e - e' - (1 - FF) v) + Ki z - reaction x_structure
+    sdd_x.head(ns) = -coupling.reaction / m_m;
+    sdd_x(ie) = -kv * kp / m_m;
+    sdd_x(ied) = -kv / m_m;
+    sdd_x(iz) = ki / m_m;
+    sdd_v = -kv * (1.0 - ff) / m_m;
+    // s' = v + e'
+    sd_x(ied) = 1.0;
+    sd_v = 1.0;
+    // (e)' = e';  (e')' = s'' - a;  z' = -Kp e - e' - (1 - FF) v
+    plant.A(ie, ied) = 1.0;
+    plant.A.row(ied) = sdd_x;
+    plant.B_accel(ied, 0) = sdd_a - 1.0;
+    plant.B_vel(ied, 0) = sdd_v;
+    plant.A(iz, ie) = -kp;
+    plant.A(iz, ied) = -1.0;
+    plant.B_vel(iz, 0) = -(1.0 - ff);
+  }
+  // The structure driven by the motor: x_s' = A_s x_s + b_a s'' + b_v s'.
+  plant.A.topRows(ns) += b_a * sdd_x + b_v * sd_x;
+  plant.B_accel.topRows(ns) += b_a * sdd_a;
+  plant.B_vel.topRows(ns) += b_a * sdd_v + b_v * sd_v;
+
+  plant.C.block(0, 0, 1, ns) = s.C;
+  plant.C.block(1, 0, 1, ns) = s.C;
+  plant.C(1, ie) = coupling.tool_per_driven;
+
+  plant.state_kinds = s.state_kinds;
+  plant.state_kinds.push_back(StateKind::kPosition);  // e
+  if (!ideal) {
+    plant.state_kinds.push_back(StateKind::kVelocity);  // e'
+    plant.state_kinds.push_back(StateKind::kPosition);  // z: integral of a velocity error
+  }
+  plant.max_frequency_rad_s = std::max(s.max_frequency_rad_s, velocity_frequency);
+  const int structure_groups = ns > 0 ? 1 : 0;
+  plant.tolerance_group.assign(ns, 0);
+  plant.tolerance_group.resize(n, structure_groups);
+  if (structure_groups > 0) plant.group_frequency_rad_s.push_back(s.max_frequency_rad_s);
+  plant.group_frequency_rad_s.push_back(velocity_frequency);
+  return plant;
+}
+
+}  // namespace shapebench::model
