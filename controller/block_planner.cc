@@ -112,10 +112,19 @@ double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& af
 SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
                         const PlannerSettings& settings) {
   SpeedPlan plan;
-  for (const ProgramBlock& block : program.blocks) {
-    plan.block_feed_m_s.push_back(block.kind == MotionKind::kRapid ? settings.rapid_feed_m_s
-                                  : std::isnan(block.feed_m_s)     ? settings.default_feed_m_s
-                                                                   : block.feed_m_s);
+  for (std::size_t i = 0; i < program.blocks.size(); ++i) {
+    const ProgramBlock& block = program.blocks[i];
+    double feed = block.kind == MotionKind::kRapid ? settings.rapid_feed_m_s
+                  : std::isnan(block.feed_m_s)     ? settings.default_feed_m_s
+                                                   : block.feed_m_s;
+    const PathElement& element = path.elements()[i];
+    if (element.is_arc()) {
+      // Arc feed clamp (as Fanuc's clamp by arc radius): the centripetal acceleration
+      // v^2 / r stays within the acc/dec's acceleration.
+      const double radius = std::min(element.start_radius_m, element.end_radius_m);
+      feed = std::min(feed, std::sqrt(settings.accel_m_s2 * radius));
+    }
+    plan.block_feed_m_s.push_back(feed);
   }
   plan.speed_m_s.push_back(0.0);
   std::vector<Segment> segments;

@@ -6,7 +6,8 @@
 // that no axis changes velocity by more than the corner allowance in one period (the
 // corner rule). Backward and forward passes make every speed change fit its block; each
 // change is one acc/dec phase shaped by the vibration-suppressing pattern (seed 004), so
-// the shaping holds across blocks as it does for a single move.
+// the shaping holds across blocks as it does for a single move. On arcs the feed is
+// clamped so that the centripetal acceleration v^2 / r stays within the acc/dec's.
 #pragma once
 
 #include <cstddef>

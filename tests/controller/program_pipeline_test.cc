@@ -224,3 +224,23 @@ TEST(PathGeometryTest, ArcsAndHelix) {
 
 }  // namespace
 }  // namespace shapebench::controller
+
+namespace shapebench::controller {
+namespace {
+
+// Tests the arc feed clamp: on a small arc the path speed is at most sqrt(a r), so the
+// centripetal acceleration stays within the acc/dec's acceleration.
+TEST(BlockPlannerTest, ArcFeedIsClampedByItsRadius) {
+  ControllerConfig c = Config();  // a = 0.1 / 0.06 = 1.667 m/s^2
+  const Program program = Make({Circle(0.005, 30000)});
+  const MultiAxisCommand command = GenerateProgramCommand(c, program);
+  double top = 0;
+  for (std::size_t k = 0; k <= command.num_ticks(); ++k) top = std::max(top, command.velocity_m_s(k).norm());
+  // The axes run along chords: |chord| / period = v (1 - theta^2 / 24), theta = v dt / r.
+  const double v = std::sqrt(c.accel_m_s2() * 0.005);
+  const double theta = v * 0.001 / 0.005;
+  EXPECT_NEAR(top, v * (1 - theta * theta / 24), 1e-9);
+}
+
+}  // namespace
+}  // namespace shapebench::controller
