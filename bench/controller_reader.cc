@@ -60,12 +60,41 @@ controller::PostInterpConfig ReadPostInterp(const NodeReader& post_interp) {
   return config;
 }
 
+controller::ShortBlockConfig ReadShortBlock(const NodeReader& node) {
+  node.ExpectMap({"mode", "ratio_line", "ratio_arc", "min_ratio_line", "min_ratio_arc", "scale",
+                  "preset_feed_mm_min"});
+  controller::ShortBlockConfig config;
+  node.Read<controller::ShortBlockMode>("mode",
+                                        {{"off", controller::ShortBlockMode::kOff},
+                                         {"ratio", controller::ShortBlockMode::kRatio},
+                                         {"length", controller::ShortBlockMode::kLength},
+                                         {"scale", controller::ShortBlockMode::kScale},
+                                         {"preset", controller::ShortBlockMode::kPreset}},
+                                        &config.mode);
+  node.Read("ratio_line", &config.ratio_line);
+  node.Read("ratio_arc", &config.ratio_arc);
+  node.Read("min_ratio_line", &config.min_ratio_line);
+  node.Read("min_ratio_arc", &config.min_ratio_arc);
+  node.Read("scale", &config.scale);
+  node.Read("preset_feed_mm_min", &config.preset_feed_mm_min);
+  return config;
+}
+
+controller::StrokeEndConfig ReadStrokeEnd(const NodeReader& node) {
+  node.ExpectMap({"enabled", "look_ahead_blocks", "minute_feed_mm_min"});
+  controller::StrokeEndConfig config;
+  node.Read<bool>("enabled", {{"true", true}, {"false", false}}, &config.enabled);
+  node.Read("look_ahead_blocks", &config.look_ahead_blocks);
+  node.Read("minute_feed_mm_min", &config.minute_feed_mm_min);
+  return config;
+}
+
 }  // namespace
 
 controller::ControllerConfig ReadController(const NodeReader& controller) {
   controller.ExpectMap(
       {"period_s", "feed_mm_min", "accel_time_s", "rapid_feed_mm_min",
-       "corner_velocity_change_mm_min", "pattern", "post_interp"});
+       "corner_velocity_change_mm_min", "pattern", "post_interp", "short_block", "stroke_end"});
   controller::ControllerConfig config;
   controller.Read("period_s", &config.period_s);
   controller.Read("feed_mm_min", &config.feed_mm_min);
@@ -76,6 +105,8 @@ controller::ControllerConfig ReadController(const NodeReader& controller) {
   if (auto post_interp = controller.Child("post_interp")) {
     config.post_interp = ReadPostInterp(*post_interp);
   }
+  if (auto short_block = controller.Child("short_block")) config.short_block = ReadShortBlock(*short_block);
+  if (auto stroke_end = controller.Child("stroke_end")) config.stroke_end = ReadStrokeEnd(*stroke_end);
   return config;
 }
 

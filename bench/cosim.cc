@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "controller/path_geometry.h"
+#include "controller/stroke_end.h"
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
@@ -77,7 +78,9 @@ int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s) 
 RunResult RunScenario(const Scenario& scenario) {
   RunResult result;
   result.program = scenario.RunProgram();
-  result.command = controller::GenerateProgramCommand(scenario.controller, result.program);
+  controller::ControllerConfig controller = scenario.controller;
+  controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
+  result.command = controller::GenerateProgramCommand(controller, result.program);
   const controller::MultiAxisCommand& command = result.command;
   const double dt = command.period_s;
   const controller::PathGeometry path(result.program);
@@ -161,6 +164,7 @@ RunResult RunScenario(const Scenario& scenario) {
   double residual = 0.0;
   double cruise = NAN;
   double contour = 0.0;
+  double overshoot = 0.0;
   double last_outside_band_s = NAN;  // last sample after the motion outside the band
   std::size_t quiet_since_tick = motion_ticks;
   bool settled = false;
@@ -198,6 +202,7 @@ RunResult RunScenario(const Scenario& scenario) {
       peak = std::max(peak, magnitude);
       peak_axes = peak_axes.cwiseMax(deflection.cwiseAbs());
       contour = std::max(contour, path.DistanceTo(actual));
+      overshoot = std::max(overshoot, controller::StrokeOvershoot(p, scenario.machine.stroke_m));
       for (ArcWindow& w : arcs) {
         const double from_start = path_s - w.arc->start_s_m;
         if (from_start >= 0.25 * w.arc->length_m && from_start <= 0.75 * w.arc->length_m) {
@@ -240,6 +245,9 @@ RunResult RunScenario(const Scenario& scenario) {
   m.peak_deflection_x_m = peak_axes(0);
   m.peak_deflection_y_m = peak_axes(1);
   m.peak_deflection_z_m = peak_axes(2);
+  m.short_block_clamps = command.short_block_clamps;
+  m.stroke_overshoot_m = overshoot;
+  m.stroke_alarm = command.stroke_alarm ? 1.0 : 0.0;
   if (integrator) result.stats = integrator->Stats();
   return result;
 }

@@ -92,6 +92,20 @@ model::MachineConfig ReadForm(const NodeReader& machine,
   return config;
 }
 
+// `stroke: {x: [min, max], ...}` in mm (EP0646852's stroke ends).
+void ReadStroke(const NodeReader& machine, model::MultiAxisMachineConfig* config) {
+  const auto stroke = machine.Child("stroke");
+  if (!stroke) return;
+  stroke->ExpectMap({"x", "y", "z"});
+  for (const auto& [name, axis] : AxisChoices()) {
+    const auto limits = stroke->Child(name);
+    if (!limits) continue;
+    const std::vector<NodeReader> ends = limits->Elements();
+    if (ends.size() != 2) throw limits->Error("expected [min, max] in mm");
+    config->stroke_m[axis] = std::array<double, 2>{ends[0].AsNumber() * 1e-3, ends[1].AsNumber() * 1e-3};
+  }
+}
+
 model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   std::vector<std::string> single_keys = {"modes", "axis"};
   single_keys.insert(single_keys.end(), kLumpedKeys.begin(), kLumpedKeys.end());
@@ -102,7 +116,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
                          "each axis' model under axes.x, axes.y or axes.z");
     }
   }
-  machine.ExpectMap({"axes", "driven_axis"});
+  machine.ExpectMap({"axes", "driven_axis", "stroke"});
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = false;
@@ -118,6 +132,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
     }
   }
   machine.Read<int>("driven_axis", AxisChoices(), &config.driven_axis);
+  ReadStroke(machine, &config);
   return config;
 }
 
@@ -133,8 +148,9 @@ model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = true;
-  const model::MachineConfig form = ReadForm(machine, {"axis"});
+  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke"});
   machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
+  ReadStroke(machine, &config);
   config.axes[config.driven_axis] = form;
   return config;
 }

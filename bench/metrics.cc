@@ -15,7 +15,10 @@ std::vector<std::pair<std::string, double>> Metrics::Named() const {
           {"radial_error_m", radial_error_m},
           {"peak_deflection_x_m", peak_deflection_x_m},
           {"peak_deflection_y_m", peak_deflection_y_m},
-          {"peak_deflection_z_m", peak_deflection_z_m}};
+          {"peak_deflection_z_m", peak_deflection_z_m},
+          {"short_block_clamps", short_block_clamps},
+          {"stroke_overshoot_m", stroke_overshoot_m},
+          {"stroke_alarm", stroke_alarm}};
 }
 
 }  // namespace shapebench::bench

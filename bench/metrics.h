@@ -25,6 +25,10 @@ struct Metrics {
   double peak_deflection_x_m = NAN;
   double peak_deflection_y_m = NAN;
   double peak_deflection_z_m = NAN;
+  // Feed-rate safeguards (seeds 002, 001).
+  double short_block_clamps = NAN;  // blocks whose feed the clamp lowered (a count)
+  double stroke_overshoot_m = NAN;  // largest travel beyond a stroke end, 0 if none
+  double stroke_alarm = NAN;        // 1 when the stroke check stopped the tool, else 0 (JSON: bool)
 
   // (name, value) in the SPEC's order: the one list the table, JSON, CSV and checks use.
   std::vector<std::pair<std::string, double>> Named() const;

@@ -36,6 +36,15 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
       hi = hi.cwiseMax(programmed.back());
     }
   }
+  // Blocks whose feed the short-block clamp lowered, drawn over the programmed path.
+  std::vector<std::vector<Eigen::Vector3d>> clamped;
+  for (const controller::PathElement& e : path.elements()) {
+    const auto block = static_cast<std::size_t>(e.block);
+    if (block >= result.command.block_clamped.size() || !result.command.block_clamped[block]) continue;
+    const int pieces = e.is_arc() ? 16 : 1;
+    clamped.emplace_back();
+    for (int i = 0; i <= pieces; ++i) clamped.back().push_back(e.PointAtFraction(static_cast<double>(i) / pieces));
+  }
   const Trace& trace = result.trace;
   std::vector<Eigen::Vector3d> nearest(trace.actual_m.size());
   double max_error = 0.0;
@@ -64,13 +73,23 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
       const Eigen::Vector3d shown = nearest[i] + gain * (trace.actual_m[i] - nearest[i]);
       std::fprintf(gnuplot, "%.10g %.10g\n", shown.x() * 1e3, shown.y() * 1e3);
     }
+    std::fprintf(gnuplot, "EOD\n$clamped << EOD\n");
+    for (const auto& piece : clamped) {
+      for (const Eigen::Vector3d& p : piece) std::fprintf(gnuplot, "%.10g %.10g\n", p.x() * 1e3, p.y() * 1e3);
+      std::fprintf(gnuplot, "\n");
+    }
     std::fprintf(gnuplot, "EOD\n");
     char actual_title[96];
     std::snprintf(actual_title, sizeof actual_title, "actual tool path (deviation x%g)", gain);
     std::fprintf(gnuplot,
                  "plot $programmed using 1:2 with lines lw 1 dt 2 lc rgb '#444444' title 'programmed', \\\n"
-                 "     $actual using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title %s\n",
+                 "     $actual using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title %s",
                  GnuplotQuoted(actual_title).c_str());
+    if (!clamped.empty()) {
+      std::fprintf(gnuplot, ", \\\n     $clamped using 1:2 with lines lw 3 lc rgb '#d62728' "
+                            "title 'short-block clamp (feed lowered)'");
+    }
+    std::fprintf(gnuplot, "\n");
     std::fprintf(gnuplot, "unset output\nquit\n");
   });
 }

@@ -33,6 +33,8 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
     out << std::left << std::setw(static_cast<int>(width) + 2) << name;
     if (std::isnan(value)) {
       out << "n/a\n";
+    } else if (name == "stroke_alarm") {
+      out << (value != 0.0 ? "true" : "false") << "\n";
     } else {
       const std::string unit = MetricUnit(name);
       out << number << (unit.empty() ? "" : " " + unit) << "\n";
@@ -43,7 +45,9 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
 nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   for (const auto& [name, value] : metrics.Named()) {
-    if (std::isfinite(value)) {
+    if (name == "stroke_alarm" && std::isfinite(value)) {
+      json[name] = value != 0.0;  // SPEC section 4: a bool
+    } else if (std::isfinite(value)) {
       json[name] = value;
     } else {
       json[name] = nullptr;

@@ -109,6 +109,41 @@ double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& af
   return corner_velocity_change_m_s / change;
 }
 
+namespace {
+
+// The stroke check at run time: at the first tick whose interpolated position has
+// reached the stroke end, the alarm stops the tool with the normal (shaped) deceleration
+// from the speed it has; the rest of the program is dropped.
+void RaiseStrokeAlarm(SpeedPlan& plan, double crossing_s, const PlannerSettings& settings) {
+  const double dt = settings.period_s;
+  double s = 0.0;
+  std::size_t next_stop = 0;
+  for (std::size_t k = 1; k < plan.speed_m_s.size(); ++k) {
+    s += plan.speed_m_s[k] * dt;
+    while (next_stop < plan.stops.size() && plan.stops[next_stop].first < k) ++next_stop;
+    if (next_stop < plan.stops.size() && plan.stops[next_stop].first == k) s = plan.stops[next_stop].second;
+    if (s < crossing_s) continue;
+    plan.stroke_alarm = true;
+    plan.alarm_tick = k;
+    const double v = plan.speed_m_s[k];
+    plan.speed_m_s.resize(k + 1);
+    while (!plan.stops.empty() && plan.stops.back().first >= k) plan.stops.pop_back();
+    if (v > 0.0) {
+      const IdealProfile phase = AccelPhase(v, settings.accel_m_s2, settings.pattern);
+      const auto ticks = static_cast<std::size_t>(std::ceil(phase.Duration() / dt - 1e-9));
+      for (std::size_t j = 1; j <= ticks; ++j) {
+        const double speed = j == ticks ? 0.0 : std::max(0.0, v - phase.VelocityAt(static_cast<double>(j) * dt));
+        plan.speed_m_s.push_back(speed);
+        s += speed * dt;
+      }
+    }
+    plan.stops.emplace_back(plan.speed_m_s.size() - 1, s);
+    return;
+  }
+}
+
+}  // namespace
+
 SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
                         const PlannerSettings& settings) {
   SpeedPlan plan;
@@ -124,8 +159,43 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
       const double radius = std::min(element.start_radius_m, element.end_radius_m);
       feed = std::min(feed, std::sqrt(settings.accel_m_s2 * radius));
     }
+    bool clamped = false;
+    if (element.length_m > 0.0) {
+      const ShortBlockFeed short_block = ClampShortBlock(settings.short_block, element.is_arc(),
+                                                         element.length_m, feed, settings.period_s);
+      feed = short_block.feed_m_s;
+      clamped = short_block.clamped;
+    }
     plan.block_feed_m_s.push_back(feed);
+    plan.block_clamped.push_back(clamped);
+    plan.short_block_clamps += clamped ? 1 : 0;
   }
+
+  // The stroke end: with the function on, the path from the crossing on runs at the
+  // minute feed, reached by the crossing (a junction there), so the planner slows down
+  // ahead of it. The pre-read window: a crossing more than look_ahead_blocks blocks ahead
+  // of where the slowdown must begin is seen only from block (crossing - window) on.
+  plan.stroke_crossing_s_m = FindStrokeCrossing(path, settings.stroke_limits);
+  const bool slow_down = plan.stroke_crossing_s_m && settings.stroke_end.enabled;
+  const double crossing_s = plan.stroke_crossing_s_m.value_or(0.0);
+  const double minute = settings.stroke_end.minute_feed_mm_min / 60000.0;
+  double crossing_limit = minute;
+  if (slow_down) {
+    const std::size_t crossing_element = path.ElementAt(crossing_s);
+    const std::size_t first_seen =
+        crossing_element > static_cast<std::size_t>(settings.stroke_end.look_ahead_blocks)
+            ? crossing_element - settings.stroke_end.look_ahead_blocks
+            : 0;
+    const double window_m = crossing_s - path.elements()[first_seen].start_s_m;
+    const double feed = plan.block_feed_m_s[path.elements()[crossing_element].block];
+    if (feed > minute && PhaseDistance(feed, minute, settings) > window_m) {
+      // The speed at the crossing when the slowdown from the feed starts at the window:
+      // D(feed, w) = window (D falls as w rises).
+      crossing_limit = LargestWithin(minute, feed, -window_m,
+                                     [&](double w) { return -PhaseDistance(feed, w, settings); });
+    }
+  }
+
   plan.speed_m_s.push_back(0.0);
   std::vector<Segment> segments;
   std::vector<double> junction;  // junction[i]: the speed limit where segment i starts
@@ -141,6 +211,18 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
     segments.clear();
     junction.clear();
   };
+  // Appends a stretch of `length` at `feed` whose start is limited to `limit`.
+  auto add = [&](double length, double feed, double limit) {
+    if (segments.empty()) {
+      segments.push_back({length, feed});
+      junction.assign(1, 0.0);
+    } else if (limit >= feed && segments.back().feed_m_s == feed) {
+      segments.back().length_m += length;  // no limit: one stretch
+    } else {
+      junction.push_back(std::min({limit, segments.back().feed_m_s, feed}));
+      segments.push_back({length, feed});
+    }
+  };
   const PathElement* previous = nullptr;
   for (const PathElement& element : path.elements()) {
     if (element.kind == MotionKind::kDwell) {
@@ -152,30 +234,25 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
       continue;
     }
     if (element.length_m == 0.0) continue;
-    const double feed = plan.block_feed_m_s[element.block];
-    if (segments.empty()) {
-      segments.push_back({element.length_m, feed});
-      junction.assign(1, 0.0);
-      previous = &element;
-      continue;
+    double feed = plan.block_feed_m_s[element.block];
+    if (slow_down && element.start_s_m >= crossing_s) feed = std::min(feed, crossing_limit);
+    double limit = kInf;
+    if (previous != nullptr) {
+      limit = CornerSpeedLimit(previous->TangentAtFraction(1.0), element.TangentAtFraction(0.0),
+                               settings.corner_velocity_change_m_s);
+      if (limit <= 0.0) finish_motion();  // an exact stop at the corner
     }
-    const double corner = CornerSpeedLimit(previous->TangentAtFraction(1.0),
-                                           element.TangentAtFraction(0.0),
-                                           settings.corner_velocity_change_m_s);
-    if (corner <= 0.0) {
-      finish_motion();  // an exact stop at the corner
-      segments.push_back({element.length_m, feed});
-      junction.assign(1, 0.0);
-    } else if (corner >= feed && segments.back().feed_m_s == feed) {
-      segments.back().length_m += element.length_m;  // no limit: one stretch
+    if (slow_down && element.start_s_m < crossing_s && crossing_s < element.end_s_m()) {
+      add(crossing_s - element.start_s_m, feed, limit);
+      add(element.end_s_m() - crossing_s, std::min(feed, crossing_limit), crossing_limit);
     } else {
-      junction.push_back(std::min({corner, segments.back().feed_m_s, feed}));
-      segments.push_back({element.length_m, feed});
+      add(element.length_m, feed, limit);
     }
     previous = &element;
   }
   finish_motion();
   if (plan.speed_m_s.size() < 2) plan.speed_m_s.push_back(0.0);
+  if (plan.stroke_crossing_s_m) RaiseStrokeAlarm(plan, crossing_s, settings);
   return plan;
 }
 

@@ -11,10 +11,13 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "controller/path_geometry.h"
 #include "controller/program.h"
+#include "controller/short_block_clamp.h"
+#include "controller/stroke_end.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::controller {
@@ -27,6 +30,9 @@ struct PlannerSettings {
   double default_feed_m_s = 0.1;    // blocks before the first F word
   double rapid_feed_m_s = 0.5;      // G0
   double corner_velocity_change_m_s = 0.0;  // per axis, per junction; 0: stop at corners
+  ShortBlockConfig short_block;
+  StrokeEndConfig stroke_end;
+  StrokeLimits stroke_limits;
 };
 
 struct SpeedPlan {
@@ -36,8 +42,16 @@ struct SpeedPlan {
   // Where each motion ends: the tick and the exact arc length there (the interpolator
   // lands on it so rounding never accumulates across motions).
   std::vector<std::pair<std::size_t, double>> stops;
-  // The feed each block runs at (m/s), for traces.
+  // The feed each block runs at (m/s), for traces, and whether the short-block clamp
+  // lowered it.
   std::vector<double> block_feed_m_s;
+  std::vector<bool> block_clamped;
+  int short_block_clamps = 0;
+  // The stroke check: where the path first leaves the stroke, and whether (and at which
+  // tick) the interpolated position reached it, raising the alarm that stopped the tool.
+  std::optional<double> stroke_crossing_s_m;
+  bool stroke_alarm = false;
+  std::size_t alarm_tick = 0;
 };
 
 SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,

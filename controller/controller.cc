@@ -111,6 +111,21 @@ void ControllerConfig::validate() const {
   } catch (const ValidationError& e) {
     throw e.Prefixed("post_interp");
   }
+  try {
+    short_block.validate();
+  } catch (const ValidationError& e) {
+    throw e.Prefixed("short_block");
+  }
+  try {
+    stroke_end.validate();
+  } catch (const ValidationError& e) {
+    throw e.Prefixed("stroke_end");
+  }
+  if (stroke_end.minute_feed_mm_min > feed_mm_min) {
+    throw ValidationError("stroke_end.minute_feed_mm_min",
+                          "must not exceed the feed (" + Num(feed_mm_min) + " mm/min; got " +
+                              Num(stroke_end.minute_feed_mm_min) + ")");
+  }
   if (post_interp.type == PostInterpType::kProfileTable && post_interp.table.empty()) {
     const long n = std::lround(post_interp.moving_average_s / period_s);
     if (n < 1 || n > post_interp.max_table_length) {
@@ -209,6 +224,9 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.default_feed_m_s = controller.feed_m_s();
   settings.rapid_feed_m_s = controller.rapid_feed_mm_min / 60000.0;
   settings.corner_velocity_change_m_s = controller.corner_velocity_change_mm_min / 60000.0;
+  settings.short_block = controller.short_block;
+  settings.stroke_end = controller.stroke_end;
+  settings.stroke_limits = controller.stroke_limits;
   const SpeedPlan plan = PlanPathSpeed(program, path, settings);
   const InterpolatedPulses pulses = Interpolate(path, plan, dt);
 
@@ -242,6 +260,10 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   command.path_position_m = pulses.path_position_m;
   command.block = pulses.block;
   command.block_feed_m_s = plan.block_feed_m_s;
+  command.block_clamped = plan.block_clamped;
+  command.short_block_clamps = plan.short_block_clamps;
+  command.stroke_alarm = plan.stroke_alarm;
+  command.warnings = ShortBlockWarnings(controller.short_block);
   return command;
 }
 

@@ -5,12 +5,15 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "controller/command_trajectory.h"
 #include "controller/program.h"
+#include "controller/short_block_clamp.h"
+#include "controller/stroke_end.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::controller {
@@ -43,6 +46,11 @@ struct ControllerConfig {
   double corner_velocity_change_mm_min = 0.0;
   PatternConfig pattern;
   PostInterpConfig post_interp;
+  ShortBlockConfig short_block;  // seed 002
+  StrokeEndConfig stroke_end;    // seed 001
+  // The machine's stroke per axis (machine.stroke; the bench copies it here): the CNC's
+  // stroke check stops the tool where the path leaves it.
+  StrokeLimits stroke_limits;
   void validate() const;  // throws ValidationError naming the field
   double feed_m_s() const { return feed_mm_min / 60000.0; }
   // The steady acceleration of linear acc/dec: feed / accel_time (a one-period ramp for
@@ -70,6 +78,10 @@ struct MultiAxisCommand {
   std::vector<double> path_position_m;
   std::vector<int> block;
   std::vector<double> block_feed_m_s;  // the feed each block was planned at
+  std::vector<bool> block_clamped;     // lowered by the short-block clamp
+  int short_block_clamps = 0;
+  bool stroke_alarm = false;
+  std::vector<std::string> warnings;   // e.g. the short-block clamp's ratio above its minimum
 
   std::size_t num_ticks() const { return axes[0].num_ticks(); }
   Eigen::Vector3d velocity_m_s(std::size_t k) const;

@@ -1,6 +1,10 @@
 // The multi-axis machine: per-axis plants assembled block-diagonally (axes uncoupled).
 #include "model/multi_axis_machine.h"
 
+#include <cmath>
+
+#include "common/format.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -82,6 +86,15 @@ void MultiAxisMachineConfig::validate() const {
   if (driven_axis < 0 || driven_axis >= kNumAxes) {
     throw ValidationError("driven_axis",
                           "must be x, y or z (0..2), got " + std::to_string(driven_axis));
+  }
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    if (!stroke_m[axis]) continue;
+    const auto& [lo, hi] = *stroke_m[axis];
+    if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi)) {
+      throw ValidationError(std::string("stroke.") + AxisName(axis),
+                            "must be [min, max] in mm with min < max (got [" +
+                                FormatNumber(lo * 1e3) + ", " + FormatNumber(hi * 1e3) + "])");
+    }
   }
   for (int axis = 0; axis < kNumAxes; ++axis) {
     if (!axes[axis]) continue;  // rigid

@@ -26,6 +26,8 @@ struct MultiAxisMachineConfig {
   // The axis `move:` runs along and SPEC's modes report refers to; Y by default (the
   // moving column's axis in the patent).
   int driven_axis = 1;
+  // The stroke per axis, [min, max] in metres (machine.stroke in mm); nullopt: unlimited.
+  std::array<std::optional<std::array<double, 2>>, kNumAxes> stroke_m;
   // Read from SPEC's single form (`modes:` or `bodies:` with an optional `axis:`): the one
   // axis' fields are then named as in that form ("modes[0].gain", not "axes.y.modes[0].gain").
   bool single_form = true;

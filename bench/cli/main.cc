@@ -71,6 +71,9 @@ int RunCommand(const RunArgs& args) {
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   const Scenario scenario = LoadScenario(args.scenario, overrides);
   const RunResult result = RunLocated(scenario, overrides);
+  for (const std::string& warning : result.command.warnings) {
+    std::cerr << "warning: " << scenario.source_file << ": " << warning << "\n";
+  }
   if (!args.out_dir.empty()) {
     // Created only now: bad input and solver failures leave no directory behind.
     std::filesystem::create_directories(args.out_dir);
