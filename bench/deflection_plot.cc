@@ -33,6 +33,10 @@ void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunRe
                  "set arrow from %.17g, graph 0 to %.17g, graph 1 nohead dt 3 lc rgb '#888888'\n",
                  result.metrics.motion_time_s, result.metrics.motion_time_s);
   }
+  // A rigid machine has no deflection: give gnuplot a range rather than let it warn.
+  if (std::all_of(trace.deflection_m.begin(), trace.deflection_m.end(), [](double d) { return d == 0.0; })) {
+    std::fprintf(gnuplot, "set yrange [-1:1]\n");
+  }
   std::fprintf(gnuplot, "$trace << EOD\n");
   const std::size_t rows = std::min({trace.time_s.size(), trace.deflection_m.size(),
                                      trace.command_accel_m_s2.size()});

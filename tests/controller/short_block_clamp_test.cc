@@ -138,6 +138,13 @@ TEST(ShortBlockClampTest, ClampKeepsTheZigzag) {
   EXPECT_EQ(clamped, 400);
   EXPECT_NEAR(feed, 1500.0, 1e-9);
   EXPECT_LE(with_clamp, 0.5 * 0.5 * kBlock);
+  // The planner applies each embodiment's formula to every block.
+  for (const auto& [mode, expected] : std::vector<std::pair<ShortBlockMode, double>>{
+           {ShortBlockMode::kLength, 3000.0}, {ShortBlockMode::kScale, 3000.0}, {ShortBlockMode::kPreset, 600.0}}) {
+    LargestDeviation(Mode(mode), &clamped, &feed);
+    EXPECT_EQ(clamped, 400);
+    EXPECT_NEAR(feed, expected, 1e-9);
+  }
   std::printf("zigzag vertex deviation: without clamp %.4g mm, with ratio 0.5 clamp %.4g mm\n",
               unclamped * 1e3, with_clamp * 1e3);
 }
