@@ -12,7 +12,33 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "bench/config_error.h"
+
 namespace shapebench::bench::testing {
+
+// The ConfigError `read` throws (a failure when it throws none).
+template <typename Read>
+ConfigError ErrorOf(Read read) {
+  try {
+    read();
+  } catch (const ConfigError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no ConfigError";
+  return ConfigError("", 0, 0, "", "");
+}
+
+// Expects the error at FILE:LINE:COL with this key path and a message containing a part.
+inline void ExpectError(const ConfigError& error, const std::string& file, int line, int column,
+                        const std::string& key_path, const std::string& message_part) {
+  EXPECT_EQ(error.file(), file) << error.what();
+  EXPECT_EQ(error.line(), line) << error.what();
+  EXPECT_EQ(error.column(), column) << error.what();
+  EXPECT_EQ(error.key_path(), key_path) << error.what();
+  EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
+}
 
 // A fresh directory under the system temp dir, removed with everything in it.
 class ScratchDir {

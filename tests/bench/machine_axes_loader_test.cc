@@ -17,6 +17,8 @@ namespace {
 
 using testing::DataPath;
 using testing::RunCli;
+using testing::ErrorOf;
+using testing::ExpectError;
 using testing::ScratchDir;
 
 constexpr int kX = 0;
@@ -27,33 +29,13 @@ const std::string kMovingColumn =
     std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/machines/moving_column.yaml";
 
 ConfigError LoadMachineError(const std::string& path, const std::vector<std::string>& sets = {}) {
-  try {
-    LoadMachineAxes(path, ParseOverrides(sets));
-  } catch (const ConfigError& error) {
-    return error;
-  }
-  ADD_FAILURE() << path << " loaded without error";
-  return ConfigError("", 0, 0, "", "");
+  return testing::ErrorOf([&] { LoadMachineAxes(path, ParseOverrides(sets)); });
 }
 
 ConfigError LoadScenarioError(const std::string& path) {
-  try {
-    LoadScenario(path, {});
-  } catch (const ConfigError& error) {
-    return error;
-  }
-  ADD_FAILURE() << path << " loaded without error";
-  return ConfigError("", 0, 0, "", "");
+  return testing::ErrorOf([&] { LoadScenario(path, {}); });
 }
 
-void ExpectError(const ConfigError& error, const std::string& file, int line, int column,
-                 const std::string& key_path, const std::string& message_part) {
-  EXPECT_EQ(error.file(), file) << error.what();
-  EXPECT_EQ(error.line(), line) << error.what();
-  EXPECT_EQ(error.column(), column) << error.what();
-  EXPECT_EQ(error.key_path(), key_path) << error.what();
-  EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
-}
 
 double Frequency(const model::MachineConfig& machine, int mode) {
   return std::get<model::ModalMachineConfig>(machine.form).modes[mode].frequency_hz;

@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 using controller::MotionKind;
 using controller::Program;
 using testing::DataPath;
+using testing::ErrorOf;
+using testing::ExpectError;
 using testing::ScratchDir;
 
 constexpr double kTolM = 1e-12;
@@ -52,25 +54,7 @@ Program ReadFile(const std::string& path) {
   return ReadProgramFile(loaded.Key("program_file"), fs::path(path).parent_path().string());
 }
 
-template <typename Read>
-ConfigError ErrorOf(Read read) {
-  try {
-    read();
-  } catch (const ConfigError& error) {
-    return error;
-  }
-  ADD_FAILURE() << "no ConfigError";
-  return ConfigError("", 0, 0, "", "");
-}
 
-void ExpectError(const ConfigError& error, const std::string& file, int line, int column,
-                 const std::string& key_path, const std::string& message_part) {
-  EXPECT_EQ(error.file(), file) << error.what();
-  EXPECT_EQ(error.line(), line) << error.what();
-  EXPECT_EQ(error.column(), column) << error.what();
-  EXPECT_EQ(error.key_path(), key_path) << error.what();
-  EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
-}
 
 ConfigError ListError(const ScratchDir& dir, const std::string& yaml, std::string* path) {
   *path = dir.Write("s.yaml", yaml);

@@ -12,26 +12,14 @@ namespace shapebench::bench {
 namespace {
 
 using testing::DataPath;
+using testing::ErrorOf;
+using testing::ExpectError;
 using testing::ScratchDir;
 
 ConfigError LoadError(const std::string& path, const std::vector<std::string>& sets = {}) {
-  try {
-    LoadScenario(path, ParseOverrides(sets));
-  } catch (const ConfigError& error) {
-    return error;
-  }
-  ADD_FAILURE() << path << " loaded without error";
-  return ConfigError("", 0, 0, "", "");
+  return testing::ErrorOf([&] { LoadScenario(path, ParseOverrides(sets)); });
 }
 
-void ExpectError(const ConfigError& error, const std::string& file, int line, int column,
-                 const std::string& key_path, const std::string& message_part) {
-  EXPECT_EQ(error.file(), file) << error.what();
-  EXPECT_EQ(error.line(), line) << error.what();
-  EXPECT_EQ(error.column(), column) << error.what();
-  EXPECT_EQ(error.key_path(), key_path) << error.what();
-  EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
-}
 
 // Tests that what() has the documented "FILE:LINE:COL: key.path: message" form.
 TEST(ScenarioLoaderErrors, WhatHasFileLineColumnKeyPath) {

@@ -16,13 +16,7 @@ using testing::ScratchDir;
 const std::string kMachine = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/machines/moving_column.yaml";
 
 ConfigError LoadError(const std::string& path) {
-  try {
-    LoadScenario(path, {});
-  } catch (const ConfigError& error) {
-    return error;
-  }
-  ADD_FAILURE() << path << " loaded without error";
-  return ConfigError("", 0, 0, "", "");
+  return testing::ErrorOf([&] { LoadScenario(path, {}); });
 }
 
 // Tests that move, program and program_file exclude each other, the second one named.

@@ -82,13 +82,7 @@ TEST(StrokeEndTest, ArcCrossingBetweenItsEndPoints) {
 
 ConfigError LoadError(const std::string& yaml, std::vector<Override> sets) {
   ScratchDir dir;
-  try {
-    LoadScenario(dir.Write("s.yaml", yaml), sets);
-  } catch (const ConfigError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "loaded";
-  return ConfigError("", 0, 0, "", "");
+  return testing::ErrorOf([&] { LoadScenario(dir.Write("s.yaml", yaml), sets); });
 }
 
 // Tests that bad values exit 2 naming the key: a negative ratio, a ratio above 1, a
