@@ -5,34 +5,48 @@
 
 namespace shapebench::controller {
 
-CommandTrajectory ApplyExponentialAccDec(const CommandTrajectory& input, double time_constant_s,
-                                         double tail_tolerance_m) {
-  CommandTrajectory output;
-  output.period_s = input.period_s;
-  const double dt = input.period_s;
-  // y' = (u - y) / tau with u linear between ticks (the drive's view of the command):
+std::vector<double> ExponentialAccDecPulses(const std::vector<double>& pulses,
+                                            double time_constant_s, double period_s) {
+  const double tau = time_constant_s;
+  const double dt = period_s;
+  // y' = (u - y) / tau with u linear between ticks:
   // y_k = beta y_{k-1} + (1 - beta) u_{k-1} + (u_k - u_{k-1}) (1 - tau (1 - beta) / dt).
-  // Exact at the ticks, and the sum of the samples (the distance) is preserved.
-  const double beta = std::exp(-dt / time_constant_s);
-  const double ramp_gain = 1.0 - time_constant_s * (1.0 - beta) / dt;
-  double remaining_m = 0.0;  // input distance not yet output
+  const double beta = std::exp(-dt / tau);
+  const double ramp_gain = 1.0 - tau * (1.0 - beta) / dt;
+  std::vector<double> out;
+  out.reserve(pulses.size() + static_cast<std::size_t>(30.0 * tau / dt));
   double y = 0.0;
-  output.velocity_m_s.push_back(0.0);
-  const std::size_t n = input.num_ticks();
-  for (std::size_t k = 1;; ++k) {
-    const double u_prev = k - 1 <= n ? input.velocity_m_s[k - 1] : 0.0;
-    const double u = k <= n ? input.velocity_m_s[k] : 0.0;
-    const double y_prev = y;
-    y = beta * y_prev + (1.0 - beta) * u_prev + (u - u_prev) * ramp_gain;
-    remaining_m += 0.5 * (u_prev + u) * dt - 0.5 * (y_prev + y) * dt;
-    if (k > n && std::abs(remaining_m) + std::abs(y) * time_constant_s <= tail_tolerance_m) {
-      // The tail is below tolerance: land on rest. What is left of the decay (< tolerance)
-      // is the only motion lost.
-      output.velocity_m_s.push_back(0.0);
+  double u_prev = 0.0;
+  double input_sum = 0.0;
+  double output_sum = 0.0;
+  constexpr double kTailM = 1e-12;
+  for (std::size_t k = 0;; ++k) {
+    const double u = k < pulses.size() ? pulses[k] / dt : 0.0;
+    y = beta * y + (1.0 - beta) * u_prev + (u - u_prev) * ramp_gain;
+    u_prev = u;
+    if (k < pulses.size()) input_sum += pulses[k];
+    const double remaining = input_sum - output_sum;
+    if (k >= pulses.size() && std::abs(remaining - y * dt) + std::abs(y) * tau <= kTailM) {
+      out.push_back(remaining);  // the sub-picometre rest of the decay, so nothing is lost
       break;
     }
-    output.velocity_m_s.push_back(y);
+    out.push_back(y * dt);
+    output_sum += y * dt;
   }
+  return out;
+}
+
+CommandTrajectory ApplyExponentialAccDec(const CommandTrajectory& input, double time_constant_s) {
+  const double dt = input.period_s;
+  std::vector<double> pulses;
+  for (std::size_t k = 1; k < input.velocity_m_s.size(); ++k) pulses.push_back(input.velocity_m_s[k] * dt);
+  CommandTrajectory output;
+  output.period_s = dt;
+  output.velocity_m_s.push_back(0.0);
+  for (double pulse : ExponentialAccDecPulses(pulses, time_constant_s, dt)) {
+    output.velocity_m_s.push_back(pulse / dt);
+  }
+  if (output.velocity_m_s.back() != 0.0) output.velocity_m_s.push_back(0.0);
   return output;
 }
 
