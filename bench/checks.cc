@@ -50,7 +50,8 @@ std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks,
 
 std::string FormatCheckLine(const std::string& file, const CheckResult& result) {
   std::string line = std::string(result.passed ? "PASS " : "FAIL ") + file + " " + result.metric +
-                     " = " + result.value_text + " (" + result.bound + ")";
+                     (result.point.empty() ? "" : " @ " + result.point) + " = " +
+                     result.value_text + " (" + result.bound + ")";
   if (!result.passed) line += ": " + result.message;
   return line;
 }

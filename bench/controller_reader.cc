@@ -7,9 +7,15 @@ using controller::PatternMethod;
 using controller::PatternMode;
 using controller::PostInterpType;
 
-controller::PatternConfig ReadPattern(const NodeReader& pattern) {
-  pattern.ExpectMap(
-      {"method", "mode", "frequency_hz", "k1", "t1_s", "step_resolution_s", "realization"});
+}  // namespace
+
+controller::PatternConfig ReadPattern(const NodeReader& pattern,
+                                      const std::vector<std::string>& extra_keys) {
+  std::vector<std::string> allowed = {"method", "mode", "frequency_hz", "frequencies_hz",
+                                      "design_damping_ratio", "vibration_tolerance", "impulses",
+                                      "k1", "t1_s", "step_resolution_s", "realization"};
+  allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
+  pattern.ExpectMap(allowed);
   controller::PatternConfig config;
   // Written as YAML ints (1) or strings ("1"): both read as the scalar's text.
   pattern.Read<PatternMethod>("method",
@@ -17,7 +23,14 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern) {
                                {"1", PatternMethod::kMethod1},
                                {"2", PatternMethod::kMethod2},
                                {"3", PatternMethod::kMethod3},
-                               {"4", PatternMethod::kMethod4}},
+                               {"4", PatternMethod::kMethod4},
+                               {"zv", PatternMethod::kZv},
+                               {"zvd", PatternMethod::kZvd},
+                               {"zvdd", PatternMethod::kZvdd},
+                               {"mzv", PatternMethod::kMzv},
+                               {"ei", PatternMethod::kEi},
+                               {"um_zv", PatternMethod::kUmZv},
+                               {"custom", PatternMethod::kCustom}},
                               &config.method);
   pattern.Read<PatternMode>("mode",
                             {{"off", PatternMode::kOff},
@@ -26,6 +39,30 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern) {
                              {"both", PatternMode::kBoth}},
                             &config.mode);
   pattern.Read("frequency_hz", &config.frequency_hz);
+  if (auto frequencies = pattern.Child("frequencies_hz")) {
+    if (pattern.Has("frequency_hz")) {
+      throw frequencies->Error("give one of frequency_hz (one mode) and frequencies_hz (several "
+                               "modes, one shaper each, convolved)");
+    }
+    for (const NodeReader& f : frequencies->Elements()) config.frequencies_hz.push_back(f.AsNumber());
+    if (config.frequencies_hz.empty()) {
+      throw frequencies->Error("expected at least one frequency, e.g. [25, 60]");
+    }
+  }
+  pattern.Read("design_damping_ratio", &config.design_damping_ratio);
+  pattern.Read("vibration_tolerance", &config.vibration_tolerance);
+  if (auto impulses = pattern.Child("impulses")) {
+    for (const NodeReader& impulse : impulses->Elements()) {
+      impulse.ExpectMap({"amplitude", "time_s"});
+      for (const char* key : {"amplitude", "time_s"}) {
+        if (!impulse.Has(key)) throw impulse.Error(std::string("missing '") + key + "'");
+      }
+      controller::Impulse value;
+      impulse.Read("amplitude", &value.amplitude);
+      impulse.Read("time_s", &value.time_s);
+      config.impulses.push_back(value);
+    }
+  }
   pattern.Read("k1", &config.k1);
   pattern.Read("t1_s", &config.t1_s);
   pattern.Read("step_resolution_s", &config.step_resolution_s);
@@ -36,6 +73,8 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern) {
       &config.realization);
   return config;
 }
+
+namespace {
 
 controller::PostInterpConfig ReadPostInterp(const NodeReader& post_interp) {
   post_interp.ExpectMap({"type", "time_constant_s", "table", "moving_average_s",

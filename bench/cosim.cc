@@ -168,6 +168,17 @@ RunResult RunScenario(const Scenario& scenario) {
   double last_outside_band_s = NAN;  // last sample after the motion outside the band
   std::size_t quiet_since_tick = motion_ticks;
   bool settled = false;
+  // Cruise: the commanded feed constant and non-zero, for at least one period of the
+  // lowest mode in a row. Shorter constant stretches are steps of a pattern (method 2's
+  // zero step, T/6), not the cruise whose vibration the metric reports.
+  std::vector<bool> cruise_tick(n + 1, false);
+  for (std::size_t k = 1, run_start = 1; k <= n + 1; ++k) {
+    const bool steady = k <= n && command.velocity_m_s(k) != Eigen::Vector3d::Zero() &&
+                        command.accel_m_s2(k).norm() <= 1e-9 * max_accel;
+    if (steady) continue;
+    if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, true);
+    run_start = k + 1;
+  }
   const std::size_t interpolated_ticks = command.path_position_m.size();
   for (std::size_t k = 1; k <= max_ticks; ++k) {
     // FMI order: set the input held over (t_{k-1}, t_k], step, read the outputs.
@@ -181,9 +192,7 @@ RunResult RunScenario(const Scenario& scenario) {
                               ? 0.0
                               : command.path_position_m[std::min(k, interpolated_ticks - 1)];
     if (integrator) integrator->SetInput(a);
-    // Cruise: the commanded feed constant and non-zero over the whole period.
-    const bool cruising = commanded && command.velocity_m_s(k) != Eigen::Vector3d::Zero() &&
-                          a.norm() <= 1e-9 * max_accel;
+    const bool cruising = commanded && cruise_tick[k];
     for (int j = 1; j <= substeps; ++j) {
       double t = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
       if (integrator) {

@@ -69,6 +69,8 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
   for (const auto& report : reports) {
     tests += report.error.empty() ? static_cast<int>(report.results.size()) : 1;
     errors += report.error.empty() ? 0 : 1;
+    tests += static_cast<int>(report.point_errors.size());
+    errors += static_cast<int>(report.point_errors.size());
     for (const auto& result : report.results) failures += result.passed ? 0 : 1;
     time_s += report.run_time_s;
   }
@@ -79,11 +81,14 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
     for (const auto& report : reports) {
       int suite_failures = 0;
       for (const auto& result : report.results) suite_failures += result.passed ? 0 : 1;
-      const int suite_tests = report.error.empty() ? static_cast<int>(report.results.size()) : 1;
+      const int suite_tests = (report.error.empty() ? static_cast<int>(report.results.size()) : 1) +
+                              static_cast<int>(report.point_errors.size());
+      const int suite_errors =
+          (report.error.empty() ? 0 : 1) + static_cast<int>(report.point_errors.size());
       const std::string classname = XmlEscape("shapebench." + report.name);
       out << "  <testsuite name=\"" << XmlEscape(report.file) << "\" tests=\"" << suite_tests
-          << "\" failures=\"" << suite_failures << "\" errors=\""
-          << (report.error.empty() ? 0 : 1) << "\" time=\"" << Seconds(report.run_time_s)
+          << "\" failures=\"" << suite_failures << "\" errors=\"" << suite_errors
+          << "\" time=\"" << Seconds(report.run_time_s)
           << "\">\n";
       if (!report.error.empty()) {
         out << "    <testcase classname=\"" << classname << "\" name=\"run\" time=\""
@@ -92,9 +97,19 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
             << XmlEscape(report.error) << "</error>\n"
             << "    </testcase>\n";
       }
-      for (const auto& result : report.results) {
+      // A sweep's point whose run failed: "run @ key=value".
+      for (const auto& [point, message] : report.point_errors) {
         out << "    <testcase classname=\"" << classname << "\" name=\""
-            << XmlEscape(result.metric) << "\" time=\"0.000\"";
+            << XmlEscape("run @ " + point) << "\" time=\"0.000\">\n"
+            << "      <error type=\"RunError\" message=\"" << XmlEscape(message) << "\">"
+            << XmlEscape(message) << "</error>\n"
+            << "    </testcase>\n";
+      }
+      for (const auto& result : report.results) {
+        const std::string name =
+            result.point.empty() ? result.metric : result.metric + " @ " + result.point;
+        out << "    <testcase classname=\"" << classname << "\" name=\""
+            << XmlEscape(name) << "\" time=\"0.000\"";
         if (result.passed) {
           out << "/>\n";
           continue;

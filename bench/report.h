@@ -42,7 +42,9 @@ void WritePathPlot(const std::string& path_png, const RunResult& result,
                    const Scenario& scenario);
 
 // JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
-// is one <testcase name="run"> with an <error>.
+// is one <testcase name="run"> with an <error>. A sweep: one <testcase> per point and
+// check, named "METRIC @ KEY=VALUE, ...", and "run @ KEY=VALUE, ..." with an <error> for
+// a point that failed to run.
 void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports);
 
 // Escapes text for XML attributes and content; drops what XML 1.0 cannot hold.

@@ -151,7 +151,7 @@ model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
   return config;
 }
 
-std::vector<Check> ReadChecks(const NodeReader& checks) {
+std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
   std::vector<std::string> metric_names;
   for (const auto& named : Metrics{}.Named()) metric_names.push_back(named.first);
   checks.ExpectMap(metric_names);
@@ -211,7 +211,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                                   &scenario.output.direction);
   }
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
-  if (auto checks = top.Child("checks")) scenario.checks = ReadChecks(*checks);
+  if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
 
   Validated(document, "machine", [&] { scenario.machine.validate(); });
   Validated(document, "controller", [&] { scenario.controller.validate(); });
@@ -227,6 +227,12 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
 }
 
 }  // namespace
+
+std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks); }
+
+YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides) {
+  return BuildScenarioDocument(path, overrides).root();
+}
 
 model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine) {
   if (!machine.IsMap()) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
 #include "bench/config_error.h"
 #include "bench/node_reader.h"
 #include "bench/override.h"
@@ -27,6 +29,15 @@ struct LoadOptions {
 // to the loaded machine.
 Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
                       const LoadOptions& options = {});
+
+// The scenario's YAML tree as a run reads it: the file, its machine file spliced in, the
+// overrides applied in order. Throws ConfigError for a file that cannot be read or
+// parsed and for an override that does not fit the tree (index out of range, a path
+// through a scalar); the keys and values themselves are not validated.
+YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides);
+
+// `checks: {METRIC: {min: .., max: ..}, ...}` (SPEC section 4 metric names), in order.
+std::vector<Check> ReadChecks(const NodeReader& checks);
 
 // The `machine:` entry of a scenario (a mapping; a machine file has been spliced in
 // already): either form of machine_reader.h. Validation is the caller's.

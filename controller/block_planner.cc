@@ -87,7 +87,7 @@ CommandTrajectory RealizeMotion(const std::vector<Segment>& segments,
   if (segments.size() == 1) {
     // The single move of the foundation: the same computation, bit for bit.
     return SampleOnTicks(total, segments[0].feed_m_s, s.accel_m_s2, s.pattern, s.period_s,
-                         s.design_frequency_hz);
+                         s.grid_design);
   }
   // The nominal distance goes to the longest segment; the grid's few-ppb excess or
   // shortfall is absorbed there.
@@ -97,7 +97,7 @@ CommandTrajectory RealizeMotion(const std::vector<Segment>& segments,
         adjusted[longest].length_m = std::max(0.0, adjusted[longest].length_m + nominal_m - total);
         return PlanMotion(adjusted, junction, s);
       },
-      total, s.period_s, s.design_frequency_hz);
+      total, s.period_s, s.grid_design);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "controller/grid_realization.h"
 #include "controller/path_geometry.h"
 #include "controller/program.h"
 #include "controller/short_block_clamp.h"
@@ -26,7 +27,7 @@ struct PlannerSettings {
   double period_s = 0.001;
   double accel_m_s2 = 1.0;          // steady acceleration of linear acc/dec
   StepPattern pattern;              // the stepped realization (none: plain linear acc/dec)
-  double design_frequency_hz = 25.0;
+  GridDesign grid_design{25.0};     // the design point(s) the grid realization keeps
   double default_feed_m_s = 0.1;    // blocks before the first F word
   double rapid_feed_m_s = 0.5;      // G0
   double corner_velocity_change_m_s = 0.0;  // per axis, per junction; 0: stop at corners

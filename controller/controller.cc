@@ -7,6 +7,7 @@
 #include "common/format.h"
 #include "common/validation_error.h"
 #include "controller/block_planner.h"
+#include "controller/input_shaper.h"
 #include "controller/interpolator.h"
 #include "controller/linear_acc_dec.h"
 #include "controller/path_geometry.h"
@@ -35,9 +36,9 @@ StepPattern PreInterpolationPattern(const ControllerConfig& c) {
 PulseFilter PostInterpFilter(const ControllerConfig& c) {
   PulseFilter filter;
   if (TableRealization(c)) {
-    PatternConfig both = c.pattern;
-    both.mode = PatternMode::kBoth;
-    filter.table = ProfileTableFromPattern(MakeStepPattern(both), c.period_s, c.pattern.frequency_hz);
+    // The shaper's impulses (methods 1-4: their two steps' jerks) on the period grid.
+    filter.table = ProfileTableFromImpulses(ShaperImpulses(c.pattern), c.period_s,
+                                            ShaperGridDesign(c.pattern));
   }
   const PostInterpConfig& post = c.post_interp;
   if (post.type == PostInterpType::kProfileTable) {
@@ -141,9 +142,8 @@ void ControllerConfig::validate() const {
                             "the profile_table realization shapes the start and the end of every "
                             "speed change (mode both); modes start and end need realization stepped");
     }
-    PatternConfig both = pattern;
     const std::size_t length =
-        ProfileTableFromPattern(MakeStepPattern(both), period_s, pattern.frequency_hz).size();
+        ProfileTableFromImpulses(ShaperImpulses(pattern), period_s, ShaperGridDesign(pattern)).size();
     if (static_cast<long>(length) > post_interp.max_table_length) {
       throw ValidationError("pattern.realization",
                             "the pattern's profile table needs " + std::to_string(length) +
@@ -193,6 +193,28 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   const StepPattern pattern = MakeStepPattern(controller.pattern);
   if (!pattern.shapes()) return;
   const double accel_m_s2 = controller.accel_m_s2();
+  if (pattern.general()) {
+    // A library shaper convolved with the acc/dec needs no shortening; with one end
+    // unshaped, the phase must outlast the shaped end's impulses.
+    const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
+    if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
+      throw ValidationError(
+          "controller.feed_mm_min",
+          "feed " + Num(controller.feed_mm_min) + " mm/min is too low for the shaper at one end of "
+          "the phase (pattern.mode start or end): it must be at least " + Num(lowest_speed * 60000.0) +
+              " mm/min so the unshaped end's step falls outside the shaper; allowed: a higher feed, "
+              "a longer accel_time_s, or pattern.mode both");
+    }
+    const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
+    if (distance_m < shortest_m * (1.0 - 1e-12)) {
+      throw ValidationError(
+          "move.distance_mm",
+          "a move of " + Num(distance_m * 1e3) + " mm is too short for the shaper at one end of the "
+          "phase (pattern.mode start or end): it needs at least " + Num(shortest_m * 1e3) +
+              " mm; allowed: a longer move, a longer accel_time_s, or pattern.mode both");
+    }
+    return;
+  }
   const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
   if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
     throw ValidationError(
@@ -220,7 +242,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.period_s = dt;
   settings.accel_m_s2 = controller.accel_m_s2();
   settings.pattern = PreInterpolationPattern(controller);
-  settings.design_frequency_hz = controller.pattern.frequency_hz;
+  settings.grid_design = ShaperGridDesign(controller.pattern);
   settings.default_feed_m_s = controller.feed_m_s();
   settings.rapid_feed_m_s = controller.rapid_feed_mm_min / 60000.0;
   settings.corner_velocity_change_m_s = controller.corner_velocity_change_mm_min / 60000.0;

@@ -10,7 +10,7 @@
 namespace shapebench::controller {
 
 std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double period_s,
-                                       double design_frequency_hz, double accel_before_m_s2,
+                                       const GridDesign& design, double accel_before_m_s2,
                                        double accel_limit_m_s2) {
   std::map<long, double> weights;  // ordered by tick: deterministic sums
   for (const Impulse& impulse : group) {
@@ -28,17 +28,30 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
   }
   const long first_tick = weights.begin()->first;
   const long periods = weights.rbegin()->first - first_tick;  // the group's span
-  if (group.size() >= 2 && periods >= 3 && design_frequency_hz > 0.0) {
-    const double w = 2.0 * 3.14159265358979323846 * design_frequency_hz;
-    // Phases relative to the group's first tick keep the system well conditioned.
-    auto phase = [&](double t_s) { return std::polar(1.0, w * (t_s - first_tick * period_s)); };
-    std::complex<double> mismatch = 0.0;  // jerk phasor: ideal minus plain split
-    for (const Impulse& impulse : group) mismatch += impulse.amplitude * phase(impulse.time_s);
-    for (const auto& [tick, weight] : weights) mismatch -= weight * phase(tick * period_s);
+  const std::size_t frequencies = design.frequencies_hz.size();
+  const long rows = 1 + 2 * static_cast<long>(frequencies);  // velocity + a phasor each
+  bool designed = frequencies > 0;
+  for (const double f : design.frequencies_hz) designed = designed && f > 0.0 && std::isfinite(f);
+  if (group.size() >= 2 && periods >= rows && designed) {
+    const double zeta = design.damping_ratio;
+    // Phasors relative to the group's first tick keep the system well conditioned. The
+    // damped phasor e^{(zeta w + i w_d) t}; undamped, exactly the plain e^{iwt}.
+    auto phase = [&](std::size_t j, double t_s) {
+      const double w = 2.0 * 3.14159265358979323846 * design.frequencies_hz[j];
+      const double dt = t_s - first_tick * period_s;
+      if (zeta == 0.0) return std::polar(1.0, w * dt);
+      return std::exp(zeta * w * dt) * std::polar(1.0, w * std::sqrt(1.0 - zeta * zeta) * dt);
+    };
+    std::vector<std::complex<double>> mismatch(frequencies, 0.0);  // ideal minus plain split
+    for (std::size_t j = 0; j < frequencies; ++j) {
+      for (const Impulse& impulse : group) mismatch[j] += impulse.amplitude * phase(j, impulse.time_s);
+      for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase(j, tick * period_s);
+    }
     // Correct the acceleration of periods of the span by e_p, as little as possible
     // (least squares, spread over the span rather than piled onto one period):
     // sum e_p = 0 keeps the velocity after the group, and
-    // sum e_p (e^{iwt_{p+1}} - e^{iwt_p}) = -mismatch makes the jerk phasor the ideal one.
+    // sum e_p (e^{iwt_{p+1}} - e^{iwt_p}) = -mismatch makes the jerk phasor the ideal one
+    // (one such pair of rows per design frequency).
     // Periods already at the largest acceleration are left alone where possible, so the
     // correction does not raise the run's peak acceleration (and static deflection).
     std::vector<double> level(periods);  // acceleration over each period of the span
@@ -53,17 +66,24 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       for (long p = 0; p < periods; ++p) {
         if (!spare_the_peak || std::abs(level[p]) < accel_limit_m_s2 * (1.0 - 1e-9)) free.push_back(p);
       }
-      if (free.size() < 3) return {};
-      Eigen::MatrixXd constraints(3, static_cast<long>(free.size()));
+      if (static_cast<long>(free.size()) < rows) return {};
+      Eigen::MatrixXd constraints(rows, static_cast<long>(free.size()));
       for (std::size_t i = 0; i < free.size(); ++i) {
         const long p = free[i];
-        const std::complex<double> c =
-            phase((first_tick + p + 1) * period_s) - phase((first_tick + p) * period_s);
         constraints(0, i) = 1.0;
-        constraints(1, i) = c.real();
-        constraints(2, i) = c.imag();
+        for (std::size_t j = 0; j < frequencies; ++j) {
+          const std::complex<double> c =
+              phase(j, (first_tick + p + 1) * period_s) - phase(j, (first_tick + p) * period_s);
+          constraints(1 + 2 * j, i) = c.real();
+          constraints(2 + 2 * j, i) = c.imag();
+        }
       }
-      const Eigen::Vector3d rhs(0.0, -mismatch.real(), -mismatch.imag());
+      Eigen::VectorXd rhs(rows);
+      rhs(0) = 0.0;
+      for (std::size_t j = 0; j < frequencies; ++j) {
+        rhs(1 + 2 * j) = -mismatch[j].real();
+        rhs(2 + 2 * j) = -mismatch[j].imag();
+      }
       const Eigen::VectorXd e = constraints.completeOrthogonalDecomposition().solve(rhs);
       if ((constraints * e - rhs).norm() > 1e-9 * (1.0 + rhs.norm())) return {};
       std::vector<double> correction(periods, 0.0);

@@ -18,6 +18,71 @@ double PhaseDuration(double speed_m_s, double accel_m_s2, const StepPattern& pat
   return AccelPhase(speed_m_s, accel_m_s2, pattern).Duration();
 }
 
+// The mean time sum A_j t_j of a shaper (amplitudes summing to 1).
+double MeanTime(const std::vector<Impulse>& shaper) {
+  double mean = 0.0;
+  for (const Impulse& i : shaper) mean += i.amplitude * i.time_s;
+  return mean;
+}
+
+// The steady acceleration convolved with the shaper (the header's general pattern).
+IdealProfile ConvolvedPhase(double speed_m_s, double accel_m_s2, const StepPattern& pattern) {
+  const std::vector<Impulse>& shaper = pattern.impulses;
+  const double a = accel_m_s2;
+  const double steady_s = speed_m_s / a;  // the unshaped phase
+  const double mean_s = MeanTime(shaper);
+  const double duration_s = shaper.back().time_s;
+  bool start = pattern.at_start;
+  bool end = pattern.at_end;
+  // One end unshaped: its single step must not fall inside the shaped end's impulses.
+  if (start && !end && steady_s < duration_s - mean_s) end = true;
+  if (end && !start && steady_s < mean_s) start = true;
+  const double end_s = steady_s + (start ? mean_s : 0.0) - (end ? mean_s : 0.0);
+  std::vector<Impulse> first;
+  std::vector<Impulse> second;
+  if (start) {
+    for (const Impulse& i : shaper) first.push_back({i.time_s, a * i.amplitude});
+  } else {
+    first.push_back({0.0, a});
+  }
+  if (end) {
+    for (const Impulse& i : shaper) second.push_back({end_s + i.time_s, -a * i.amplitude});
+  } else {
+    second.push_back({end_s, -a});
+  }
+  IdealProfile phase;
+  if (second.front().time_s < first.back().time_s) {
+    // A phase shorter than the shaper: the two groups interleave; one group on the grid.
+    std::vector<Impulse> merged = first;
+    merged.insert(merged.end(), second.begin(), second.end());
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const Impulse& x, const Impulse& y) { return x.time_s < y.time_s; });
+    std::vector<Impulse> group;
+    for (const Impulse& i : merged) {
+      if (!group.empty() && group.back().time_s == i.time_s) {
+        group.back().amplitude += i.amplitude;
+      } else {
+        group.push_back(i);
+      }
+    }
+    phase.jerk_groups.push_back(group);
+  } else {
+    phase.jerk_groups.push_back(first);
+    phase.jerk_groups.push_back(second);
+  }
+  // The piecewise-constant acceleration between the jerk impulses, from t = 0.
+  double t = 0.0;
+  double accel = 0.0;
+  for (const std::vector<Impulse>& group : phase.jerk_groups) {
+    for (const Impulse& i : group) {
+      Append(phase, i.time_s - t, accel);
+      t = std::max(t, i.time_s);
+      accel += i.amplitude;
+    }
+  }
+  return phase;
+}
+
 }  // namespace
 
 void IdealProfile::AppendPhase(const IdealProfile& phase, double sign) {
@@ -70,6 +135,7 @@ double IdealProfile::MaxAbsAccel() const {
 }
 
 IdealProfile AccelPhase(double speed_m_s, double accel_m_s2, const StepPattern& pattern) {
+  if (pattern.general() && pattern.shapes()) return ConvolvedPhase(speed_m_s, accel_m_s2, pattern);
   const int shaped_ends = (pattern.at_start ? 1 : 0) + (pattern.at_end ? 1 : 0);
   AccelStep step1 = pattern.step1;
   AccelStep step2 = pattern.step2;
@@ -115,6 +181,11 @@ IdealProfile AccelPhase(double speed_m_s, double accel_m_s2, const StepPattern& 
 }
 
 double LowestShapedSpeed(double accel_m_s2, const StepPattern& pattern) {
+  if (pattern.general()) {
+    if (pattern.at_start == pattern.at_end) return 0.0;  // both ends (or none): no limit
+    const double mean_s = MeanTime(pattern.impulses);
+    return accel_m_s2 * (pattern.at_start ? pattern.impulses.back().time_s - mean_s : mean_s);
+  }
   const int shaped_ends = (pattern.at_start ? 1 : 0) + (pattern.at_end ? 1 : 0);
   return shaped_ends * accel_m_s2 * pattern.step1.ratio * pattern.step1.duration_s;
 }
@@ -150,12 +221,12 @@ IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s
 }
 
 CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
-                                 double design_frequency_hz) {
+                                 const GridDesign& design) {
   std::vector<double> jumps;  // acceleration change at each tick
   const double accel_limit = profile.MaxAbsAccel();
   double accel_before = 0.0;  // groups are in time order; each adds its net change
   for (const std::vector<Impulse>& group : profile.jerk_groups) {
-    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design_frequency_hz, accel_before, accel_limit)) {
+    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design, accel_before, accel_limit)) {
       const auto tick = static_cast<std::size_t>(std::max(0L, g.tick));
       if (jumps.size() <= tick) jumps.resize(tick + 1, 0.0);
       jumps[tick] += g.amplitude;
@@ -188,21 +259,21 @@ double RealizedDistance(const CommandTrajectory& trajectory) {
 
 CommandTrajectory SampleOnTicks(double distance_m, double feed_m_s, double accel_m_s2,
                                 const StepPattern& pattern, double period_s,
-                                double design_frequency_hz) {
+                                const GridDesign& design) {
   return RealizeExactDistance(
       [&](double nominal_m) { return PlanRestToRest(nominal_m, feed_m_s, accel_m_s2, pattern); },
-      distance_m, period_s, design_frequency_hz);
+      distance_m, period_s, design);
 }
 
 CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>& plan,
                                        double distance_m, double period_s,
-                                       double design_frequency_hz) {
+                                       const GridDesign& design) {
   // The grid trajectory covers slightly more or less than the ideal one when steps fall
   // between ticks. Plan for a nominal distance X whose realised distance S(X) is the
   // requested one: S is continuous and increasing with S(X) ~ X, so regula falsi with a
   // bisection fallback converges in a few evaluations.
   auto realize = [&](double nominal_m) {
-    return RealizeOnTicks(plan(nominal_m), period_s, design_frequency_hz);
+    return RealizeOnTicks(plan(nominal_m), period_s, design);
   };
   auto error = [&](double nominal_m) { return RealizedDistance(realize(nominal_m)) - distance_m; };
   const double x0 = distance_m;

@@ -10,11 +10,16 @@
 namespace shapebench::controller {
 
 std::vector<double> ProfileTableFromPattern(const StepPattern& pattern, double period_s,
-                                            double design_frequency_hz) {
+                                            const GridDesign& design) {
+  return ProfileTableFromImpulses(PatternImpulses(pattern), period_s, design);
+}
+
+std::vector<double> ProfileTableFromImpulses(const std::vector<Impulse>& impulses, double period_s,
+                                             const GridDesign& design) {
   // Per unit acceleration, as at the start of a phase from rest: nothing before the
-  // group and 1 is the largest acceleration (the table's coefficients stay in [0, 1]).
-  const std::vector<GridImpulse> grid = RealizeOnGrid(PatternImpulses(pattern), period_s,
-                                                      design_frequency_hz, 0.0, 1.0);
+  // group and 1 is the largest acceleration (the table's coefficients stay in [0, 1] for
+  // a positive shaper).
+  const std::vector<GridImpulse> grid = RealizeOnGrid(impulses, period_s, design, 0.0, 1.0);
   std::vector<double> table;
   for (const GridImpulse& g : grid) {
     const auto tick = static_cast<std::size_t>(std::max(0L, g.tick));

@@ -8,17 +8,23 @@
 
 #include <vector>
 
+#include "controller/grid_realization.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::controller {
 
 constexpr int kDefaultMaxTableLength = 64;  // alpha_0 .. alpha_63 (para. 58)
 
-// The table that realises `pattern`'s shaped start on the grid of `period_s`, designed
-// for `design_frequency_hz` (impulses between ticks are placed by RealizeOnGrid so the
-// vibration phasor at that frequency is kept). The pattern must shape (method 1-4).
+// The table that realises a shaper's impulse sequence (e.g. ShaperImpulses, any method)
+// on the grid of `period_s`: impulses between ticks are placed by RealizeOnGrid so the
+// vibration phasor at every design frequency (with the design damping) is kept.
+std::vector<double> ProfileTableFromImpulses(const std::vector<Impulse>& impulses, double period_s,
+                                             const GridDesign& design);
+
+// The same for `pattern`'s shaped start (PatternImpulses): method 1-4's two steps, or a
+// general pattern's impulses.
 std::vector<double> ProfileTableFromPattern(const StepPattern& pattern, double period_s,
-                                            double design_frequency_hz);
+                                            const GridDesign& design);
 
 // n = round(length_s / period_s) coefficients of 1/n (n >= 1).
 std::vector<double> MovingAverageTable(double length_s, double period_s);

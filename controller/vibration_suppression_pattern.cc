@@ -7,6 +7,7 @@
 
 #include "common/format.h"
 #include "common/validation_error.h"
+#include "controller/input_shaper.h"
 
 namespace shapebench::controller {
 namespace {
@@ -22,21 +23,35 @@ double Quantize(double duration_s, double resolution_s) {
 
 }  // namespace
 
+bool IsPatentMethod(PatternMethod method) {
+  return method == PatternMethod::kMethod1 || method == PatternMethod::kMethod2 ||
+         method == PatternMethod::kMethod3 || method == PatternMethod::kMethod4;
+}
+
+std::vector<double> PatternConfig::DesignFrequencies() const {
+  return frequencies_hz.empty() ? std::vector<double>{frequency_hz} : frequencies_hz;
+}
+
 void PatternConfig::validate() const {
   if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
     throw ValidationError("frequency_hz", "must be a finite number > 0 (got " + Num(frequency_hz) + ")");
   }
-  const double period_s = 1.0 / frequency_hz;
+  // The library's keys (frequencies_hz, design_damping_ratio, vibration_tolerance,
+  // impulses) and the shapers they design (input_shaper.h).
+  ValidateShaperKeys(*this);
   // Para. 44: cos(2 pi t1/T) = 1 - 1/(2 K1) has a solution only for K1 in [0.5, 1].
   if (method == PatternMethod::kMethod3 && !(k1 >= 0.5 && k1 <= 1.0)) {
     throw ValidationError("k1", "must be in [0.5, 1] for method 3 (0.5 is method 1, 1 is method 2; got " +
                                     Num(k1) + ")");
   }
-  // Para. 45: a2 >= 0 needs cos(2 pi t1/T) >= 1/2, i.e. t1 <= T/6.
-  if (method == PatternMethod::kMethod4 && !(t1_s >= 0.0 && t1_s <= period_s / 6.0 * (1 + 1e-12))) {
-    throw ValidationError("t1_s", "must be in [0, T/6] = [0, " + Num(period_s / 6.0) +
-                                      "] s for method 4 at " + Num(frequency_hz) + " Hz (got " +
-                                      Num(t1_s) + ")");
+  // Para. 45: a2 >= 0 needs cos(2 pi t1/T) >= 1/2, i.e. t1 <= T/6 (at every design
+  // frequency when several are given).
+  for (const double f : DesignFrequencies()) {
+    const double period_s = 1.0 / f;
+    if (method == PatternMethod::kMethod4 && !(t1_s >= 0.0 && t1_s <= period_s / 6.0 * (1 + 1e-12))) {
+      throw ValidationError("t1_s", "must be in [0, T/6] = [0, " + Num(period_s / 6.0) +
+                                        "] s for method 4 at " + Num(f) + " Hz (got " + Num(t1_s) + ")");
+    }
   }
   if (!(std::isfinite(step_resolution_s) && step_resolution_s >= 0.0)) {
     throw ValidationError("step_resolution_s", "must be >= 0 (0 keeps exact step times; got " +
@@ -55,7 +70,16 @@ double Method4SecondRatio(double t1_s, double period_s) {
 StepPattern MakeStepPattern(const PatternConfig& config) {
   StepPattern pattern;
   if (config.method == PatternMethod::kNone || config.mode == PatternMode::kOff) return pattern;
-  const double period_s = 1.0 / config.frequency_hz;
+  const std::vector<double> frequencies = config.DesignFrequencies();
+  if (!IsPatentMethod(config.method) || frequencies.size() > 1) {
+    // The library (or the patent's methods convolved for several modes): the general
+    // impulse sequence, applied by convolution (linear_acc_dec.h).
+    pattern.impulses = ShaperImpulses(config);
+    pattern.at_start = config.mode == PatternMode::kStart || config.mode == PatternMode::kBoth;
+    pattern.at_end = config.mode == PatternMode::kEnd || config.mode == PatternMode::kBoth;
+    return pattern;
+  }
+  const double period_s = 1.0 / frequencies.front();
   switch (config.method) {
     case PatternMethod::kMethod1:  // para. 38: a/2 for T/2, then a
       pattern.step1 = {period_s / 2.0, 0.5};
@@ -75,7 +99,7 @@ StepPattern MakeStepPattern(const PatternConfig& config) {
       pattern.step2 = {period_s / 2.0 - 2.0 * config.t1_s,
                        Method4SecondRatio(config.t1_s, period_s)};
       break;
-    case PatternMethod::kNone:
+    default:  // kNone and the library: handled above
       break;
   }
   pattern.step1.duration_s = Quantize(pattern.step1.duration_s, config.step_resolution_s);
@@ -86,6 +110,7 @@ StepPattern MakeStepPattern(const PatternConfig& config) {
 }
 
 std::vector<Impulse> PatternImpulses(const StepPattern& pattern) {
+  if (pattern.general()) return pattern.impulses;
   // The acceleration steps SR1 -> SR2 -> 1 as jerk impulses (para. 61's J_n / A).
   const double times[3] = {0.0, pattern.step1.duration_s,
                            pattern.step1.duration_s + pattern.step2.duration_s};

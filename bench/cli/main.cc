@@ -1,12 +1,17 @@
-// shapebench command line (SPEC section 2): run, check, modes, pattern.
+// shapebench command line (SPEC section 2): run, check, modes, pattern, sensitivity,
+// sweep, merge.
 // Exit codes: 0 ok; 1 a check failed; 2 bad input, usage or unwritable output;
 // 3 the solver failed. Errors go to stderr as "error: ...".
 #include <chrono>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
@@ -17,6 +22,9 @@
 #include "bench/pattern_report.h"
 #include "bench/report.h"
 #include "bench/scenario_loader.h"
+#include "bench/sweep.h"
+#include "bench/sweep_runner.h"
+#include "bench/sensitivity.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/machine.h"
@@ -99,15 +107,26 @@ struct CheckArgs {
   std::vector<std::string> files;
   std::vector<std::string> sets;
   std::string junit;
+  int jobs = 0;  // sweep files: worker threads (0: every hardware thread)
 };
+
+int JobsOrDefault(int jobs) {
+  if (jobs > 0) return jobs;
+  const unsigned threads = std::thread::hardware_concurrency();
+  return threads > 0 ? static_cast<int>(threads) : 1;
+}
 
 int CheckCommand(const CheckArgs& args) {
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   // Every file is loaded before anything runs: bad input fails fast and writes nothing.
+  // A file with base: and grid: is a sweep: its checks apply to every point.
   std::vector<Scenario> scenarios;
+  std::vector<std::optional<Sweep>> sweeps;
   for (const std::string& file : args.files) {
-    scenarios.push_back(LoadScenario(file, overrides));
-    if (scenarios.back().checks.empty()) {
+    const bool sweep = IsSweepFile(file);
+    sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides)) : std::nullopt);
+    scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
+    if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
                         "no checks to evaluate; add e.g. checks: {peak_ratio: {max: 1.01}}");
     }
@@ -119,8 +138,15 @@ int CheckCommand(const CheckArgs& args) {
     if (rank[code] > rank[exit_code]) exit_code = code;
   };
   std::vector<ScenarioCheckReport> reports;
-  for (const Scenario& scenario : scenarios) {
+  for (std::size_t i = 0; i < scenarios.size(); ++i) {
+    const Scenario& scenario = scenarios[i];
     ScenarioCheckReport report;
+    if (sweeps[i]) {
+      raise(CheckSweep(*sweeps[i], overrides, JobsOrDefault(args.jobs), std::cout, std::cerr,
+                       &report));
+      reports.push_back(report);
+      continue;
+    }
     report.file = scenario.source_file;
     report.name = scenario.name;
     const auto start = std::chrono::steady_clock::now();
@@ -177,7 +203,107 @@ int PatternCommand(const PatternArgs& args) {
   LoadOptions options;
   options.plan_move = false;  // the pattern is shown whatever the move
   const Scenario scenario = LoadScenario(args.file, ParseOverrides(args.sets), options);
-  PrintPatternReport(std::cout, scenario.controller);
+  PrintPatternReport(std::cout, scenario);  // with the time penalty of its move or program
+  return kExitOk;
+}
+
+struct SensitivityArgs {
+  std::string file;
+  std::vector<std::string> sets;
+  std::string out_dir;
+};
+
+// Residual vibration vs plant frequency / design frequency per shaper (bench/sensitivity.h).
+int SensitivityCommand(const SensitivityArgs& args) {
+  const SensitivitySpec spec = LoadSensitivity(args.file, ParseOverrides(args.sets));
+  const SensitivityResult result = ComputeSensitivity(spec);
+  if (!args.out_dir.empty()) {
+    std::filesystem::create_directories(args.out_dir);
+    const std::filesystem::path dir(args.out_dir);
+    WriteSensitivityCsv((dir / "sensitivity.csv").string(), result);
+    WriteSensitivityPlot((dir / "sensitivity.png").string(), result,
+                         "shaper sensitivity: " + std::filesystem::path(args.file).stem().string());
+  }
+  PrintSensitivityTable(std::cout, result);
+  std::cout.flush();
+  return kExitOk;
+}
+
+struct SweepArgs {
+  std::string file;
+  std::vector<std::string> sets;
+  int jobs = 0;
+  std::string out_dir;
+  std::string shard;
+  bool force = false;
+};
+
+// --shard I/N: I in 0..N-1 (the points p with p % N == I).
+void ParseShard(const std::string& text, SweepRunOptions* options) {
+  const std::size_t slash = text.find('/');
+  const auto digits = [](const std::string& part) {
+    return !part.empty() && part.size() <= 9 &&
+           part.find_first_not_of("0123456789") == std::string::npos;
+  };
+  const std::string index = slash == std::string::npos ? "" : text.substr(0, slash);
+  const std::string count = slash == std::string::npos ? "" : text.substr(slash + 1);
+  if (!digits(index) || !digits(count) || std::stoul(count) < 1 ||
+      std::stoul(index) >= std::stoul(count)) {
+    throw std::runtime_error("--shard: expected I/N with N >= 1 and I in 0..N-1 (e.g. 0/4), got '" +
+                             text + "'");
+  }
+  options->shard_index = std::stoul(index);
+  options->shard_count = std::stoul(count);
+}
+
+// A grid of runs (bench/sweep.h, bench/sweep_runner.h): results.csv, plots.
+int SweepCommand(const SweepArgs& args) {
+  const std::vector<Override> overrides = ParseOverrides(args.sets);
+  SweepRunOptions options;
+  if (!args.shard.empty()) ParseShard(args.shard, &options);
+  SweepLoadOptions load;
+  load.force = args.force;
+  const Sweep sweep = LoadSweep(args.file, overrides, load);
+  options.out_dir = args.out_dir.empty()
+                        ? (std::filesystem::path("sweep_out") / sweep.name).string()
+                        : args.out_dir;
+  options.jobs = JobsOrDefault(args.jobs);
+  options.progress = isatty(STDERR_FILENO) != 0;
+  const SweepRunSummary summary = RunSweep(sweep, overrides, options);
+  std::cout << "sweep " << sweep.name << ": " << summary.points << " points";
+  if (options.shard_count > 1) {
+    std::cout << " (shard " << options.shard_index << "/" << options.shard_count << " of "
+              << sweep.points << ")";
+  }
+  std::cout << ", " << summary.ok << " ok, " << summary.errors << " error";
+  if (summary.resumed > 0) std::cout << " (" << summary.resumed << " done before)";
+  std::cout << " -> " << summary.results << "\n";
+  for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
+  std::cout.flush();
+  return kExitOk;
+}
+
+struct MergeArgs {
+  std::vector<std::string> dirs;
+  std::string out_dir;
+};
+
+// Joins shard outputs into the unsharded results.csv (bench/sweep_runner.h).
+int MergeCommand(const MergeArgs& args) {
+  std::vector<std::string> shards = args.dirs;
+  std::string out_dir = args.out_dir;
+  if (out_dir.empty()) {
+    if (shards.size() < 2) {
+      throw std::runtime_error("merge: expected OUT_DIR SHARD_DIR... (or --out OUT_DIR SHARD_DIR...)");
+    }
+    out_dir = shards.front();
+    shards.erase(shards.begin());
+  }
+  const MergeSummary summary = MergeShards(out_dir, shards);
+  std::cout << "merged " << summary.shards << " shards: " << summary.points << " points -> "
+            << summary.results << "\n";
+  for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
+  std::cout.flush();
   return kExitOk;
 }
 
@@ -211,6 +337,9 @@ int main(int argc, char** argv) {
       ->type_name("FILE.yaml");
   AddSetOption(check, &check_args.sets);
   check->add_option("--junit", check_args.junit, "write JUnit XML")->type_name("REPORT.xml");
+  check->add_option("--jobs", check_args.jobs, "sweep files: worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096))
+      ->type_name("N");
 
   ModesArgs modes_args;
   CLI::App* modes = app.add_subcommand("modes", "modal analysis of the machine model");
@@ -228,6 +357,42 @@ int main(int argc, char** argv) {
       ->type_name("FILE.yaml");
   AddSetOption(pattern, &pattern_args.sets);
 
+  SensitivityArgs sensitivity_args;
+  CLI::App* sensitivity = app.add_subcommand(
+      "sensitivity", "residual vibration of shapers vs plant frequency / design frequency");
+  sensitivity->add_option("file", sensitivity_args.file, "sensitivity file (shapers:, ratio:, ...)")
+      ->required()
+      ->type_name("FILE.yaml");
+  AddSetOption(sensitivity, &sensitivity_args.sets);
+  sensitivity->add_option("--out", sensitivity_args.out_dir,
+                          "write sensitivity.csv and sensitivity.png into DIR (created)")
+      ->type_name("DIR");
+
+  SweepArgs sweep_args;
+  CLI::App* sweep = app.add_subcommand("sweep", "run a grid of scenarios: results.csv and plots");
+  sweep->add_option("sweep", sweep_args.file, "sweep file (base:, grid:, ...)")
+      ->required()
+      ->type_name("SWEEP.yaml");
+  AddSetOption(sweep, &sweep_args.sets);
+  sweep->add_option("--jobs", sweep_args.jobs, "worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096))
+      ->type_name("N");
+  sweep->add_option("--out", sweep_args.out_dir,
+                    "output directory (default: sweep_out/NAME); run again to resume")
+      ->type_name("DIR");
+  sweep->add_option("--shard", sweep_args.shard,
+                    "run the points p with p % N == I only (I in 0..N-1); join with merge")
+      ->type_name("I/N");
+  sweep->add_flag("--force", sweep_args.force, "run a grid of more than 2,000,000 points");
+
+  MergeArgs merge_args;
+  CLI::App* merge = app.add_subcommand("merge", "join the shards of a sweep into one results.csv");
+  merge->add_option("dirs", merge_args.dirs, "OUT_DIR then the shards' --out directories")
+      ->required()
+      ->type_name("DIR");
+  merge->add_option("--out", merge_args.out_dir, "output directory (then every DIR is a shard)")
+      ->type_name("OUT_DIR");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -242,5 +407,8 @@ int main(int argc, char** argv) {
   if (check->parsed()) return Guarded([&] { return CheckCommand(check_args); });
   if (modes->parsed()) return Guarded([&] { return ModesCommand(modes_args); });
   if (pattern->parsed()) return Guarded([&] { return PatternCommand(pattern_args); });
+  if (sensitivity->parsed()) return Guarded([&] { return SensitivityCommand(sensitivity_args); });
+  if (sweep->parsed()) return Guarded([&] { return SweepCommand(sweep_args); });
+  if (merge->parsed()) return Guarded([&] { return MergeCommand(merge_args); });
   return kExitBadInput;
 }

@@ -85,11 +85,11 @@ TEST(Report, XmlEscape) {
 // Tests that the JUnit report counts tests, failures and errors and escapes names.
 TEST(Report, JUnitCounts) {
   ScratchDir dir;
-  ScenarioCheckReport ok{"a&b.yaml", "a", {}, "", 0.5};
-  CheckResult pass{"peak_ratio", 1.0, "1", "max 1.01", true, ""};
-  CheckResult fail{"residual_ratio", 0.5, "0.5", "max 0.01", false, "above max 0.01"};
+  ScenarioCheckReport ok{"a&b.yaml", "a", {}, "", 0.5, {}};
+  CheckResult pass{"peak_ratio", 1.0, "1", "max 1.01", true, "", ""};
+  CheckResult fail{"residual_ratio", 0.5, "0.5", "max 0.01", false, "above max 0.01", ""};
   ok.results = {pass, fail};
-  ScenarioCheckReport broken{"b.yaml", "b", {}, "solver failed: CV_TOO_MUCH_WORK: <x>", 0.1};
+  ScenarioCheckReport broken{"b.yaml", "b", {}, "solver failed: CV_TOO_MUCH_WORK: <x>", 0.1, {}};
   const std::string path = dir.File("junit.xml");
   WriteJUnit(path, {ok, broken});
   const std::string xml = ReadText(path);

@@ -1,0 +1,331 @@
+// The shaper library through the bench: full co-simulated runs on the patent's undamped
+// 25 Hz mode (and a damped one), the scenario keys and their located errors, the
+// sensitivity curves against their closed forms, and the `sensitivity` and `pattern`
+// commands as users' scripts see them.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/cosim.h"
+#include "bench/scenario_loader.h"
+#include "bench/sensitivity.h"
+#include "bench_test_support.h"
+#include "controller/input_shaper.h"
+#include "sdof_fixture.h"
+
+namespace shapebench::bench {
+namespace {
+
+using controller::PatternMethod;
+using controller::PatternRealization;
+using testing::CliResult;
+using testing::ExpectError;
+using testing::ReadText;
+using testing::RunCli;
+using testing::ScratchDir;
+using testing::SdofScenario;
+
+constexpr double kPi = 3.14159265358979323846;
+const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
+
+// --- full runs -------------------------------------------------------------------------
+
+struct RunCase {
+  PatternMethod method;
+  PatternRealization realization;
+  double residual_max;
+};
+
+std::string RunCaseName(const ::testing::TestParamInfo<RunCase>& info) {
+  return controller::MethodName(info.param.method) +
+         (info.param.realization == PatternRealization::kStepped ? "_stepped" : "_table");
+}
+
+class ShaperRunTest : public ::testing::TestWithParam<RunCase> {};
+
+// Tests every library shaper through a whole run (1 ms grid, exact integrator) on the
+// undamped 25 Hz mode, in both realizations: the four shaped speed changes leave no
+// vibration (residual below 1e-6 of static: the grid keeps each zero), except EI, which
+// by design leaves its tolerance V = 5% per shaped step: at most 4 V = 0.2 for the four.
+TEST_P(ShaperRunTest, LeavesNoVibrationOnTheDesignMode) {
+  const RunCase c = GetParam();
+  Scenario s = SdofScenario();
+  s.controller.pattern.method = c.method;
+  s.controller.pattern.realization = c.realization;
+  ASSERT_NO_THROW(s.controller.validate());
+  const Metrics m = RunScenario(s).metrics;
+  EXPECT_LT(m.residual_ratio, c.residual_max);
+  EXPECT_LT(m.peak_ratio, c.method == PatternMethod::kEi ? 1.2 : 1.0 + 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Library, ShaperRunTest,
+    ::testing::Values(RunCase{PatternMethod::kZv, PatternRealization::kStepped, 1e-6},
+                      RunCase{PatternMethod::kZv, PatternRealization::kProfileTable, 1e-6},
+                      RunCase{PatternMethod::kZvd, PatternRealization::kStepped, 1e-6},
+                      RunCase{PatternMethod::kZvd, PatternRealization::kProfileTable, 1e-6},
+                      RunCase{PatternMethod::kZvdd, PatternRealization::kStepped, 1e-6},
+                      RunCase{PatternMethod::kZvdd, PatternRealization::kProfileTable, 1e-6},
+                      RunCase{PatternMethod::kMzv, PatternRealization::kStepped, 1e-6},
+                      RunCase{PatternMethod::kMzv, PatternRealization::kProfileTable, 1e-6},
+                      RunCase{PatternMethod::kEi, PatternRealization::kStepped, 0.2},
+                      RunCase{PatternMethod::kEi, PatternRealization::kProfileTable, 0.2},
+                      RunCase{PatternMethod::kUmZv, PatternRealization::kStepped, 1e-6},
+                      RunCase{PatternMethod::kUmZv, PatternRealization::kProfileTable, 1e-6}),
+    RunCaseName);
+
+// Tests damping-aware designs in a whole run: on a 25 Hz mode with 10% damping, ZV, ZVD
+// and UM-ZV designed for zeta = 0.1 leave no vibration (1e-6) in both realizations,
+// where the undamped ZV design leaves a closed-form-sized residual (above 5%).
+TEST(ShaperLibrary, DampedDesignsCancelADampedMode) {
+  for (PatternMethod method : {PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kUmZv}) {
+    for (PatternRealization realization : {PatternRealization::kStepped, PatternRealization::kProfileTable}) {
+      Scenario s = SdofScenario(25.0, 0.1);
+      s.controller.pattern.method = method;
+      s.controller.pattern.realization = realization;
+      s.controller.pattern.design_damping_ratio = 0.1;
+      EXPECT_LT(RunScenario(s).metrics.residual_ratio, 1e-6) << controller::MethodName(method);
+    }
+  }
+  Scenario undamped_design = SdofScenario(25.0, 0.1);
+  undamped_design.controller.pattern.method = PatternMethod::kZv;
+  EXPECT_GT(RunScenario(undamped_design).metrics.residual_ratio, 0.05);
+}
+
+// Tests two modes at once (25 and 41.3 Hz, each gain 1; 41.3 Hz so that the 0.3 s phase
+// is no whole number of its periods): ZV convolved for both cancels both in a whole run
+// (1e-6 of static), while ZV for 25 Hz alone leaves the second mode ringing.
+TEST(ShaperLibrary, SeveralModesInOneRun) {
+  Scenario s = SdofScenario();
+  model::ModalMachineConfig modal;
+  modal.modes = {model::ModalMode{25.0, 0.0, 1.0}, model::ModalMode{41.3, 0.0, 1.0}};
+  s.machine.axes[s.machine.driven_axis] = model::MachineConfig{modal};
+  s.controller.pattern.method = PatternMethod::kZv;
+  s.controller.pattern.frequencies_hz = {25.0, 41.3};
+  EXPECT_LT(RunScenario(s).metrics.residual_ratio, 1e-6);
+  s.controller.pattern.frequencies_hz.clear();
+  EXPECT_GT(RunScenario(s).metrics.residual_ratio, 0.01);
+}
+
+// --- scenario keys -----------------------------------------------------------------------
+
+// Tests that the new pattern keys load from YAML.
+TEST(ShaperLibrary, ScenarioKeysLoad) {
+  ScratchDir dir;
+  const std::string path = dir.Write(
+      "s.yaml",
+      "controller:\n"
+      "  pattern:\n"
+      "    method: custom\n"
+      "    frequencies_hz: [25, 40]\n"
+      "    design_damping_ratio: 0.02\n"
+      "    impulses: [{amplitude: 0.5, time_s: 0}, {amplitude: 0.5, time_s: 0.02}]\n"
+      "move: {distance_mm: 100}\n");
+  const Scenario s = LoadScenario(path, {});
+  EXPECT_EQ(s.controller.pattern.method, PatternMethod::kCustom);
+  ASSERT_EQ(s.controller.pattern.frequencies_hz.size(), 2u);
+  EXPECT_EQ(s.controller.pattern.frequencies_hz[1], 40.0);
+  EXPECT_EQ(s.controller.pattern.design_damping_ratio, 0.02);
+  ASSERT_EQ(s.controller.pattern.impulses.size(), 2u);
+  EXPECT_EQ(s.controller.pattern.impulses[1].time_s, 0.02);
+  const std::string ei = dir.Write("e.yaml", "controller:\n  pattern: {method: ei, vibration_tolerance: 0.1}\n");
+  EXPECT_EQ(LoadScenario(ei, {}).controller.pattern.vibration_tolerance, 0.1);
+}
+
+ConfigError LoadError(const std::string& path, const std::vector<std::string>& sets = {}) {
+  return testing::ErrorOf([&] { LoadScenario(path, ParseOverrides(sets)); });
+}
+
+// Tests that bad shaper keys are ConfigErrors at the offending node with the key path:
+// a custom impulse out of order, amplitudes not summing to 1, an unknown impulse key,
+// frequency_hz beside frequencies_hz, the tolerance out of (0, 1), and a --set value.
+TEST(ShaperLibrary, BadKeysAreLocated) {
+  ScratchDir dir;
+  const std::string order = dir.Write(
+      "o.yaml",
+      "controller:\n"
+      "  pattern:\n"
+      "    method: custom\n"
+      "    impulses:\n"
+      "      - {amplitude: 0.5, time_s: 0.02}\n"
+      "      - {amplitude: 0.5, time_s: 0.01}\n");
+  ExpectError(LoadError(order), order, 6, 34, "controller.pattern.impulses[1].time_s", "ascending");
+  const std::string sum = dir.Write(
+      "s.yaml", "controller:\n  pattern: {method: custom, impulses: [{amplitude: 0.7, time_s: 0}]}\n");
+  ExpectError(LoadError(sum), sum, 2, 39, "controller.pattern.impulses", "sum to 1");
+  const std::string key = dir.Write(
+      "k.yaml", "controller:\n  pattern: {method: custom, impulses: [{amp: 1, time_s: 0}]}\n");
+  ExpectError(LoadError(key), key, 2, 41, "controller.pattern.impulses[0].amp", "unknown key 'amp'");
+  const std::string both = dir.Write(
+      "b.yaml", "controller:\n  pattern: {method: zv, frequency_hz: 25, frequencies_hz: [25, 40]}\n");
+  ExpectError(LoadError(both), both, 2, 59, "controller.pattern.frequencies_hz", "give one of");
+  const std::string tolerance =
+      dir.Write("t.yaml", "controller:\n  pattern:\n    method: ei\n    vibration_tolerance: 1.5\n");
+  ExpectError(LoadError(tolerance), tolerance, 4, 26, "controller.pattern.vibration_tolerance", "(0, 1)");
+  const std::string plain = dir.Write("p.yaml", "controller:\n  pattern: {method: zv}\n");
+  ExpectError(LoadError(plain, {"controller.pattern.design_damping_ratio=1.2"}), "--set", 1, 1,
+              "controller.pattern.design_damping_ratio", "[0, 1)");
+}
+
+// --- sensitivity ---------------------------------------------------------------------------
+
+SensitivitySpec SpecOf(const std::vector<PatternMethod>& methods) {
+  SensitivitySpec spec;
+  for (PatternMethod method : methods) {
+    SensitivityShaper shaper;
+    shaper.pattern.method = method;
+    shaper.pattern.frequency_hz = 25.0;
+    shaper.label = controller::MethodName(method);
+    spec.shapers.push_back(shaper);
+  }
+  spec.ratio_steps = 1001;
+  return spec;
+}
+
+// Tests the sensitivity oracles at zeta = 0 over the whole range 0.5 to 1.5
+// (1001 points) within 0.005 absolute: ZV |cos(pi r/2)|, ZVD cos^2(pi r/2), ZVDD
+// |cos(pi r/2)|^3, UM-ZV |2 cos(pi r/3) - 1|.
+TEST(ShaperSensitivity, ClosedFormCurves) {
+  const SensitivityResult result =
+      ComputeSensitivity(SpecOf({PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kZvdd, PatternMethod::kUmZv}));
+  ASSERT_EQ(result.curves.size(), 4u);
+  ASSERT_EQ(result.ratio.size(), 1001u);
+  EXPECT_DOUBLE_EQ(result.ratio.front(), 0.5);
+  EXPECT_DOUBLE_EQ(result.ratio.back(), 1.5);
+  for (std::size_t k = 0; k < result.ratio.size(); ++k) {
+    const double r = result.ratio[k];
+    const double c = std::abs(std::cos(kPi * r / 2));
+    EXPECT_NEAR(result.curves[0].residual_percent[k] / 100, c, 0.005) << r;
+    EXPECT_NEAR(result.curves[1].residual_percent[k] / 100, c * c, 0.005) << r;
+    EXPECT_NEAR(result.curves[2].residual_percent[k] / 100, c * c * c, 0.005) << r;
+    EXPECT_NEAR(result.curves[3].residual_percent[k] / 100, std::abs(2 * std::cos(kPi * r / 3) - 1), 0.005) << r;
+  }
+}
+
+// Tests the 5% band widths: the 0.0637 (ZV), 0.2871 (ZVD), 0.0551 (UM-ZV) within
+// 0.002, and the exact closed forms within 1e-6 (the edges are bisected, not sampled):
+// ZV 4 asin(0.05) / pi, ZVD 4 asin(sqrt(0.05)) / pi, ZVDD 4 asin(0.05^(1/3)) / pi, UM-ZV
+// 3 (acos(0.475) - acos(0.525)) / pi; the 10% level band too.
+TEST(ShaperSensitivity, BandWidths) {
+  SensitivitySpec spec =
+      SpecOf({PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kZvdd, PatternMethod::kUmZv});
+  spec.level = 0.1;
+  const SensitivityResult result = ComputeSensitivity(spec);
+  EXPECT_NEAR(result.curves[0].band_5.width(), 0.0637, 0.002);
+  EXPECT_NEAR(result.curves[1].band_5.width(), 0.2871, 0.002);
+  EXPECT_NEAR(result.curves[3].band_5.width(), 0.0551, 0.002);
+  EXPECT_NEAR(result.curves[0].band_5.width(), 4 * std::asin(0.05) / kPi, 1e-6);
+  EXPECT_NEAR(result.curves[1].band_5.width(), 4 * std::asin(std::sqrt(0.05)) / kPi, 1e-6);
+  EXPECT_NEAR(result.curves[2].band_5.width(), 4 * std::asin(std::cbrt(0.05)) / kPi, 1e-6);
+  EXPECT_NEAR(result.curves[3].band_5.width(), 3 * (std::acos(0.475) - std::acos(0.525)) / kPi, 1e-6);
+  EXPECT_NEAR(result.curves[0].band_level.width(), 4 * std::asin(0.1) / kPi, 1e-6);
+  EXPECT_NEAR(result.curves[0].band_5.low, 1 - 2 * std::asin(0.05) / kPi, 1e-6);
+  for (const SensitivityCurve& c : result.curves) EXPECT_LT(c.at_design_percent, 1e-9);
+}
+
+// Tests the band of EI (V = 5%): the level is touched at r = 1 by design and the band
+// spans both zeros. With x = cos(pi r), V(r) = |(1+V)/2 x + (1-V)/2| <= V holds for
+// x >= -1 always and for x <= (3V - 1)/(1 + V): the band is [r_e, 2 - r_e] with
+// r_e = acos((3V - 1)/(1 + V)) / pi.
+TEST(ShaperSensitivity, EiBandSpansBothZeros) {
+  const SensitivityResult result = ComputeSensitivity(SpecOf({PatternMethod::kEi}));
+  const double v = 0.05;
+  const double edge = std::acos((3 * v - 1) / (1 + v)) / kPi;
+  EXPECT_NEAR(result.curves[0].band_5.low, edge, 1e-6);
+  EXPECT_NEAR(result.curves[0].band_5.high, 2 - edge, 1e-6);
+  EXPECT_NEAR(result.curves[0].at_design_percent, 5.0, 1e-9);
+}
+
+// Tests that period_s adds the realized table's curve: for um_zv at 25 Hz and 1 ms it
+// keeps the zero at the design point (the 1%, here below 1e-9 %).
+TEST(ShaperSensitivity, RealizedTableCurve) {
+  SensitivitySpec spec = SpecOf({PatternMethod::kUmZv});
+  spec.period_s = 0.001;
+  spec.damping_ratios = {0.0, 0.05};
+  const SensitivityResult result = ComputeSensitivity(spec);
+  ASSERT_EQ(result.curves.size(), 4u);
+  EXPECT_FALSE(result.curves[0].realized);
+  EXPECT_TRUE(result.curves[1].realized);
+  EXPECT_LT(result.curves[1].at_design_percent, 1e-9);
+  EXPECT_EQ(result.curves[2].damping_ratio, 0.05);
+  EXPECT_GT(result.curves[2].at_design_percent, 1.0);  // an undamped design on a damped plant
+}
+
+// Tests the sensitivity file's errors, located: an unknown shaper key, a bad shaper value
+// (via its validate()), a bad ratio range, and a missing shapers list.
+TEST(ShaperSensitivity, FileErrorsAreLocated) {
+  ScratchDir dir;
+  const std::string unknown = dir.Write("u.yaml", "shapers:\n  - {methd: zv}\n");
+  ExpectError(testing::ErrorOf([&] { LoadSensitivity(unknown, {}); }), unknown, 2, 6, "shapers[0].methd",
+              "unknown key 'methd'");
+  const std::string value = dir.Write(
+      "v.yaml", "shapers:\n  - {method: zv}\n  - {method: zvd, design_damping_ratio: 1.5}\n");
+  ExpectError(testing::ErrorOf([&] { LoadSensitivity(value, {}); }), value, 3, 41,
+              "shapers[1].design_damping_ratio", "[0, 1)");
+  const std::string range = dir.Write("r.yaml", "shapers: [{method: zv}]\nratio: {from: 1.5, to: 0.5}\n");
+  ExpectError(testing::ErrorOf([&] { LoadSensitivity(range, {}); }), range, 2, 24, "ratio.to", "above from");
+  const std::string missing = dir.Write("m.yaml", "level: 0.1\n");
+  ExpectError(testing::ErrorOf([&] { LoadSensitivity(missing, {}); }), missing, 1, 1, "", "missing 'shapers'");
+}
+
+// Tests the CLI: `sensitivity --out` writes sensitivity.csv (a header naming each curve,
+// one row per ratio) and a PNG (its 8-byte signature), prints the band table, and exits
+// 2 with FILE:LINE:COL and the key path on a bad key.
+TEST(ShaperSensitivity, CliWritesCsvAndPlot) {
+  ScratchDir dir;
+  const std::string file = dir.Write(
+      "sens.yaml",
+      "shapers:\n"
+      "  - {method: zv, frequency_hz: 25}\n"
+      "  - {method: zvd, frequency_hz: 25, label: ZVD at 25 Hz}\n"
+      "  - {method: um_zv, frequency_hz: 25}\n"
+      "ratio: {from: 0.5, to: 1.5, steps: 101}\n"
+      "damping_ratios: [0.0]\n"
+      "level: 0.1\n"
+      "period_s: 0.001\n");
+  const std::string out = dir.File("out");
+  const CliResult r = RunCli({"sensitivity", file, "--out", out}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("ZVD at 25 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0.28713"), std::string::npos) << r.out;  // ZVD's 5% band
+  const std::string csv = ReadText(out + "/sensitivity.csv");
+  EXPECT_EQ(csv.rfind("ratio,zv 25 Hz zeta=0,zv 25 Hz zeta=0 table 0.001 s,ZVD at 25 Hz zeta=0", 0), 0u) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 102);
+  const std::string png = ReadText(out + "/sensitivity.png");
+  ASSERT_GE(png.size(), 8u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+
+  const CliResult bad = RunCli({"sensitivity", file, "--set", "shapers[2].method=um_zvv"}, kSourceDir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("error: --set:1:1: shapers[2].method: expected one of"), std::string::npos) << bad.err;
+  const std::string typo = dir.Write("typo.yaml", "shapers:\n  - {method: zv}\nratio: {form: 0.5}\n");
+  const CliResult located = RunCli({"sensitivity", typo}, kSourceDir);
+  EXPECT_EQ(located.exit_code, 2);
+  EXPECT_NE(located.err.find("error: " + typo + ":3:9: ratio.form: unknown key 'form'"), std::string::npos)
+      << located.err;
+}
+
+// Tests that `pattern` reports a library shaper: its impulses, the realized table's
+// residual at each design frequency, the rounding comparison, and the time penalty.
+TEST(ShaperLibrary, PatternReportForAShaper) {
+  ScratchDir dir;
+  const std::string file = dir.Write(
+      "um.yaml",
+      "machine: {modes: [{frequency_hz: 25.0, damping_ratio: 0.0, gain: 1.0}]}\n"
+      "controller: {feed_mm_min: 30000, accel_time_s: 0.3, pattern: {method: um_zv, frequencies_hz: [25]}}\n"
+      "move: {distance_mm: 213}\n");
+  const CliResult r = RunCli({"pattern", file}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("method um_zv"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("residual vibration at 25 Hz"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rounded to the nearest tick      9.202e-02"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("motion time added           0.014 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("profile_table, per_axis"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reference radius 10 mm"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace shapebench::bench
