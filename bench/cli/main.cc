@@ -332,7 +332,7 @@ int main(int argc, char** argv) {
 
   CheckArgs check_args;
   CLI::App* check = app.add_subcommand("check", "run scenarios and evaluate their checks");
-  check->add_option("files", check_args.files, "scenario files with checks:")
+  check->add_option("files", check_args.files, "scenario or sweep files with checks:")
       ->required()
       ->type_name("FILE.yaml");
   AddSetOption(check, &check_args.sets);
