@@ -26,19 +26,50 @@ std::string ElementCount(std::size_t n) {
 
 }  // namespace
 
-YAML::Node ConfigDocument::ParseFile(const std::string& path) {
+bool ReadInputFile(const std::string& path, std::string* text, std::string* error) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw ConfigError(path, 0, 0, "", "cannot read file: it is a directory");
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) {
+    *error = std::string("cannot open file: ") +
+             (ec ? ec.message() : std::string(std::strerror(ENOENT)));
+    return false;
+  }
+  if (fs::is_directory(status)) {
+    *error = "cannot read file: it is a directory";
+    return false;
+  }
+  if (!fs::is_regular_file(status)) {
+    *error = "cannot read file: not a regular file (a device, FIFO or socket)";
+    return false;
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxInputFileBytes) {
+    *error = "cannot read file: " + std::to_string(size) + " bytes, more than the " +
+             std::to_string(kMaxInputFileBytes >> 20) + " MiB an input file may have";
+    return false;
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw ConfigError(path, 0, 0, "", std::string("cannot open file: ") + std::strerror(errno));
+    *error = std::string("cannot open file: ") + std::strerror(errno);
+    return false;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) {
+    *error = "cannot read file";
+    return false;
+  }
+  *text = bytes.str();
+  return true;
+}
+
+YAML::Node ConfigDocument::ParseFile(const std::string& path) {
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
   try {
-    return YAML::Load(text.str());
+    return YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path, e.mark.line + 1, e.mark.column + 1, "",
                       "malformed YAML: " + e.msg);

@@ -3,6 +3,7 @@
 // that any key path can be reported as FILE:LINE:COL or --set:N:1.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,15 @@ struct Origin {
   std::string file;
   int override_index = 0;  // > 0: the N-th --set; `file` is then unused
 };
+
+// Input files (scenarios, machine files, sweeps, G-code) must be regular files of at
+// most this many bytes: a path to /dev/zero, a FIFO or a terminal would otherwise block
+// or fill the memory.
+inline constexpr std::uintmax_t kMaxInputFileBytes = 64u << 20;
+
+// Reads a whole input file into *text. False with *error ("cannot open file: ...", "it is
+// a directory", "not a regular file", "larger than 64 MiB") when it cannot.
+bool ReadInputFile(const std::string& path, std::string* text, std::string* error);
 
 class ConfigDocument {
  public:

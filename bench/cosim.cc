@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/validation_error.h"
 #include "controller/path_geometry.h"
 #include "controller/stroke_end.h"
 #include "model/multi_axis_machine.h"
@@ -121,7 +122,17 @@ RunResult RunScenario(const Scenario& scenario) {
   m.motion_time_s = static_cast<double>(motion_ticks) * dt;
   const auto residual_ticks = static_cast<std::size_t>(std::ceil(3.0 * lowest_period_s / dt));
   const auto period_ticks = static_cast<std::size_t>(std::ceil(lowest_period_s / dt));
-  const std::size_t max_ticks = motion_ticks + kMaxTailPeriods * period_ticks;
+  // Guard rail (issue 7): the generated command and its residual window within limits:.
+  const double limit_ticks = std::min(scenario.limits.max_simulated_s / dt,
+                                      static_cast<double>(scenario.limits.max_ticks));
+  if (static_cast<double>(motion_ticks + residual_ticks) > limit_ticks) {
+    throw ValidationError("limits.max_simulated_s",
+                          "the command and its residual window take " +
+                              std::to_string(motion_ticks + residual_ticks) +
+                              " periods, more than limits allow (max_simulated_s, max_ticks)");
+  }
+  const std::size_t max_ticks = static_cast<std::size_t>(
+      std::min(static_cast<double>(motion_ticks + kMaxTailPeriods * period_ticks), limit_ticks));
 
   std::unique_ptr<model::PlantIntegrator> integrator;
   if (plant.num_states() > 0) {
@@ -199,6 +210,10 @@ RunResult RunScenario(const Scenario& scenario) {
         integrator->Step();
         t = integrator->Time();
         outputs = integrator->Output();
+        if (!outputs.allFinite()) {  // a degenerate model: never reported as numbers
+          throw model::SolverError("NON_FINITE_STATE", "the plant's deflection became non-finite at t = " +
+                                                           std::to_string(t) + " s (a degenerate model)");
+        }
       }
       const double tau = dt * static_cast<double>(j) / substeps;
       const Eigen::Vector3d p = p0 + v0 * tau + 0.5 * a * tau * tau;

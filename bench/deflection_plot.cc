@@ -40,7 +40,9 @@ void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunRe
   std::fprintf(gnuplot, "$trace << EOD\n");
   const std::size_t rows = std::min({trace.time_s.size(), trace.deflection_m.size(),
                                      trace.command_accel_m_s2.size()});
-  for (std::size_t i = 0; i < rows; ++i) {
+  // At most limits.max_trace_rows points, as in trace.csv.
+  const std::size_t stride = TraceStride(trace.time_s.size(), scenario.limits.max_trace_rows);
+  for (std::size_t i = 0; i < rows; i += stride) {
     std::fprintf(gnuplot, "%.10g %.10g %.10g\n", trace.time_s[i], trace.deflection_m[i] * 1e6,
                  trace.command_accel_m_s2[i]);
   }

@@ -13,13 +13,16 @@
 namespace shapebench::bench {
 namespace {
 
-// A gnuplot single-quoted string: only '' is special there; newlines would end the command.
+// A gnuplot single-quoted string: only '' is special there (no backslash escapes, no
+// backquote command substitution, no macros inside single quotes); newlines would end the
+// command and a NUL would cut the string short when printed, so every control character
+// becomes a space.
 std::string QuotedText(const std::string& text) {
   std::string quoted = "'";
   for (const char c : text) {
     if (c == '\'') {
       quoted += "''";
-    } else if (c == '\n' || c == '\r') {
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') {
       quoted += ' ';
     } else {
       quoted += c;
@@ -58,6 +61,13 @@ std::string GnuplotQuoted(const std::string& text) { return QuotedText(text); }
 
 void RunGnuplot(const std::string& path_png,
                 const std::function<void(std::FILE*, const std::string&)>& script) {
+  // The output path goes to gnuplot quoted; a control character in it could not.
+  for (const char c : path_png) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') {
+      throw std::runtime_error("cannot write " + path_png +
+                               ": a control character in the path (gnuplot cannot be given it)");
+    }
+  }
   TempFile temp(path_png);
   int status = 0;
   {

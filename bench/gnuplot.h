@@ -8,7 +8,8 @@
 
 namespace shapebench::bench {
 
-// A gnuplot single-quoted string ('' is the only escape; newlines become spaces).
+// A gnuplot single-quoted string ('' is the only escape; control characters, newlines
+// and NUL included, become spaces).
 std::string GnuplotQuoted(const std::string& text);
 
 // Runs gnuplot, `script` writing its commands for a PNG at `output_path` (a temporary

@@ -69,7 +69,9 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
     std::fprintf(gnuplot, "$programmed << EOD\n");
     for (const Eigen::Vector3d& p : programmed) std::fprintf(gnuplot, "%.10g %.10g\n", p.x() * 1e3, p.y() * 1e3);
     std::fprintf(gnuplot, "EOD\n$actual << EOD\n");
-    for (std::size_t i = 0; i < nearest.size(); ++i) {
+    // At most limits.max_trace_rows points, as in trace.csv.
+    const std::size_t stride = TraceStride(nearest.size(), scenario.limits.max_trace_rows);
+    for (std::size_t i = 0; i < nearest.size(); i += stride) {
       const Eigen::Vector3d shown = nearest[i] + gain * (trace.actual_m[i] - nearest[i]);
       std::fprintf(gnuplot, "%.10g %.10g\n", shown.x() * 1e3, shown.y() * 1e3);
     }

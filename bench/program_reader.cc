@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bench/config_document.h"
 #include "controller/gcode_parser.h"
 #include "controller/program_builder.h"
 
@@ -83,22 +84,13 @@ controller::Program ReadProgramFile(const NodeReader& program_file,
   const std::string file = resolved.lexically_normal().string();
   const std::string shown =
       file == reference ? "'" + reference + "'" : "'" + reference + "' (" + file + ")";
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) {
-    throw program_file.Error("G-code file " + shown + ": cannot read file: it is a directory");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    throw program_file.Error("G-code file " + shown +
-                             ": cannot open file: " + std::strerror(errno));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    throw program_file.Error("G-code file " + shown + ": cannot read file");
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(file, &text, &error)) {
+    throw program_file.Error("G-code file " + shown + ": " + error);
   }
   try {
-    return controller::ParseGcode(text.str(), start_m);
+    return controller::ParseGcode(text, start_m);
   } catch (const controller::ProgramError& error) {
     throw ConfigError(file, std::max(1, error.line()), std::max(1, error.column()),
                       program_file.path(), error.message());

@@ -56,8 +56,21 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   return json;
 }
 
-void WriteTraceCsv(const std::string& path, const Trace& trace) {
+std::size_t TraceStride(std::size_t samples, long max_rows) {
+  const auto limit = static_cast<std::size_t>(std::max(max_rows, 2L));
+  if (samples <= limit) return 1;
+  return (samples - 1 + (limit - 1) - 1) / (limit - 1);
+}
+
+std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_rows) {
+  const std::size_t samples = trace.time_s.size();
+  const std::size_t stride = TraceStride(samples, max_rows);
   WriteFileAtomically(path, [&](std::ostream& out) {
+    if (stride > 1) {
+      out << "# decimated: every " << stride << "th of " << samples
+          << " samples (limits.max_trace_rows " << max_rows
+          << "); the metrics use every sample\n";
+    }
     out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
            "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
            "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n";
@@ -68,7 +81,7 @@ void WriteTraceCsv(const std::string& path, const Trace& trace) {
                                        trace.command_m.size(), trace.actual_m.size(),
                                        trace.deflection_axes_m.size(), trace.block.size(),
                                        trace.planned_feed_mm_min.size()});
-    for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t i = 0; i < rows; i += stride) {
       const Eigen::Vector3d& c = trace.command_m[i];
       const Eigen::Vector3d& a = trace.actual_m[i];
       const Eigen::Vector3d& d = trace.deflection_axes_m[i];
@@ -81,6 +94,7 @@ void WriteTraceCsv(const std::string& path, const Trace& trace) {
       out << line;
     }
   });
+  return stride;
 }
 
 }  // namespace shapebench::bench

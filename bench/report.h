@@ -28,7 +28,14 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
 // deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
 // block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.
-void WriteTraceCsv(const std::string& path, const Trace& trace);
+// A trace of more than `max_rows` samples is decimated (TraceStride): every stride-th
+// sample from the first, and a first line "# decimated: ..." says so. Returns the stride.
+std::size_t WriteTraceCsv(const std::string& path, const Trace& trace,
+                          long max_rows = RunLimits{}.max_trace_rows);
+
+// The stride that keeps at most `max_rows` (>= 2) of `samples` samples: 1 when they fit,
+// else ceil((samples - 1) / (max_rows - 1)) (samples 0, stride, 2 stride, ...).
+std::size_t TraceStride(std::size_t samples, long max_rows);
 
 // Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
 // +/- static_displacement dashed; pngcairo 1000x600 via gnuplot. Throws

@@ -31,6 +31,18 @@ struct OutputConfig {
   OutputDirection direction = OutputDirection::kAuto;
 };
 
+// Guard rails (issue 7), `limits:` in a scenario. A run whose simulated time (motion and
+// the residual window) would exceed max_simulated_s, or whose command would exceed
+// max_ticks interpolation periods, is refused (exit 2) before anything is generated, from
+// a lower bound of its length (MinimumRunSeconds), and again on the generated command.
+// trace.csv and the plots keep at most max_trace_rows samples (evenly decimated, noted in
+// trace.csv's first line and on stderr); the metrics always use every sample.
+struct RunLimits {
+  double max_simulated_s = 600.0;
+  long max_ticks = 10'000'000;
+  long max_trace_rows = 1'000'000;
+};
+
 struct Scenario {
   model::MultiAxisMachineConfig machine;
   model::DriveConfig drive;
@@ -41,6 +53,7 @@ struct Scenario {
   OutputConfig output;
   model::IntegratorConfig integrator;
   std::vector<Check> checks;
+  RunLimits limits;
   std::string name;         // the file's stem, for reports
   std::string source_file;  // as given on the command line
 

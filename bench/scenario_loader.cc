@@ -1,7 +1,10 @@
 #include "bench/scenario_loader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "bench/config_document.h"
@@ -12,6 +15,9 @@
 #include "bench/node_reader.h"
 #include "bench/program_reader.h"
 #include "controller/controller.h"
+#include "controller/input_shaper.h"
+#include "controller/path_geometry.h"
+#include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::bench {
 namespace {
@@ -20,7 +26,7 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kScenarioKeys = {
     "name", "machine", "drive", "controller", "move", "program", "program_file", "output",
-    "integrator", "checks"};
+    "integrator", "checks", "limits"};
 
 bool HasKey(const YAML::Node& map, const std::string& key) {
   if (!map.IsMap()) return false;
@@ -172,6 +178,55 @@ std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
   return result;
 }
 
+RunLimits ReadLimits(const NodeReader& limits) {
+  limits.ExpectMap({"max_simulated_s", "max_ticks", "max_trace_rows"});
+  RunLimits config;
+  limits.Read("max_simulated_s", &config.max_simulated_s);
+  limits.Read("max_ticks", &config.max_ticks);
+  limits.Read("max_trace_rows", &config.max_trace_rows);
+  if (!(config.max_simulated_s > 0.0)) {
+    throw limits.Child("max_simulated_s")->Error("must be > 0 s");
+  }
+  if (config.max_ticks < 1) throw limits.Child("max_ticks")->Error("must be >= 1");
+  if (config.max_trace_rows < 2) throw limits.Child("max_trace_rows")->Error("must be >= 2");
+  return config;
+}
+
+std::string Seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g s", seconds);
+  return text;
+}
+
+// Guard rail: a run known to be longer than limits: allow is refused before any command
+// is generated (a giant move, a low design frequency, a long filter would otherwise take
+// the machine's memory and time).
+void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
+  std::string breakdown;
+  const double seconds = MinimumRunSeconds(scenario, &breakdown);
+  const double ticks = seconds / scenario.controller.period_s;
+  const RunLimits& limits = scenario.limits;
+  if (seconds > limits.max_simulated_s) {
+    throw document.ErrorAtPath(
+        "limits.max_simulated_s",
+        "scenario '" + scenario.name + "' would simulate at least " + Seconds(seconds) + " (" +
+            breakdown + "), more than limits.max_simulated_s (" + Seconds(limits.max_simulated_s) +
+            "); raise it (e.g. --set limits.max_simulated_s=" +
+            std::to_string(static_cast<long long>(std::ceil(seconds * 2.0))) +
+            ") to run it anyway");
+  }
+  if (ticks > static_cast<double>(limits.max_ticks)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.4g", ticks);
+    throw document.ErrorAtPath(
+        "limits.max_ticks",
+        "scenario '" + scenario.name + "' would take at least " + count +
+            " interpolation periods of " + Seconds(scenario.controller.period_s) + " (" +
+            breakdown + "), more than limits.max_ticks (" + std::to_string(limits.max_ticks) +
+            "); raise it or lengthen controller.period_s");
+  }
+}
+
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                       const LoadOptions& options) {
   NodeReader top(document, document.root(), "");
@@ -212,21 +267,93 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   }
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
   if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
+  if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
 
   Validated(document, "machine", [&] { scenario.machine.validate(); });
   Validated(document, "controller", [&] { scenario.controller.validate(); });
   Validated(document, "move", [&] { scenario.move.validate(); });
   Validated(document, "integrator", [&] { scenario.integrator.validate(); });
+  // A degenerate model (a frequency or stiffness so large that its matrices overflow)
+  // would make the integrators loop or return NaN: refused here, at the machine.
+  Validated(document, "", [&] {
+    const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
+    if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
+        !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
+        !plant.static_gain.allFinite()) {
+      throw ValidationError("machine",
+                            "degenerate model: its state-space matrices or static gain are not "
+                            "finite (a frequency, stiffness, damping or gain too large, or a "
+                            "mass too small, for double precision)");
+    }
+  });
   if (options.plan_move && !scenario.program) {
     // Its fields are scenario-root paths already ("move.distance_mm").
     Validated(document, "", [&] {
       controller::CheckShapedMove(scenario.controller, std::abs(scenario.move.distance_mm) * 1e-3);
     });
   }
+  CheckRunLength(document, scenario);
   return scenario;
 }
 
 }  // namespace
+
+double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
+  const controller::ControllerConfig& c = scenario.controller;
+  const controller::Program program = scenario.RunProgram();
+  const controller::PathGeometry path(program);
+  // The path at its programmed feeds (nothing runs faster; clamps only slow it down).
+  double feed_s = 0.0;
+  double length_m = 0.0;
+  for (const controller::PathElement& e : path.elements()) {
+    const auto block = static_cast<std::size_t>(e.block);
+    double feed = c.feed_m_s();
+    if (block < program.blocks.size()) {
+      const controller::ProgramBlock& b = program.blocks[block];
+      feed = b.kind == controller::MotionKind::kRapid ? c.rapid_feed_mm_min / 60000.0
+             : std::isnan(b.feed_m_s)                 ? c.feed_m_s()
+                                                      : b.feed_m_s;
+    }
+    if (feed > 0.0 && std::isfinite(e.length_m)) feed_s += e.length_m / feed;
+    if (std::isfinite(e.length_m)) length_m += e.length_m;
+  }
+  // From rest to rest with an acceleration of at most a (twice the acc/dec's, for a
+  // grid correction or a table's overshoot): 2 sqrt(L / a) at least.
+  const double accel = 2.0 * c.accel_m_s2();
+  const double accel_s = accel > 0.0 ? 2.0 * std::sqrt(length_m / accel) : 0.0;
+  double dwell_s = 0.0;
+  for (const controller::ProgramBlock& b : program.blocks) dwell_s += b.dwell_s;
+  // A shaped speed change lasts the shaper's duration at least.
+  double pattern_s = 0.0;
+  if (controller::MakeStepPattern(c.pattern).shapes()) {
+    const std::vector<controller::Impulse> impulses = controller::ShaperImpulses(c.pattern);
+    if (!impulses.empty()) pattern_s = impulses.back().time_s - impulses.front().time_s;
+  }
+  // Post-interpolation filters add their length (the exponential runs until 1e-12 m is
+  // left of the path).
+  double filter_s = 0.0;
+  const controller::PostInterpConfig& post = c.post_interp;
+  if (post.type == controller::PostInterpType::kExponential && length_m > 1e-12) {
+    filter_s = post.time_constant_s * std::log(length_m / 1e-12);
+  } else if (post.type == controller::PostInterpType::kProfileTable) {
+    filter_s = post.table.empty() ? post.moving_average_s
+                                  : static_cast<double>(post.table.size()) * c.period_s;
+  }
+  // The residual window: three periods of the lowest mode (0.1 s for a rigid machine).
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+    for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  const double tail_s = 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
+  const double motion_s = std::max(feed_s, accel_s) + dwell_s + pattern_s + filter_s;
+  if (breakdown != nullptr) {
+    *breakdown = "motion " + Seconds(motion_s) + ": the path at its feeds " + Seconds(feed_s) +
+                 " or acc/dec " + Seconds(accel_s) + ", dwells " + Seconds(dwell_s) +
+                 ", pattern " + Seconds(pattern_s) + ", post-interpolation " + Seconds(filter_s) +
+                 "; residual window " + Seconds(tail_s);
+  }
+  return motion_s + tail_s;
+}
 
 std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks); }
 

@@ -54,6 +54,14 @@ model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
 // the driven axis is rigid.
 model::MachineConfig LoadMachine(const std::string& path, const std::vector<Override>& overrides);
 
+// A lower bound of the simulated time of a run (seconds), computed without generating the
+// command: the path at its programmed feeds (or, if longer, from rest to rest at twice the
+// acc/dec's acceleration), dwells, the pattern's duration, the post-interpolation filter's
+// length, and the residual window (three periods of the lowest mode). `breakdown`, when
+// given, receives the parts in words. The loader refuses a scenario whose bound exceeds
+// limits.max_simulated_s or limits.max_ticks periods (a ConfigError naming the scenario).
+double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
+
 // Locates a ValidationError raised later about a loaded scenario (its field a scenario
 // key path, e.g. from RunScenario) in the scenario's sources.
 ConfigError LocateValidationError(const std::string& path,

@@ -17,6 +17,7 @@
 
 #include "bench/atomic_file.h"
 #include "bench/csv.h"
+#include "bench/interrupt.h"
 #include "bench/sweep_plot.h"
 
 namespace shapebench::bench {
@@ -240,6 +241,7 @@ std::vector<std::string> ResultColumns(const Sweep& sweep) {
 SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
                          const SweepRunOptions& options) {
   const auto start = Clock::now();
+  const DeferInterrupts defer;  // a signal stops the sweep after its complete rows
   if (options.shard_count < 1 || options.shard_index >= options.shard_count) {
     throw std::runtime_error("--shard I/N needs N >= 1 and I in 0..N-1");
   }
@@ -296,7 +298,8 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
             WriteAll(file, row.text, partial.string());
             if (!row.ok) ++summary.errors;
             progress.Update(++written);
-          });
+          },
+          0, [] { return PendingInterrupt() != 0; });
       progress.Finish(written);
       if (fsync(fileno(file)) != 0) {
         throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
@@ -308,11 +311,26 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     if (std::fclose(file) != 0) {
       throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
     }
+    if (written < shard.Size()) {
+      // SIGINT/SIGTERM: the rows so far are complete and flushed; the same command resumes.
+      ThrowIfInterrupted(std::to_string(written) + " of " + std::to_string(shard.Size()) +
+                         " points done, kept in " + partial.string() +
+                         "; run the same command again to resume");
+    }
     fs::rename(partial, dir / kResults);
   }
   summary.ok = summary.points - summary.errors;
+  ThrowIfInterrupted("all " + std::to_string(summary.points) + " points done, " + summary.results +
+                     " is complete; run the same command again to draw the plots");
   if (options.shard_count == 1) {
-    summary.plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary.results);
+    try {
+      summary.plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary.results);
+    } catch (const std::exception&) {
+      // gnuplot gets the terminal's SIGINT too: report the interruption, not its failure.
+      ThrowIfInterrupted(summary.results + " is complete; run the same command again to draw the plots");
+      throw;
+    }
+    ThrowIfInterrupted(summary.results + " and the plots are complete");
   }
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <map>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -12,7 +13,17 @@ namespace shapebench::controller {
 std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double period_s,
                                        const GridDesign& design, double accel_before_m_s2,
                                        double accel_limit_m_s2) {
-  std::map<long, double> weights;  // ordered by tick: deterministic sums
+  // (tick, weight) ordered by tick: deterministic sums. A sorted vector, not a map: a group
+  // has a handful of ticks, and this runs dozens of times per command (the exact-distance
+  // search); the arithmetic (each += in impulse order) is the same.
+  std::vector<std::pair<long, double>> weights;
+  weights.reserve(2 * group.size() + 2);
+  auto weight = [&weights](long tick) -> double& {
+    auto it = std::lower_bound(weights.begin(), weights.end(), tick,
+                               [](const std::pair<long, double>& w, long t) { return w.first < t; });
+    if (it == weights.end() || it->first != tick) it = weights.insert(it, {tick, 0.0});
+    return it->second;
+  };
   for (const Impulse& impulse : group) {
     const double position = impulse.time_s / period_s;
     long tick = static_cast<long>(std::floor(position));
@@ -23,11 +34,11 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       ++tick;
       fraction = 0.0;
     }
-    weights[tick] += impulse.amplitude * (1.0 - fraction);
-    if (fraction > 0.0) weights[tick + 1] += impulse.amplitude * fraction;
+    weight(tick) += impulse.amplitude * (1.0 - fraction);
+    if (fraction > 0.0) weight(tick + 1) += impulse.amplitude * fraction;
   }
-  const long first_tick = weights.begin()->first;
-  const long periods = weights.rbegin()->first - first_tick;  // the group's span
+  const long first_tick = weights.front().first;
+  const long periods = weights.back().first - first_tick;  // the group's span
   const std::size_t frequencies = design.frequencies_hz.size();
   const long rows = 1 + 2 * static_cast<long>(frequencies);  // velocity + a phasor each
   bool designed = frequencies > 0;
@@ -42,10 +53,21 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       if (zeta == 0.0) return std::polar(1.0, w * dt);
       return std::exp(zeta * w * dt) * std::polar(1.0, w * std::sqrt(1.0 - zeta * zeta) * dt);
     };
+    // The phasor at each tick of the span, once (the same values the sums below would
+    // compute again and again).
+    std::vector<std::complex<double>> tick_phase((periods + 1) * frequencies);
+    for (std::size_t j = 0; j < frequencies; ++j) {
+      for (long p = 0; p <= periods; ++p) {
+        tick_phase[j * (periods + 1) + p] = phase(j, (first_tick + p) * period_s);
+      }
+    }
+    auto phase_at_tick = [&](std::size_t j, long tick) {
+      return tick_phase[j * (periods + 1) + (tick - first_tick)];
+    };
     std::vector<std::complex<double>> mismatch(frequencies, 0.0);  // ideal minus plain split
     for (std::size_t j = 0; j < frequencies; ++j) {
       for (const Impulse& impulse : group) mismatch[j] += impulse.amplitude * phase(j, impulse.time_s);
-      for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase(j, tick * period_s);
+      for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase_at_tick(j, tick);
     }
     // Correct the acceleration of periods of the span by e_p, as little as possible
     // (least squares, spread over the span rather than piled onto one period):
@@ -56,9 +78,8 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
     // correction does not raise the run's peak acceleration (and static deflection).
     std::vector<double> level(periods);  // acceleration over each period of the span
     double running = accel_before_m_s2;
-    for (long p = 0; p < periods; ++p) {
-      const auto it = weights.find(first_tick + p);
-      if (it != weights.end()) running += it->second;
+    for (long p = 0, next = 0; p < periods; ++p) {
+      if (weights[next].first == first_tick + p) running += weights[next++].second;
       level[p] = running;
     }
     auto solve = [&](bool spare_the_peak) -> std::vector<double> {
@@ -73,7 +94,7 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
         constraints(0, i) = 1.0;
         for (std::size_t j = 0; j < frequencies; ++j) {
           const std::complex<double> c =
-              phase(j, (first_tick + p + 1) * period_s) - phase(j, (first_tick + p) * period_s);
+              phase_at_tick(j, first_tick + p + 1) - phase_at_tick(j, first_tick + p);
           constraints(1 + 2 * j, i) = c.real();
           constraints(2 + 2 * j, i) = c.imag();
         }
@@ -101,14 +122,15 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       double previous = 0.0;
       for (long p = 0; p <= periods; ++p) {
         const double current = p < periods ? correction[p] : 0.0;
-        weights[first_tick + p] += current - previous;  // acceleration change at the tick
+        weight(first_tick + p) += current - previous;  // acceleration change at the tick
         previous = current;
       }
     }
   }
   std::vector<GridImpulse> result;
-  for (const auto& [tick, weight] : weights) {
-    if (weight != 0.0) result.push_back({tick, weight});
+  result.reserve(weights.size());
+  for (const auto& [tick, w] : weights) {
+    if (w != 0.0) result.push_back({tick, w});
   }
   return result;
 }

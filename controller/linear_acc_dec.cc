@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <limits>
 
 #include "controller/grid_realization.h"
 
@@ -220,13 +222,56 @@ IdealProfile PlanRestToRest(double distance_m, double feed_m_s, double accel_m_s
   return profile;
 }
 
-CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
-                                 const GridDesign& design) {
+namespace {
+
+// RealizeOnGrid's results for the groups seen so far in one exact-distance search: the
+// search changes the nominal distance, which moves the groups after the cruise; the
+// groups before it are the same every time, and their (deterministic) realization is
+// looked up instead of computed again.
+class GridCache {
+ public:
+  const std::vector<GridImpulse>& Realize(const std::vector<Impulse>& group, double period_s,
+                                          const GridDesign& design, double accel_before,
+                                          double accel_limit) {
+    for (const Entry& e : entries_) {
+      if (e.accel_before == accel_before && e.accel_limit == accel_limit && Same(e.group, group)) {
+        return e.result;
+      }
+    }
+    entries_.push_back(
+        {group, accel_before, accel_limit,
+         RealizeOnGrid(group, period_s, design, accel_before, accel_limit)});
+    return entries_.back().result;
+  }
+
+ private:
+  struct Entry {
+    std::vector<Impulse> group;
+    double accel_before;
+    double accel_limit;
+    std::vector<GridImpulse> result;
+  };
+  static bool Same(const std::vector<Impulse>& a, const std::vector<Impulse>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].time_s != b[i].time_s || a[i].amplitude != b[i].amplitude) return false;
+    }
+    return true;
+  }
+  std::deque<Entry> entries_;  // stable references
+};
+
+CommandTrajectory RealizeOnTicksWith(const IdealProfile& profile, double period_s,
+                                     const GridDesign& design, GridCache* cache) {
   std::vector<double> jumps;  // acceleration change at each tick
   const double accel_limit = profile.MaxAbsAccel();
   double accel_before = 0.0;  // groups are in time order; each adds its net change
   for (const std::vector<Impulse>& group : profile.jerk_groups) {
-    for (const GridImpulse& g : RealizeOnGrid(group, period_s, design, accel_before, accel_limit)) {
+    std::vector<GridImpulse> own;
+    const std::vector<GridImpulse>& realized =
+        cache != nullptr ? cache->Realize(group, period_s, design, accel_before, accel_limit)
+                         : (own = RealizeOnGrid(group, period_s, design, accel_before, accel_limit));
+    for (const GridImpulse& g : realized) {
       const auto tick = static_cast<std::size_t>(std::max(0L, g.tick));
       if (jumps.size() <= tick) jumps.resize(tick + 1, 0.0);
       jumps[tick] += g.amplitude;
@@ -245,6 +290,13 @@ CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
   // would leave ~1e-17 m/s there.
   trajectory.velocity_m_s.back() = 0.0;
   return trajectory;
+}
+
+}  // namespace
+
+CommandTrajectory RealizeOnTicks(const IdealProfile& profile, double period_s,
+                                 const GridDesign& design) {
+  return RealizeOnTicksWith(profile, period_s, design, nullptr);
 }
 
 namespace {
@@ -271,42 +323,57 @@ CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>
   // The grid trajectory covers slightly more or less than the ideal one when steps fall
   // between ticks. Plan for a nominal distance X whose realised distance S(X) is the
   // requested one: S is continuous and increasing with S(X) ~ X, so regula falsi with a
-  // bisection fallback converges in a few evaluations.
-  auto realize = [&](double nominal_m) {
-    return RealizeOnTicks(plan(nominal_m), period_s, design);
+  // bisection fallback converges in a few evaluations. Below that S is a staircase of
+  // rounding (and of RealizeOnGrid's snapping of near-grid steps): the search stops once
+  // two evaluations in a row bring no closer, or the bracket holds no double between its
+  // ends, and returns the closest trajectory found (kept, not realised again).
+  GridCache cache;
+  CommandTrajectory best_trajectory;
+  double best = 0.0;
+  double best_f = std::numeric_limits<double>::infinity();
+  int stalled = 0;  // evaluations in a row that did not improve on best_f
+  auto error = [&](double nominal_m) {
+    CommandTrajectory trajectory = RealizeOnTicksWith(plan(nominal_m), period_s, design, &cache);
+    const double f = RealizedDistance(trajectory) - distance_m;
+    if (std::abs(f) < best_f) {
+      best = nominal_m;
+      best_f = std::abs(f);
+      best_trajectory = std::move(trajectory);
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+    return f;
   };
-  auto error = [&](double nominal_m) { return RealizedDistance(realize(nominal_m)) - distance_m; };
+  constexpr int kMaxStalled = 2;
   const double x0 = distance_m;
   const double f0 = error(x0);
-  if (f0 == 0.0) return realize(x0);
+  if (f0 == 0.0) return best_trajectory;
   double step = std::abs(f0) * 2.0 + 1e-15 * distance_m;
   double x1 = x0 - (f0 > 0 ? step : -step);
   double f1 = error(x1);
-  for (int i = 0; i < 60 && (f0 > 0) == (f1 > 0); ++i) {
+  for (int i = 0; i < 60 && (f0 > 0) == (f1 > 0) && stalled < kMaxStalled; ++i) {
     step *= 2.0;
     x1 = std::max(0.5 * x0 * 1e-3, x0 - (f0 > 0 ? step : -step));
     f1 = error(x1);
   }
+  if ((f0 > 0) == (f1 > 0)) return best_trajectory;  // no bracket: the closest found
   double lo = f0 < 0 ? x0 : x1;
   double hi = f0 < 0 ? x1 : x0;
   double f_lo = f0 < 0 ? f0 : f1;
   double f_hi = f0 < 0 ? f1 : f0;
-  double best = std::abs(f0) < std::abs(f1) ? x0 : x1;
-  double best_f = std::min(std::abs(f0), std::abs(f1));
-  for (int i = 0; i < 100 && best_f > 1e-15 * distance_m; ++i) {
+  for (int i = 0; i < 100 && best_f > 1e-15 * distance_m && stalled < kMaxStalled; ++i) {
+    if (std::nextafter(lo, hi) >= hi) break;  // no double strictly between: nothing new
     double x = lo - f_lo * (hi - lo) / (f_hi - f_lo);
     if (!(x > lo && x < hi) || i % 3 == 2) x = 0.5 * (lo + hi);
     const double f = error(x);
-    if (std::abs(f) < best_f) {
-      best = x;
-      best_f = std::abs(f);
-    }
     if (f == 0.0) break;
     (f < 0 ? lo : hi) = x;
     (f < 0 ? f_lo : f_hi) = f;
     if (hi - lo <= 1e-16 * distance_m) break;
   }
-  return realize(best);
+  (void)best;
+  return best_trajectory;
 }
 
 }  // namespace shapebench::controller

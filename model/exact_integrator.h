@@ -2,11 +2,25 @@
 // held over each substep (zero-order hold on a, so the drive velocity v is a ramp).
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "model/integrator.h"
 
 namespace shapebench::model {
+
+// z+ = phi z + gamma a over one substep h, z = [x; v] (LinearPlant::AugmentedA/B).
+struct ExactDiscretization {
+  Eigen::MatrixXd phi;
+  Eigen::MatrixXd gamma;
+};
+
+// Van Loan's block exponential, balanced. The last few results are kept per thread and
+// handed out again for the same (AugmentedA, AugmentedB, h), exactly equal: the runs of a
+// sweep whose plant does not change (feed, pattern, acc/dec time...) compute it once.
+std::shared_ptr<const ExactDiscretization> DiscretizeExactly(const LinearPlant& plant, double h);
 
 class ExactIntegrator final : public PlantIntegrator {
  public:
@@ -18,18 +32,42 @@ class ExactIntegrator final : public PlantIntegrator {
   Eigen::VectorXd Output() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
+  int num_inputs() const override { return num_inputs_; }
+  int num_outputs() const override { return num_outputs_; }
+  int substeps() const override { return substeps_; }
+  void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+                     double* outputs) override;
+
+  // How many of the augmented states the integrator steps: those that reach an output
+  // (through C or through other such states); the rest (e.g. the drive velocity of a plant
+  // with B_vel = 0) are left out, which changes no output.
+  int num_stepped_states() const { return kept_; }
 
  private:
+  void SetAccel(const double* drive_accel);
+  void StepState();
+  void WriteOutputs(double* outputs) const;
+
   int num_states_;
   int num_inputs_;
+  int num_outputs_;
   double period_s_;
   int substeps_;
-  Eigen::MatrixXd C_;
-  // Augmented state z = [x; v] over one substep: z+ = phi_ z + gamma_ a.
-  Eigen::MatrixXd phi_;
-  Eigen::MatrixXd gamma_;
-  Eigen::VectorXd z_;
-  Eigen::VectorXd accel_;
+  std::shared_ptr<const ExactDiscretization> discretization_;
+  // The stepped states: indices into z, and row-major blocks of phi, gamma and C over them.
+  int kept_ = 0;
+  std::vector<int> kept_index_;
+  std::vector<double> phi_;    // kept_ x kept_
+  std::vector<double> gamma_;  // kept_ x num_inputs_
+  std::vector<double> c_;      // num_outputs_ x kept_
+  // phi_ without its zeros (CSR), for the larger, block-diagonal plants of several axes.
+  std::vector<int> row_start_;
+  std::vector<int> col_;
+  std::vector<double> value_;
+  std::vector<double> z_;      // kept_
+  std::vector<double> g_;      // gamma a, for the held a
+  std::vector<double> next_;   // scratch
+  std::vector<double> accel_;  // num_inputs_
   long count_ = 0;
 };
 

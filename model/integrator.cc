@@ -1,6 +1,7 @@
 #include "model/integrator.h"
 
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 #include <vector>
 
@@ -61,7 +62,10 @@ class InputSelectingIntegrator final : public PlantIntegrator {
  public:
   InputSelectingIntegrator(std::unique_ptr<PlantIntegrator> inner, std::vector<int> used,
                            int num_inputs)
-      : inner_(std::move(inner)), used_(std::move(used)), num_inputs_(num_inputs) {}
+      : inner_(std::move(inner)),
+        used_(std::move(used)),
+        num_inputs_(num_inputs),
+        selected_(used_.size()) {}
 
   void Reset(const Eigen::VectorXd& drive_velocity) override {
     inner_->Reset(Select(drive_velocity, "Reset"));
@@ -73,6 +77,14 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   Eigen::VectorXd Output() const override { return inner_->Output(); }
   double Time() const override { return inner_->Time(); }
   IntegratorStats Stats() const override { return inner_->Stats(); }
+  int num_inputs() const override { return num_inputs_; }
+  int num_outputs() const override { return inner_->num_outputs(); }
+  int substeps() const override { return inner_->substeps(); }
+  void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+                     double* outputs) override {
+    for (std::size_t j = 0; j < used_.size(); ++j) selected_[j] = drive_accel[used_[j]];
+    inner_->AdvancePeriod(selected_.data(), same_input_until_s, outputs);
+  }
 
  private:
   Eigen::VectorXd Select(const Eigen::VectorXd& full, const char* call) const {
@@ -88,6 +100,7 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   std::unique_ptr<PlantIntegrator> inner_;
   std::vector<int> used_;
   int num_inputs_;
+  std::vector<double> selected_;  // AdvancePeriod's input, without allocating per tick
 };
 
 std::unique_ptr<PlantIntegrator> MakeFullIntegrator(const LinearPlant& plant,
@@ -95,7 +108,8 @@ std::unique_ptr<PlantIntegrator> MakeFullIntegrator(const LinearPlant& plant,
                                                     double period_s, int substeps,
                                                     double scale_accel_m_s2,
                                                     double scale_velocity_m_s) {
-  switch (config.method) {
+  switch (ResolveMethod(config.method, plant)) {
+    case IntegratorMethod::kAuto:  // resolved above
     case IntegratorMethod::kExact:
       return std::make_unique<ExactIntegrator>(plant, period_s, substeps);
     case IntegratorMethod::kCvode:
@@ -106,6 +120,23 @@ std::unique_ptr<PlantIntegrator> MakeFullIntegrator(const LinearPlant& plant,
 }
 
 }  // namespace
+
+void PlantIntegrator::AdvancePeriod(const double* drive_accel, double /*same_input_until_s*/,
+                                    double* outputs) {
+  SetInput(Eigen::Map<const Eigen::VectorXd>(drive_accel, num_inputs()));
+  const int rows = num_outputs();
+  for (int j = 0; j < substeps(); ++j) {
+    Step();
+    Eigen::Map<Eigen::VectorXd>(outputs + static_cast<std::ptrdiff_t>(j) * rows, rows) = Output();
+  }
+}
+
+IntegratorMethod ResolveMethod(IntegratorMethod method, const LinearPlant& /*plant*/) {
+  // Every plant a LinearPlant describes is linear (machine forms, kinematic and servo
+  // drives): its exact discretisation is exact and the fastest. A nonlinear element would
+  // make this CVODE.
+  return method == IntegratorMethod::kAuto ? IntegratorMethod::kExact : method;
+}
 
 void IntegratorConfig::validate() const {
   if (!(rtol > 0.0 && rtol <= 1.0e-2)) {

@@ -13,8 +13,31 @@
 
 namespace shapebench::model {
 
-enum class IntegratorMethod { kCvode, kExact };
+// kAuto: the exact discretisation for a linear plant (every plant LinearPlant describes is
+// linear: the machine forms, both drives), CVODE for a plant with a nonlinear element (none
+// exists yet; MakeIntegrator resolves kAuto with ResolveMethod).
+enum class IntegratorMethod { kCvode, kExact, kAuto };
 enum class CvodeLmm { kAdams, kBdf };
+
+// How CvodeIntegrator drives CVODE. The defaults are the measured choices (issue 6,
+// README "Performance"); the others exist to measure them against (benchmarks/).
+enum class CvodeInputMode {
+  // Integrate across ticks while the held acceleration stays the same (the master says for
+  // how long, PlantIntegrator::AdvancePeriod); stop and restart only where it changes.
+  kContinuous,
+  // Stop at every tick (CVodeSetStopTime), restart only where the acceleration changes:
+  // what Step() does, which does not know the next input.
+  kStopEveryTick,
+  // Stop and restart (CVodeReInit) at every tick: a co-simulation slave that knows nothing.
+  kRestartEveryTick,
+};
+struct CvodeTuning {
+  CvodeInputMode input_mode = CvodeInputMode::kContinuous;
+  bool jacobian = true;        // the plant's constant Jacobian; false: CVODE's difference quotients
+  bool per_state_atol = true;  // AbsoluteTolerances per state; false: one scalar (their minimum)
+  bool reuse_memory = true;    // CVODE memory from this thread's pool; false: created per integrator
+  bool fixed_point = false;    // fixed-point (functional) iteration instead of Newton's
+};
 
 struct IntegratorConfig {
   IntegratorMethod method = IntegratorMethod::kCvode;
@@ -28,6 +51,7 @@ struct IntegratorConfig {
   CvodeLmm lmm = CvodeLmm::kAdams;
   long max_num_steps = 100000;  // per call to CVode (one output substep)
   int output_substeps = 0;      // samples per interpolation period; 0 = automatic
+  CvodeTuning tuning;           // not a scenario key: what the benchmarks compare
   void validate() const;        // throws ValidationError naming the field
 };
 
@@ -61,7 +85,23 @@ class PlantIntegrator {
   virtual Eigen::VectorXd Output() const = 0;  // deflection, C x
   virtual double Time() const = 0;
   virtual IntegratorStats Stats() const { return {}; }
+  virtual int num_inputs() const = 0;
+  virtual int num_outputs() const = 0;
+  virtual int substeps() const = 0;  // output substeps per interpolation period
+
+  // One whole interpolation period (the co-simulation master's fast path): holds
+  // `drive_accel` (num_inputs values) over it, advances its `substeps` output substeps and
+  // writes the outputs after each to `outputs` (substep after substep, num_outputs each).
+  // `same_input_until_s`: the master's promise that the input stays the same up to that time
+  // (>= the period's end); CVODE then integrates across the ticks in between. Results are
+  // those of SetInput and Step/Output per substep (exactly so for the exact integrator; CVODE
+  // may take other, longer steps within its tolerances).
+  virtual void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+                             double* outputs);
 };
+
+// The method kAuto stands for with this plant: kExact (every LinearPlant is linear).
+IntegratorMethod ResolveMethod(IntegratorMethod method, const LinearPlant& plant);
 
 // `scale_accel_m_s2`: the largest acceleration magnitude of the run, `scale_velocity_m_s`
 // its largest commanded speed; together they set the tolerances (a servo's following error

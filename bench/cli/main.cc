@@ -18,6 +18,7 @@
 #include "bench/atomic_file.h"
 #include "bench/checks.h"
 #include "bench/cosim.h"
+#include "bench/interrupt.h"
 #include "bench/modes_report.h"
 #include "bench/pattern_report.h"
 #include "bench/report.h"
@@ -47,14 +48,25 @@ std::string SolverMessage(const model::SolverError& error) {
 int Guarded(const std::function<int()>& command) {
   try {
     return command();
-  } catch (const ConfigError& error) {
+  } catch (const InterruptedError& error) {  // SIGINT, SIGTERM: 130, 143
     std::cerr << "error: " << error.what() << "\n";
-    return kExitBadInput;
-  } catch (const model::SolverError& error) {
-    std::cerr << "error: " << SolverMessage(error) << "\n";
-    return kExitSolverFailed;
-  } catch (const std::exception& error) {  // ValidationError without a file, I/O errors
-    std::cerr << "error: " << error.what() << "\n";
+    return error.exit_code();
+  } catch (const std::exception& error) {
+    if (PendingInterrupt() != 0) {
+      // E.g. gnuplot killed by the terminal's SIGINT: report the interruption.
+      std::cerr << "error: interrupted by " << SignalName(PendingInterrupt()) << " (" << error.what()
+                << ")\n";
+      return 128 + PendingInterrupt();
+    }
+    if (const auto* config = dynamic_cast<const ConfigError*>(&error)) {
+      std::cerr << "error: " << config->what() << "\n";
+      return kExitBadInput;
+    }
+    if (const auto* solver = dynamic_cast<const model::SolverError*>(&error)) {
+      std::cerr << "error: " << SolverMessage(*solver) << "\n";
+      return kExitSolverFailed;
+    }
+    std::cerr << "error: " << error.what() << "\n";  // ValidationError without a file, I/O
     return kExitBadInput;
   }
 }
@@ -83,15 +95,25 @@ int RunCommand(const RunArgs& args) {
     std::cerr << "warning: " << scenario.source_file << ": " << warning << "\n";
   }
   if (!args.out_dir.empty()) {
-    // Created only now: bad input and solver failures leave no directory behind.
+    // Created only now: bad input and solver failures leave no directory behind. A signal
+    // while writing lets the files finish (each is complete or absent), then stops.
+    const DeferInterrupts defer;
     std::filesystem::create_directories(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
     WriteFileAtomically((dir / "metrics.json").string(), [&](std::ostream& out) {
       out << MetricsJson(result.metrics).dump(2) << "\n";
     });
-    WriteTraceCsv((dir / "trace.csv").string(), result.trace);
+    const std::size_t stride =
+        WriteTraceCsv((dir / "trace.csv").string(), result.trace, scenario.limits.max_trace_rows);
+    if (stride > 1) {
+      std::cerr << "note: " << scenario.source_file << ": the trace has " << result.trace.time_s.size()
+                << " samples, more than limits.max_trace_rows (" << scenario.limits.max_trace_rows
+                << "): trace.csv and the plots keep every " << stride
+                << "th; the metrics use every sample\n";
+    }
     WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
     WritePathPlot((dir / "path.png").string(), result, scenario);
+    ThrowIfInterrupted("the output in " + args.out_dir + " is complete");
   }
   if (args.json) {
     std::cout << MetricsJson(result.metrics).dump(2) << std::endl;
@@ -171,7 +193,11 @@ int CheckCommand(const CheckArgs& args) {
     std::cout.flush();
     reports.push_back(report);
   }
-  if (!args.junit.empty()) WriteJUnit(args.junit, reports);
+  if (!args.junit.empty()) {
+    const DeferInterrupts defer;
+    WriteJUnit(args.junit, reports);
+    ThrowIfInterrupted(args.junit + " is complete");
+  }
   return exit_code;
 }
 
@@ -218,11 +244,13 @@ int SensitivityCommand(const SensitivityArgs& args) {
   const SensitivitySpec spec = LoadSensitivity(args.file, ParseOverrides(args.sets));
   const SensitivityResult result = ComputeSensitivity(spec);
   if (!args.out_dir.empty()) {
+    const DeferInterrupts defer;
     std::filesystem::create_directories(args.out_dir);
     const std::filesystem::path dir(args.out_dir);
     WriteSensitivityCsv((dir / "sensitivity.csv").string(), result);
     WriteSensitivityPlot((dir / "sensitivity.png").string(), result,
                          "shaper sensitivity: " + std::filesystem::path(args.file).stem().string());
+    ThrowIfInterrupted("the output in " + args.out_dir + " is complete");
   }
   PrintSensitivityTable(std::cout, result);
   std::cout.flush();
@@ -299,7 +327,9 @@ int MergeCommand(const MergeArgs& args) {
     out_dir = shards.front();
     shards.erase(shards.begin());
   }
+  const DeferInterrupts defer;
   const MergeSummary summary = MergeShards(out_dir, shards);
+  ThrowIfInterrupted("the merged output in " + out_dir + " is complete");
   std::cout << "merged " << summary.shards << " shards: " << summary.points << " points -> "
             << summary.results << "\n";
   for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
@@ -318,6 +348,7 @@ void AddSetOption(CLI::App* command, std::vector<std::string>* sets) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  InstallInterruptHandlers();  // SIGINT, SIGTERM: complete files only (bench/interrupt.h)
   CLI::App app{"shapebench: CNC vibration co-simulation testbench"};
   app.require_subcommand(1);
 

@@ -1,0 +1,151 @@
+// The bodies of the libFuzzer targets (fuzz/fuzz_*.cc), shared with the regression test
+// (tests/bench/fuzz_regressions_test.cc) that runs every file of fuzz/regressions/TARGET/
+// through them. Each takes the input's bytes and returns normally when the bench accepts
+// the input or refuses it with its documented, located error. Anything else is a finding:
+// a Violation thrown (an invariant broken), another exception escaping, a crash, a
+// sanitizer report or a hang.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bench/config_error.h"
+#include "bench/override.h"
+#include "bench/scenario.h"
+#include "bench/scenario_loader.h"
+#include "bench/sweep.h"
+#include "bench/sweep_runner.h"
+#include "common/validation_error.h"
+#include "controller/controller.h"
+#include "controller/gcode_parser.h"
+#include "fuzz/fuzz_support.h"
+
+namespace shapebench::fuzz {
+
+// An invariant the input broke (not derived from std::exception: nothing catches it).
+struct Violation {
+  std::string what;
+};
+
+// The small limits every target loads with (after the input's own options, so they
+// hold): the loader refuses longer runs before planning, so each input stays quick.
+inline std::vector<bench::Override> SmallLimits() {
+  return {{"limits.max_simulated_s", "20"}, {"limits.max_ticks", "50000"}};
+}
+
+// G-code parser (controller/gcode_parser.h): any bytes are a program or a ProgramError
+// at a line and column; a parsed program is finite, and one short enough goes through
+// the whole controller (planner, interpolation, filters) on the default settings.
+inline void GcodeTarget(const std::string& text) {
+  controller::Program program;
+  try {
+    program = controller::ParseGcode(text);
+  } catch (const controller::ProgramError& error) {
+    if (error.line() < 1 || error.column() < 0) throw Violation{"unlocated: " + std::string(error.what())};
+    return;
+  }
+  for (const controller::ProgramBlock& block : program.blocks) {
+    if (!block.start_m.allFinite() || !block.end_m.allFinite() || !block.center_m.allFinite() ||
+        !std::isfinite(block.dwell_s)) {
+      throw Violation{"a parsed program with a non-finite block"};
+    }
+  }
+  bench::Scenario scenario;
+  scenario.program = program;
+  scenario.machine.axes = {};  // rigid: the residual window is short
+  scenario.limits.max_simulated_s = 20.0;
+  scenario.limits.max_ticks = 50000;
+  try {
+    if (bench::MinimumRunSeconds(scenario) > scenario.limits.max_simulated_s) return;
+    controller::GenerateProgramCommand(scenario.controller, program);
+  } catch (const ValidationError& error) {
+    if (error.field().empty()) throw Violation{"a ValidationError without a key: " + std::string(error.what())};
+  }
+}
+
+// Scenario loader (bench/scenario_loader.h): any bytes as a scenario file are a Scenario
+// or a ConfigError at FILE:LINE:COL; a loaded scenario's command is generated, or refused
+// with a ValidationError naming a scenario key.
+inline void ScenarioTarget(const std::string& bytes) {
+  ConfigsCopy();
+  const std::string path = WriteInput("scenarios/input.yaml", bytes);
+  bench::Scenario scenario;
+  try {
+    scenario = bench::LoadScenario(path, SmallLimits());
+  } catch (const bench::ConfigError& error) {
+    if (error.file().empty()) throw Violation{"unlocated: " + std::string(error.what())};
+    return;
+  }
+  try {
+    controller::ControllerConfig config = scenario.controller;
+    config.stroke_limits = scenario.machine.stroke_m;
+    controller::GenerateProgramCommand(config, scenario.RunProgram());
+  } catch (const ValidationError& error) {
+    if (error.field().empty()) throw Violation{"a ValidationError without a key: " + std::string(error.what())};
+  }
+}
+
+// --set parser (bench/override.h, ConfigDocument::ApplyOverride): the first byte picks a
+// shipped file, every following line is one --set KEY=VALUE; parsed, applied and loaded
+// (a machine file as `modes` reads it).
+inline void SetTarget(const std::string& bytes) {
+  static const char* const kBases[] = {"demo.yaml",
+                                       "scenarios/method2.yaml",
+                                       "scenarios/pocket_corner.yaml",
+                                       "scenarios/pocket_gcode.yaml",
+                                       "scenarios/circle_test.yaml",
+                                       "scenarios/um_zv.yaml",
+                                       "scenarios/stroke_end.yaml",
+                                       "machines/moving_column.yaml"};
+  if (bytes.empty()) return;
+  const std::filesystem::path root = ConfigsCopy();
+  const std::string base =
+      kBases[static_cast<unsigned char>(bytes[0]) % (sizeof kBases / sizeof kBases[0])];
+  std::vector<std::string> texts;
+  std::string line;
+  for (std::size_t i = 1; i < bytes.size(); ++i) {
+    if (bytes[i] == '\n') {
+      texts.push_back(line);
+      line.clear();
+    } else {
+      line += bytes[i];
+    }
+  }
+  if (!line.empty()) texts.push_back(line);
+  try {
+    std::vector<bench::Override> overrides = bench::ParseOverrides(texts);
+    const std::string path = (root / base).string();
+    if (base.rfind("machines/", 0) == 0) {
+      bench::LoadMachineAxes(path, overrides);
+    } else {
+      for (const bench::Override& limit : SmallLimits()) overrides.push_back(limit);
+      bench::LoadScenario(path, overrides);
+    }
+  } catch (const bench::ConfigError& error) {
+    if (error.file().empty()) throw Violation{"unlocated: " + std::string(error.what())};
+  }
+}
+
+// Sweep loader (bench/sweep.h): any bytes as a sweep file (in sweeps/, beside copies of
+// the shipped scenarios) are a Sweep or a located ConfigError; a loaded sweep's columns,
+// hash and first, middle and last points are computed (points are not run).
+inline void SweepTarget(const std::string& bytes) {
+  ConfigsCopy();
+  const std::string path = WriteInput("sweeps/input.yaml", bytes);
+  bench::IsSweepFile(path);
+  try {
+    const bench::Sweep sweep = bench::LoadSweep(path, {});
+    if (sweep.points == 0) throw Violation{"a sweep without points"};
+    bench::ResultColumns(sweep);
+    bench::SweepHash(sweep, {});
+    for (const std::uint64_t point : {std::uint64_t{0}, sweep.points / 2, sweep.points - 1}) {
+      bench::MakePoint(sweep, point, {}).Label();
+    }
+  } catch (const bench::ConfigError& error) {
+    if (error.file().empty()) throw Violation{"unlocated: " + std::string(error.what())};
+  }
+}
+
+}  // namespace shapebench::fuzz
