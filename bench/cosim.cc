@@ -64,9 +64,11 @@ struct ArcWindow {
 
 }  // namespace
 
-int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s) {
+namespace {
+
+int AutoSubstepsOf(const std::vector<model::AxisModes>& modes, double period_s) {
   double fastest_hz = 0.0;
-  for (const model::AxisModes& axis : model::AnalyzeMachineModes(machine)) {
+  for (const model::AxisModes& axis : modes) {
     for (const model::ModeInfo& mode : axis.analysis.modes) {
       if (std::abs(mode.participation) >= 0.01) fastest_hz = std::max(fastest_hz, mode.frequency_hz);
     }
@@ -76,7 +78,71 @@ int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s) 
   return std::clamp(substeps, 1, 64);
 }
 
-RunResult RunScenario(const Scenario& scenario) {
+// The contour error of a sample: its distance from the programmed path, squared (the
+// largest distance is the square root of the largest square, bit for bit: norm() is the
+// square root of squaredNorm(), and the square root is monotone). A single straight
+// element (a `move:`, a one-block program) is measured on it directly: the whole path's
+// search gives the same point there.
+class ContourGauge {
+ public:
+  explicit ContourGauge(const controller::PathGeometry& path) : path_(path) {
+    const auto& elements = path.elements();
+    if (elements.size() == 1 && !elements.front().is_arc()) single_ = &elements.front();
+  }
+  double SquaredDistanceTo(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d nearest = single_ != nullptr ? single_->NearestPoint(p) : path_.NearestPoint(p);
+    return (p - nearest).squaredNorm();
+  }
+  const controller::PathElement* single() const { return single_; }
+
+ private:
+  const controller::PathGeometry& path_;
+  const controller::PathElement* single_ = nullptr;
+};
+
+// A run whose command moves one axis only, along a single straight element of that axis,
+// with the metrics' view on that axis: every other component of command, deflection and
+// tool error stays exactly 0 (checked per period on the outputs), so the samples need only
+// that axis' scalars. The arithmetic is the general loop's, component by component
+// (tests/bench/cosim_fast_path_test.cc compares the two bit for bit).
+struct SingleAxis {
+  int axis = -1;
+  double start_m = 0.0;      // the element's start on the axis
+  double direction = 0.0;    // +1 or -1
+  double length_m = 0.0;
+};
+
+SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
+                          const std::vector<Eigen::Vector3d>& positions, const View& view,
+                          const ContourGauge& gauge, bool has_stroke) {
+  SingleAxis none;
+  const controller::PathElement* e = gauge.single();
+  if (e == nullptr || view.magnitude || has_stroke) return none;
+  int axis = -1;
+  for (int a = 0; a < controller::kNumAxes; ++a) {
+    if (view.direction(a) == 1.0) axis = a;
+  }
+  if (axis < 0 || std::abs(e->direction(axis)) != 1.0) return none;
+  for (int a = 0; a < controller::kNumAxes; ++a) {
+    if (a == axis) continue;
+    if (e->direction(a) != 0.0) return none;
+    for (double v : command.axes[a].velocity_m_s) {
+      if (v != 0.0) return none;
+    }
+    for (const Eigen::Vector3d& p : positions) {
+      if (p(a) != e->start_m(a)) return none;
+    }
+  }
+  return {axis, e->start_m(axis), e->direction(axis), e->length_m};
+}
+
+}  // namespace
+
+int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s) {
+  return AutoSubstepsOf(model::AnalyzeMachineModes(machine), period_s);
+}
+
+RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   RunResult result;
   result.program = scenario.RunProgram();
   controller::ControllerConfig controller = scenario.controller;
@@ -85,29 +151,50 @@ RunResult RunScenario(const Scenario& scenario) {
   const controller::MultiAxisCommand& command = result.command;
   const double dt = command.period_s;
   const controller::PathGeometry path(result.program);
+  const ContourGauge contour_gauge(path);
 
   const model::MachinePlant machine = model::BuildMachinePlant(scenario.machine, scenario.drive);
   const model::LinearPlant& plant = machine.plant;
+  const std::vector<model::AxisModes> modes = model::AnalyzeMachineModes(scenario.machine);
   double lowest_hz = std::numeric_limits<double>::infinity();
-  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+  for (const model::AxisModes& axis : modes) {
     for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
   }
   const double lowest_period_s = std::isfinite(lowest_hz) ? 1.0 / lowest_hz : kRigidTailPeriodS;
   const int substeps = scenario.integrator.output_substeps > 0
                            ? scenario.integrator.output_substeps
-                           : AutoSubsteps(scenario.machine, dt);
+                           : AutoSubstepsOf(modes, dt);
   result.substeps = substeps;
   const View view = MakeView(scenario.output, command);
 
-  // Static displacement: the largest deflection a held commanded acceleration gives.
+  // The command per tick, once: velocity v_k (k = 0..n), acceleration a_k held over
+  // period k (k = 1..n), position p_k (k = 0..n).
   const std::size_t n = command.num_ticks();
+  std::vector<Eigen::Vector3d> velocity(n + 1);
+  std::vector<Eigen::Vector3d> accel(n + 1, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> positions(n + 1, command.start_m);
+  for (int axis = 0; axis < controller::kNumAxes; ++axis) {
+    // As MultiAxisCommand::velocity_m_s, accel_m_s2 and Positions compute them.
+    const controller::CommandTrajectory& trajectory = command.axes[axis];
+    const std::vector<double>& v = trajectory.velocity_m_s;
+    velocity[0](axis) = v[0];
+    double position = command.start_m(axis);
+    for (std::size_t k = 1; k <= n; ++k) {
+      velocity[k](axis) = v[k];
+      accel[k](axis) = trajectory.accel_m_s2(k);
+      position += trajectory.increment_m(k);
+      positions[k](axis) = position;
+    }
+  }
+
+  // Static displacement: the largest deflection a held commanded acceleration gives.
   double max_accel = 0.0;
   double max_speed = 0.0;
   double static_m = 0.0;
   for (std::size_t k = 1; k <= n; ++k) {
-    const Eigen::Vector3d a = command.accel_m_s2(k);
+    const Eigen::Vector3d& a = accel[k];
     max_accel = std::max(max_accel, a.norm());
-    max_speed = std::max(max_speed, command.velocity_m_s(k).norm());
+    max_speed = std::max(max_speed, velocity[k].norm());
     static_m = std::max(static_m, std::abs(view.Of(machine.static_gain * a)));
   }
   Metrics& m = result.metrics;
@@ -116,7 +203,7 @@ RunResult RunScenario(const Scenario& scenario) {
   // Motion ends at the last tick where a commanded velocity becomes (and stays) zero.
   std::size_t last_moving = 0;
   for (std::size_t k = 0; k <= n; ++k) {
-    if (command.velocity_m_s(k) != Eigen::Vector3d::Zero()) last_moving = k;
+    if (velocity[k] != Eigen::Vector3d::Zero()) last_moving = k;
   }
   const std::size_t motion_ticks = std::min(last_moving + 1, n);
   m.motion_time_s = static_cast<double>(motion_ticks) * dt;
@@ -140,15 +227,32 @@ RunResult RunScenario(const Scenario& scenario) {
                                        std::max(max_accel, 1e-12), max_speed);
     integrator->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
   }
-  Eigen::VectorXd outputs = Eigen::VectorXd::Zero(6);
+  // The outputs of one period's substeps (AdvancePeriod), rows as in MachinePlant.
+  const int rows = plant.num_outputs();
+  std::vector<double> outputs(static_cast<std::size_t>(substeps) * std::max(rows, 6), 0.0);
 
-  const std::vector<Eigen::Vector3d> positions = command.Positions();
   std::vector<ArcWindow> arcs;
   for (const controller::PathElement& e : path.elements()) {
     if (e.is_arc()) arcs.push_back({&e, 0.0, 0});
   }
 
   Trace& trace = result.trace;
+  const bool record_trace = options.record_trace;
+  if (record_trace) {
+    // Every run simulates the motion and the residual window; most settle a period later.
+    const std::size_t expected =
+        std::min(max_ticks, motion_ticks + residual_ticks + period_ticks) * substeps + 1;
+    trace.time_s.reserve(expected);
+    trace.command_position_m.reserve(expected);
+    trace.command_velocity_m_s.reserve(expected);
+    trace.command_accel_m_s2.reserve(expected);
+    trace.deflection_m.reserve(expected);
+    trace.command_m.reserve(expected);
+    trace.actual_m.reserve(expected);
+    trace.deflection_axes_m.reserve(expected);
+    trace.block.reserve(expected);
+    trace.planned_feed_mm_min.reserve(expected);
+  }
   double travelled_m = 0.0;  // the command's distance along its own path (magnitude view)
   auto record = [&](double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v,
                     const Eigen::Vector3d& a, const Eigen::Vector3d& deflection,
@@ -166,8 +270,10 @@ RunResult RunScenario(const Scenario& scenario) {
         block >= 0 ? command.block_feed_m_s[static_cast<std::size_t>(block)] * 60000.0 : 0.0);
   };
   const int first_block = command.block.empty() ? -1 : command.block.front();
-  record(0.0, positions.front(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-         Eigen::Vector3d::Zero(), positions.front(), first_block);
+  if (record_trace) {
+    record(0.0, positions.front(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+           Eigen::Vector3d::Zero(), positions.front(), first_block);
+  }
 
   const double band = kSettlingBand * m.static_displacement_m;
   double peak = 0.0;
@@ -176,79 +282,148 @@ RunResult RunScenario(const Scenario& scenario) {
   double cruise = NAN;
   double contour = 0.0;
   double overshoot = 0.0;
+  const bool has_stroke = std::any_of(scenario.machine.stroke_m.begin(),
+                                      scenario.machine.stroke_m.end(),
+                                      [](const auto& limits) { return limits.has_value(); });
   double last_outside_band_s = NAN;  // last sample after the motion outside the band
   std::size_t quiet_since_tick = motion_ticks;
   bool settled = false;
+  std::size_t last_tick = 0;
   // Cruise: the commanded feed constant and non-zero, for at least one period of the
   // lowest mode in a row. Shorter constant stretches are steps of a pattern (method 2's
   // zero step, T/6), not the cruise whose vibration the metric reports.
   std::vector<bool> cruise_tick(n + 1, false);
   for (std::size_t k = 1, run_start = 1; k <= n + 1; ++k) {
-    const bool steady = k <= n && command.velocity_m_s(k) != Eigen::Vector3d::Zero() &&
-                        command.accel_m_s2(k).norm() <= 1e-9 * max_accel;
+    const bool steady = k <= n && velocity[k] != Eigen::Vector3d::Zero() &&
+                        accel[k].norm() <= 1e-9 * max_accel;
     if (steady) continue;
     if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, true);
     run_start = k + 1;
   }
+  // For how many periods from tick k on the held acceleration stays a_k (the tail's is
+  // zero): the integrator may integrate across those ticks (AdvancePeriod).
+  std::vector<long> same_input(max_ticks + 2, 1);
+  for (std::size_t k = max_ticks; k >= 1; --k) {
+    const Eigen::Vector3d& here = k <= n ? accel[k] : accel[0];
+    const Eigen::Vector3d& next = k + 1 <= n ? accel[k + 1] : accel[0];
+    same_input[k] = k < max_ticks && here == next ? same_input[k + 1] + 1 : 1;
+  }
   const std::size_t interpolated_ticks = command.path_position_m.size();
+  const SingleAxis single = record_trace ? SingleAxis{}
+                                         : FindSingleAxis(command, positions, view, contour_gauge, has_stroke);
+  double contour_sq = 0.0;
   for (std::size_t k = 1; k <= max_ticks; ++k) {
     // FMI order: set the input held over (t_{k-1}, t_k], step, read the outputs.
     const bool commanded = k <= n;
-    const Eigen::Vector3d a = commanded ? command.accel_m_s2(k) : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d v0 = commanded ? command.velocity_m_s(k - 1) : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d p0 = commanded ? positions[k - 1] : positions.back();
-    const bool interpolating = k < interpolated_ticks;
-    const int block = interpolating ? command.block[k] : -1;
-    const double path_s = command.path_position_m.empty()
-                              ? 0.0
-                              : command.path_position_m[std::min(k, interpolated_ticks - 1)];
-    if (integrator) integrator->SetInput(a);
-    const bool cruising = commanded && cruise_tick[k];
-    for (int j = 1; j <= substeps; ++j) {
-      double t = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
-      if (integrator) {
-        integrator->Step();
-        t = integrator->Time();
-        outputs = integrator->Output();
-        if (!outputs.allFinite()) {  // a degenerate model: never reported as numbers
-          throw model::SolverError("NON_FINITE_STATE", "the plant's deflection became non-finite at t = " +
-                                                           std::to_string(t) + " s (a degenerate model)");
+    const Eigen::Vector3d& a = commanded ? accel[k] : accel[0];
+    const Eigen::Vector3d& v0 = commanded ? velocity[k - 1] : accel[0];
+    const Eigen::Vector3d& p0 = commanded ? positions[k - 1] : positions.back();
+    bool others_zero = single.axis >= 0 && rows == 6;  // the other axes' outputs all exactly 0
+    if (integrator) {
+      integrator->AdvancePeriod(a.data(), same_input[k], outputs.data());
+      if (others_zero) {
+        const int ax = single.axis;
+        for (int j = 0; j < substeps && others_zero; ++j) {
+          const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j) * rows;
+          others_zero = out[(ax + 1) % 3] == 0.0 && out[(ax + 2) % 3] == 0.0 &&
+                        out[3 + (ax + 1) % 3] == 0.0 && out[3 + (ax + 2) % 3] == 0.0 &&
+                        std::isfinite(out[ax]) && std::isfinite(out[3 + ax]);
         }
       }
-      const double tau = dt * static_cast<double>(j) / substeps;
-      const Eigen::Vector3d p = p0 + v0 * tau + 0.5 * a * tau * tau;
-      const Eigen::Vector3d v = v0 + a * tau;
-      const Eigen::Vector3d deflection = outputs.segment<3>(model::kDeflectionRow);
-      const Eigen::Vector3d actual = p + outputs.segment<3>(model::kToolErrorRow);
-      travelled_m += v.norm() * dt / substeps;
-      record(t, p, v, a, deflection, actual, block);
-      const double magnitude = std::abs(view.Of(deflection));
-      peak = std::max(peak, magnitude);
-      peak_axes = peak_axes.cwiseMax(deflection.cwiseAbs());
-      contour = std::max(contour, path.DistanceTo(actual));
-      overshoot = std::max(overshoot, controller::StrokeOvershoot(p, scenario.machine.stroke_m));
-      for (ArcWindow& w : arcs) {
-        const double from_start = path_s - w.arc->start_s_m;
-        if (from_start >= 0.25 * w.arc->length_m && from_start <= 0.75 * w.arc->length_m) {
-          w.sum_radius_m += std::hypot(actual(w.arc->axis0) - w.arc->center_m(w.arc->axis0),
-                                       actual(w.arc->axis1) - w.arc->center_m(w.arc->axis1));
-          ++w.samples;
-        }
-      }
-      if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
-      if (k > motion_ticks || (k == motion_ticks && j == substeps)) {
-        if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
-        if (magnitude >= band) {
-          last_outside_band_s = t;
-          quiet_since_tick = k;
+      if (!others_zero) {
+        for (int i = 0; i < substeps * rows; ++i) {
+          if (!std::isfinite(outputs[i])) {  // a degenerate model: never reported as numbers
+            const long count = static_cast<long>((k - 1) * substeps) + i / rows + 1;
+            throw model::SolverError("NON_FINITE_STATE",
+                                     "the plant's deflection became non-finite at t = " +
+                                         std::to_string(dt * static_cast<double>(count) / substeps) +
+                                         " s (a degenerate model)");
+          }
         }
       }
     }
+    const bool cruising = commanded && cruise_tick[k];
+    const bool after_motion = k >= motion_ticks;
+    if (others_zero) {
+      // The single-axis samples (SingleAxis): the general loop below, its other components
+      // left out.
+      const int ax = single.axis;
+      const double p0_a = p0(ax);
+      const double v0_a = v0(ax);
+      const double a_a = a(ax);
+      for (int j = 1; j <= substeps; ++j) {
+        const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j - 1) * rows;
+        const double tau = dt * static_cast<double>(j) / substeps;
+        const double p = p0_a + v0_a * tau + 0.5 * a_a * tau * tau;
+        const double deflection = out[model::kDeflectionRow + ax];
+        const double actual = p + out[model::kToolErrorRow + ax];
+        const double magnitude = std::abs(deflection);
+        peak = std::max(peak, magnitude);
+        peak_axes(ax) = std::max(peak_axes(ax), magnitude);
+        const double along = std::clamp((actual - single.start_m) * single.direction, 0.0, single.length_m);
+        const double off = actual - (single.start_m + along * single.direction);
+        contour_sq = std::max(contour_sq, off * off);
+        if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
+        if (after_motion && (k > motion_ticks || j == substeps)) {
+          if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
+          if (magnitude >= band) {
+            last_outside_band_s = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
+            quiet_since_tick = k;
+          }
+        }
+      }
+    } else {
+      const bool interpolating = k < interpolated_ticks;
+      const int block = interpolating ? command.block[k] : -1;
+      const double path_s = command.path_position_m.empty()
+                                ? 0.0
+                                : command.path_position_m[std::min(k, interpolated_ticks - 1)];
+      for (int j = 1; j <= substeps; ++j) {
+        const double t = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
+        const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j - 1) * rows;
+        const double tau = dt * static_cast<double>(j) / substeps;
+        const Eigen::Vector3d p = p0 + v0 * tau + 0.5 * a * tau * tau;
+        const Eigen::Vector3d deflection(out[model::kDeflectionRow], out[model::kDeflectionRow + 1],
+                                         out[model::kDeflectionRow + 2]);
+        const Eigen::Vector3d actual =
+            p + Eigen::Vector3d(out[model::kToolErrorRow], out[model::kToolErrorRow + 1],
+                                out[model::kToolErrorRow + 2]);
+        if (record_trace) {
+          const Eigen::Vector3d v = v0 + a * tau;
+          travelled_m += v.norm() * dt / substeps;
+          record(t, p, v, a, deflection, actual, block);
+        }
+        const double magnitude = std::abs(view.Of(deflection));
+        peak = std::max(peak, magnitude);
+        peak_axes = peak_axes.cwiseMax(deflection.cwiseAbs());
+        contour_sq = std::max(contour_sq, contour_gauge.SquaredDistanceTo(actual));
+        if (has_stroke) overshoot = std::max(overshoot, controller::StrokeOvershoot(p, scenario.machine.stroke_m));
+        for (ArcWindow& w : arcs) {
+          const double from_start = path_s - w.arc->start_s_m;
+          if (from_start >= 0.25 * w.arc->length_m && from_start <= 0.75 * w.arc->length_m) {
+            w.sum_radius_m += std::hypot(actual(w.arc->axis0) - w.arc->center_m(w.arc->axis0),
+                                         actual(w.arc->axis1) - w.arc->center_m(w.arc->axis1));
+            ++w.samples;
+          }
+        }
+        if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
+        if (after_motion && (k > motion_ticks || j == substeps)) {
+          if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
+          if (magnitude >= band) {
+            last_outside_band_s = t;
+            quiet_since_tick = k;
+          }
+        }
+      }
+    }
+    last_tick = k;
     if (k >= motion_ticks + residual_ticks && k >= quiet_since_tick + period_ticks) {
       settled = true;
       break;
     }
   }
+  contour = std::sqrt(contour_sq);
+  result.simulated_s = static_cast<double>(last_tick) * dt;
   m.peak_deflection_m = peak;
   m.peak_ratio = peak / m.static_displacement_m;
   m.residual_amplitude_m = residual;
@@ -273,6 +448,11 @@ RunResult RunScenario(const Scenario& scenario) {
   m.stroke_overshoot_m = overshoot;
   m.stroke_alarm = command.stroke_alarm ? 1.0 : 0.0;
   if (integrator) result.stats = integrator->Stats();
+  for (const auto& [name, value] : m.Named()) {  // NaN is "undefined"; infinity never true
+    if (std::isinf(value)) {
+      throw model::SolverError("NON_FINITE_STATE", name + " overflowed to infinity (a degenerate model)");
+    }
+  }
   return result;
 }
 

@@ -41,10 +41,17 @@ struct RunResult {
   Metrics metrics;
   model::IntegratorStats stats;
   int substeps = 0;
+  double simulated_s = 0.0;  // the time of the last sample (motion and tail)
+};
+
+struct RunOptions {
+  // Record the Trace (every output substep: run --out's trace.csv and plots). Sweeps and
+  // checks need only the metrics, which are the same bit for bit either way.
+  bool record_trace = true;
 };
 
 // Throws ValidationError (bad scenario), model::SolverError (CVODE failure).
-RunResult RunScenario(const Scenario& scenario);
+RunResult RunScenario(const Scenario& scenario, const RunOptions& options = {});
 
 // Output substeps per period when integrator.output_substeps is 0: at least 200 samples
 // per period of the fastest mode (any axis) that carries >= 1% of its axis' static

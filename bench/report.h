@@ -34,7 +34,8 @@ std::size_t WriteTraceCsv(const std::string& path, const Trace& trace,
                           long max_rows = RunLimits{}.max_trace_rows);
 
 // The stride that keeps at most `max_rows` (>= 2) of `samples` samples: 1 when they fit,
-// else ceil((samples - 1) / (max_rows - 1)) (samples 0, stride, 2 stride, ...).
+// else ceil((samples - 1) / (max_rows - 1)): samples 0, stride, 2 stride, ..., which
+// reach to within one stride of the last sample.
 std::size_t TraceStride(std::size_t samples, long max_rows);
 
 // Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band

@@ -568,7 +568,7 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
     point = MakePoint(sweep, index, sets);
     const Scenario scenario = LoadScenario(sweep.base, point.overrides);
     try {
-      outcome.metrics = RunScenario(scenario).metrics;
+      outcome.metrics = RunScenario(scenario, RunOptions{false}).metrics;  // no trace needed
     } catch (const ValidationError& error) {
       throw LocateValidationError(sweep.base, point.overrides, error);
     }

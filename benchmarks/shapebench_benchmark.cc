@@ -1,79 +1,251 @@
+// `make bench` (issue 6): Google Benchmark over the fixed cases of benchmarks/cases/.
+//
+//   case 1  one undamped 25 Hz mode, 100 mm at 6000 mm/min, method 1, 1 ms (case1.yaml)
+//   case 2  the moving-column machine (X, Y, Z), servo drive, the pocket corner
+//           (configs/scenarios/pocket_corner.yaml with drive.type servo)
+//   case 3  a 1000-point natural-period sweep of case 1 (case3_sweep.yaml), 1 and 2 jobs
+//
+// Each reports the time per run, runs per second (items_per_second) and, for CVODE, its
+// internal steps and right-hand-side evaluations per simulated second. BM_CvodeTuning
+// measures each CVODE choice of model/integrator.h (CvodeTuning) at equal accuracy: for
+// each variant the loosest rtol whose metrics stay within kTargetError of the exact path's.
+// Extra options (before Google Benchmark's own):
+//   --export_case1=FILE   writes case 1's command and plant for scripts/baseline.py, exits
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "bench/cosim.h"
 #include "bench/scenario_loader.h"
 #include "bench/sweep.h"
 #include "bench/sweep_runner.h"
+#include "model/multi_axis_machine.h"
 
 namespace {
+
 using namespace shapebench;
 using namespace shapebench::bench;
+
 const std::string kSource = SHAPEBENCH_SOURCE_DIR;
 
 Scenario Case1(const std::string& method) {
   return LoadScenario(kSource + "/benchmarks/cases/case1.yaml", {{"integrator.method", method}});
 }
+
 Scenario Case2(const std::string& method) {
   return LoadScenario(kSource + "/configs/scenarios/pocket_corner.yaml",
                       {{"drive.type", "servo"}, {"integrator.method", method}});
 }
 
-void RunCase(benchmark::State& state, const Scenario& scenario) {
+// The ratio metrics' largest difference between two runs.
+double MetricError(const Metrics& a, const Metrics& b) {
+  double error = 0.0;
+  for (auto [x, y] : {std::pair{a.peak_ratio, b.peak_ratio},
+                      std::pair{a.residual_ratio, b.residual_ratio},
+                      std::pair{a.cruise_residual_ratio, b.cruise_residual_ratio}}) {
+    if (std::isfinite(x) && std::isfinite(y)) error = std::max(error, std::abs(x - y));
+  }
+  return error;
+}
+
+void RunCase(benchmark::State& state, const Scenario& scenario, const Metrics* exact) {
   RunResult last;
   for (auto _ : state) {
-    last = RunScenario(scenario);
-    benchmark::DoNotOptimize(last.metrics.peak_ratio);
+    last = RunScenario(scenario, RunOptions{false});
+    benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["peak_ratio"] = last.metrics.peak_ratio;
-  const double simulated = last.trace.time_s.empty() ? 0 : last.trace.time_s.back();
-  state.counters["steps_per_sim_s"] = last.stats.steps / simulated;
-  state.counters["rhs_per_sim_s"] = last.stats.rhs_evals / simulated;
+  state.counters["sim_s"] = last.simulated_s;
+  state.counters["steps_per_sim_s"] = last.stats.steps / last.simulated_s;
+  state.counters["rhs_per_sim_s"] = last.stats.rhs_evals / last.simulated_s;
+  if (exact != nullptr) state.counters["error_vs_exact"] = MetricError(last.metrics, *exact);
 }
 
-void BM_Case1_Exact(benchmark::State& s) { RunCase(s, Case1("exact")); }
-void BM_Case1_Cvode(benchmark::State& s) { RunCase(s, Case1("cvode")); }
-void BM_Case2_Exact(benchmark::State& s) { RunCase(s, Case2("exact")); }
-void BM_Case2_Cvode(benchmark::State& s) { RunCase(s, Case2("cvode")); }
+const Metrics& ExactMetrics(int which) {
+  static const Metrics case1 = RunScenario(Case1("exact"), RunOptions{false}).metrics;
+  static const Metrics case2 = RunScenario(Case2("exact"), RunOptions{false}).metrics;
+  return which == 1 ? case1 : case2;
+}
 
+void BM_Case1_Exact(benchmark::State& state) { RunCase(state, Case1("exact"), nullptr); }
+void BM_Case1_Cvode(benchmark::State& state) { RunCase(state, Case1("cvode"), &ExactMetrics(1)); }
+void BM_Case2_Exact(benchmark::State& state) { RunCase(state, Case2("exact"), nullptr); }
+void BM_Case2_Cvode(benchmark::State& state) { RunCase(state, Case2("cvode"), &ExactMetrics(2)); }
+
+// Case 1 with the trace recorded (what `run --out` pays for trace.csv and the plots).
+void BM_Case1_Exact_WithTrace(benchmark::State& state) {
+  const Scenario scenario = Case1("exact");
+  for (auto _ : state) benchmark::DoNotOptimize(RunScenario(scenario).trace.time_s.size());
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Case 1's command alone (the controller's share of a run).
+void BM_Case1_CommandOnly(benchmark::State& state) {
+  const Scenario scenario = Case1("exact");
+  for (auto _ : state) {
+    controller::ControllerConfig c = scenario.controller;
+    c.stroke_limits = scenario.machine.stroke_m;
+    benchmark::DoNotOptimize(controller::GenerateProgramCommand(c, scenario.RunProgram()).num_ticks());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Case 3: the sweep as `shapebench sweep` runs it (results.csv written, no plots).
 void Case3(benchmark::State& state, const std::string& method) {
   const std::vector<Override> sets = {{"integrator.method", method}};
   const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/case3_sweep.yaml", sets);
-  const std::string dir = std::filesystem::temp_directory_path() / "shapebench_bench_sweep";
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("shapebench_bench_sweep_" + std::to_string(getpid())))
+                              .string();
   for (auto _ : state) {
     std::filesystem::remove_all(dir);
     SweepRunOptions options;
     options.out_dir = dir;
     options.jobs = static_cast<int>(state.range(0));
-    RunSweep(sweep, sets, options);
+    benchmark::DoNotOptimize(RunSweep(sweep, sets, options).ok);
   }
   std::filesystem::remove_all(dir);
-  state.SetItemsProcessed(state.iterations() * sweep.points);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep.points));
+  state.counters["points"] = static_cast<double>(sweep.points);
 }
-void BM_Case3_Exact(benchmark::State& s) { Case3(s, "exact"); }
-void BM_Case3_Cvode(benchmark::State& s) { Case3(s, "cvode"); }
+void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
+void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }
+
+// ---- CVODE tuning, each choice at equal accuracy (case 1) ----
+
+// The accuracy every variant must reach: the ratio metrics within this of the exact path.
+constexpr double kTargetError = 3e-7;
+
+struct Variant {
+  const char* name;
+  std::function<void(model::IntegratorConfig&)> apply;
+};
+
+const std::vector<Variant>& Variants() {
+  using model::CvodeInputMode;
+  static const std::vector<Variant> variants = {
+      {"default", [](model::IntegratorConfig&) {}},
+      {"bdf", [](model::IntegratorConfig& c) { c.lmm = model::CvodeLmm::kBdf; }},
+      {"stop_every_tick",
+       [](model::IntegratorConfig& c) { c.tuning.input_mode = CvodeInputMode::kStopEveryTick; }},
+      {"restart_every_tick",
+       [](model::IntegratorConfig& c) { c.tuning.input_mode = CvodeInputMode::kRestartEveryTick; }},
+      {"scalar_atol", [](model::IntegratorConfig& c) { c.tuning.per_state_atol = false; }},
+      {"no_memory_reuse", [](model::IntegratorConfig& c) { c.tuning.reuse_memory = false; }},
+      {"dq_jacobian", [](model::IntegratorConfig& c) { c.tuning.jacobian = false; }},
+      {"fixed_point", [](model::IntegratorConfig& c) { c.tuning.fixed_point = true; }},
+      {"adams_max_order_5", [](model::IntegratorConfig& c) { c.tuning.max_order = 5; }},
+  };
+  return variants;
+}
+
+// The loosest rtol (of a fixed ladder) at which the variant meets kTargetError.
+double RtolAtTarget(const Scenario& base, const Metrics& exact, const Variant& variant) {
+  Scenario scenario = base;
+  for (double rtol : {1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11,
+                      1e-11, 3e-12, 1e-12}) {
+    scenario.integrator.rtol = rtol;
+    variant.apply(scenario.integrator);
+    try {
+      if (MetricError(RunScenario(scenario, RunOptions{false}).metrics, exact) <= kTargetError) {
+        return rtol;
+      }
+    } catch (const model::SolverError&) {
+    }
+  }
+  return NAN;
+}
+
+// Args: the case (1 or 2), the variant.
+void BM_CvodeTuning(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  const Variant& variant = Variants()[static_cast<std::size_t>(state.range(1))];
+  state.SetLabel(variant.name);
+  const Scenario base = which == 1 ? Case1("cvode") : Case2("cvode");
+  const double rtol = RtolAtTarget(base, ExactMetrics(which), variant);
+  if (!std::isfinite(rtol)) {
+    state.SkipWithError("no rtol of the ladder reaches the target accuracy");
+    return;
+  }
+  Scenario scenario = base;
+  scenario.integrator.rtol = rtol;
+  variant.apply(scenario.integrator);
+  RunCase(state, scenario, &ExactMetrics(which));
+  state.counters["rtol"] = rtol;
+}
+
+void TuningArgs(benchmark::internal::Benchmark* b) {
+  for (std::size_t i = 0; i < Variants().size(); ++i) b->Args({1, static_cast<int>(i)});
+  // Case 2 (servo, three axes): the choices whose answer could differ on a stiffer plant.
+  for (const char* name : {"default", "bdf", "fixed_point", "scalar_atol"}) {
+    for (std::size_t i = 0; i < Variants().size(); ++i) {
+      if (std::string(Variants()[i].name) == name) b->Args({2, static_cast<int>(i)});
+    }
+  }
+}
+
+// ---- the command and plant of case 1 for scripts/baseline.py ----
+
+int ExportCase1(const std::string& path) {
+  const Scenario scenario = Case1("exact");
+  const RunResult exact = RunScenario(scenario, RunOptions{false});
+  const RunResult cvode = RunScenario(Case1("cvode"), RunOptions{false});
+  const controller::MultiAxisCommand& command = exact.command;
+  const int axis = scenario.move_axis();
+  const auto& mode = std::get<model::ModalMachineConfig>(scenario.machine.axes[axis]->form).modes.at(0);
+  std::ofstream out(path);
+  out.precision(17);
+  out << "{\n  \"frequency_hz\": " << mode.frequency_hz << ",\n  \"damping_ratio\": "
+      << mode.damping_ratio << ",\n  \"gain\": " << mode.gain << ",\n  \"period_s\": "
+      << command.period_s << ",\n  \"substeps\": " << exact.substeps
+      << ",\n  \"simulated_ticks\": " << std::lround(exact.simulated_s / command.period_s)
+      << ",\n  \"rtol\": " << scenario.integrator.rtol
+      << ",\n  \"static_displacement_m\": " << exact.metrics.static_displacement_m
+      << ",\n  \"shapebench_peak_ratio_exact\": " << exact.metrics.peak_ratio
+      << ",\n  \"shapebench_peak_ratio_cvode\": " << cvode.metrics.peak_ratio
+      << ",\n  \"accel_m_s2\": [";
+  for (std::size_t k = 1; k <= command.num_ticks(); ++k) {
+    out << (k > 1 ? ", " : "") << command.axes[axis].accel_m_s2(k);
+  }
+  out << "]\n}\n";
+  return out ? 0 : 1;
+}
 
 }  // namespace
 
 BENCHMARK(BM_Case1_Exact)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Case1_Cvode)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Case1_Exact_WithTrace)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Case1_CommandOnly)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Case2_Exact)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case2_Cvode)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_MAIN();
-namespace {
-void BM_Case1_CommandOnly(benchmark::State& state) {
-  const Scenario s = Case1("exact");
-  for (auto _ : state) {
-    auto program = s.RunProgram();
-    controller::ControllerConfig c = s.controller;
-    auto cmd = controller::GenerateProgramCommand(c, program);
-    benchmark::DoNotOptimize(cmd.num_ticks());
+BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
+BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
+BENCHMARK(BM_CvodeTuning)->Apply(TuningArgs)->Unit(benchmark::kMicrosecond);
+
+int main(int argc, char** argv) {
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::string flag = "--export_case1=";
+    if (arg.compare(0, flag.size(), flag) == 0) return ExportCase1(arg.substr(flag.size()));
+    rest.push_back(argv[i]);
   }
+  int count = static_cast<int>(rest.size());
+  benchmark::Initialize(&count, rest.data());
+  if (benchmark::ReportUnrecognizedArguments(count, rest.data())) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
-}
-BENCHMARK(BM_Case1_CommandOnly)->Unit(benchmark::kMicrosecond);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -65,9 +66,31 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       return tick_phase[j * (periods + 1) + (tick - first_tick)];
     };
     std::vector<std::complex<double>> mismatch(frequencies, 0.0);  // ideal minus plain split
+    // What rounding alone leaves in the mismatch: the phase of a time t is good to about
+    // w eps |t| (and the sums to eps): a group whose steps lie on ticks leaves only that,
+    // and a correction of it would be noise on every tick of the span.
+    double scale = 0.0;
+    double latest_s = 0.0;
+    for (const Impulse& impulse : group) {
+      scale += std::abs(impulse.amplitude);
+      latest_s = std::max(latest_s, std::abs(impulse.time_s));
+    }
+    latest_s = std::max(latest_s, std::abs((first_tick + periods) * period_s));
+    bool rounding_only = true;
     for (std::size_t j = 0; j < frequencies; ++j) {
       for (const Impulse& impulse : group) mismatch[j] += impulse.amplitude * phase(j, impulse.time_s);
       for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase_at_tick(j, tick);
+      const double w = 2.0 * 3.14159265358979323846 * design.frequencies_hz[j];
+      const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (1.0 + w * latest_s);
+      rounding_only = rounding_only && std::abs(mismatch[j]) <= rounding * scale;
+    }
+    if (rounding_only) {
+      std::vector<GridImpulse> result;
+      result.reserve(weights.size());
+      for (const auto& [tick, w] : weights) {
+        if (w != 0.0) result.push_back({tick, w});
+      }
+      return result;
     }
     // Correct the acceleration of periods of the span by e_p, as little as possible
     // (least squares, spread over the span rather than piled onto one period):

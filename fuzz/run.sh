@@ -19,11 +19,11 @@ for target in "$@"; do
   mkdir -p "$work"
   regressions=(fuzz/regressions/"$name"/*)
   if [ -e "${regressions[0]}" ]; then
-    "$build/$target" -runs=1 "${regressions[@]}" >/dev/null 2>"$log.regressions" ||
+    "$build/fuzz/$target" -runs=1 "${regressions[@]}" >/dev/null 2>"$log.regressions" ||
       { echo "$target: a regression input fails again (see $log.regressions)"; status=1; continue; }
   fi
   echo "== $target: ${seconds} s"
-  if "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+  if "$build/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
        -print_final_stats=1 -artifact_prefix="$build/artifacts/$target-" \
        "$work" "fuzz/corpus/$name" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)

@@ -1,10 +1,15 @@
 #include "model/cvode_integrator.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 namespace shapebench::model {
 namespace {
@@ -42,6 +47,145 @@ std::string PlainWords(int flag) {
   }
 }
 
+
+}  // namespace
+
+namespace cvode_detail {
+
+struct Context {
+  SUNContext ctx = nullptr;
+  Context() {
+    if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr) throw std::bad_alloc();
+  }
+  ~Context() { SUNContext_Free(&ctx); }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+};
+
+struct Pool;
+
+// CVODE's memory for one problem: size, LMM, nonlinear solver. Created once (CVodeCreate,
+// CVodeInit, the linear or fixed-point solver attached); each integrator that takes it sets
+// its own user data, tolerances, Jacobian and limits and restarts it with CVodeReInit.
+struct Workspace {
+  std::shared_ptr<Context> context;  // outlives the objects below
+  Pool* pool = nullptr;              // where it goes back to; null: freed with its integrator
+  int nz = 0;
+  bool bdf = false;
+  bool fixed_point = false;
+  N_Vector y = nullptr;
+  N_Vector atol = nullptr;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver solver = nullptr;
+  SUNNonlinearSolver nls = nullptr;
+  void* memory = nullptr;
+
+  Workspace(std::shared_ptr<Context> shared, int size, bool use_bdf, bool use_fixed_point,
+            CVRhsFn rhs)
+      : context(std::move(shared)), nz(size), bdf(use_bdf), fixed_point(use_fixed_point) {
+    SUNContext ctx = context->ctx;
+    y = N_VNew_Serial(nz, ctx);
+    atol = N_VNew_Serial(nz, ctx);
+    memory = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
+    if (y == nullptr || atol == nullptr || memory == nullptr) throw std::bad_alloc();
+    N_VConst(0.0, y);
+    // Fused vector operations (one pass for a linear combination instead of one call per
+    // term): CVODE clones its vectors from y, so they all get them. Interpolating the
+    // output substeps (CVodeGetDky, a combination of q + 1 history vectors) is most of a
+    // run's CVODE time.
+    if (N_VEnableFusedOps_Serial(y, SUNTRUE) != 0) throw std::runtime_error("N_VEnableFusedOps failed");
+    if (CVodeInit(memory, rhs, 0.0, y) != CV_SUCCESS) throw std::runtime_error("CVodeInit failed");
+    if (fixed_point) {
+      nls = SUNNonlinSol_FixedPoint(y, 0, ctx);
+      if (nls == nullptr || CVodeSetNonlinearSolver(memory, nls) != CV_SUCCESS) {
+        throw std::runtime_error("CVodeSetNonlinearSolver failed");
+      }
+    } else {
+      matrix = SUNDenseMatrix(nz, nz, ctx);
+      if (matrix == nullptr) throw std::bad_alloc();
+      solver = SUNLinSol_Dense(y, matrix, ctx);
+      if (solver == nullptr || CVodeSetLinearSolver(memory, solver, matrix) != CVLS_SUCCESS) {
+        throw std::runtime_error("CVodeSetLinearSolver failed");
+      }
+    }
+  }
+  ~Workspace() {
+    CVodeFree(&memory);
+    if (nls != nullptr) SUNNonlinSolFree(nls);
+    if (solver != nullptr) SUNLinSolFree(solver);
+    if (matrix != nullptr) SUNMatDestroy(matrix);
+    N_VDestroy(atol);
+    N_VDestroy(y);
+  }
+  Workspace(const Workspace&) = delete;
+  Workspace& operator=(const Workspace&) = delete;
+};
+
+// One per thread: its SUNContext (a context is used by one thread at a time) and the
+// workspaces not in use. A sweep's runs have one problem size: one workspace, reused.
+struct Pool {
+  static constexpr std::size_t kKept = 4;
+  std::shared_ptr<Context> context;
+  std::vector<std::unique_ptr<Workspace>> idle;  // most recently returned last
+
+  std::unique_ptr<Workspace> Take(int nz, bool bdf, bool fixed_point, CVRhsFn rhs, bool* reused) {
+    for (std::size_t i = idle.size(); i-- > 0;) {
+      Workspace& w = *idle[i];
+      if (w.nz == nz && w.bdf == bdf && w.fixed_point == fixed_point) {
+        std::unique_ptr<Workspace> taken = std::move(idle[i]);
+        idle.erase(idle.begin() + static_cast<std::ptrdiff_t>(i));
+        *reused = true;
+        return taken;
+      }
+    }
+    if (!context) context = std::make_shared<Context>();
+    auto created = std::make_unique<Workspace>(context, nz, bdf, fixed_point, rhs);
+    created->pool = this;
+    *reused = false;
+    return created;
+  }
+  void Give(std::unique_ptr<Workspace> workspace) {
+    if (idle.size() == kKept) idle.erase(idle.begin());
+    idle.push_back(std::move(workspace));
+  }
+  ~Pool();
+};
+
+thread_local bool pool_gone = false;  // this thread's pool has been destroyed (thread exit)
+
+Pool::~Pool() {
+  idle.clear();
+  pool_gone = true;
+}
+
+Pool* ThisThreadsPool() {
+  thread_local Pool pool;
+  return pool_gone ? nullptr : &pool;
+}
+
+void WorkspaceReturn::operator()(Workspace* workspace) const {
+  std::unique_ptr<Workspace> owned(workspace);
+  if (owned && owned->pool != nullptr && owned->pool == ThisThreadsPool()) {
+    owned->pool->Give(std::move(owned));
+  }
+}
+
+}  // namespace cvode_detail
+
+namespace {
+
+std::unique_ptr<cvode_detail::Workspace, cvode_detail::WorkspaceReturn> TakeWorkspace(
+    int nz, const IntegratorConfig& config, CVRhsFn rhs, bool* reused) {
+  const bool bdf = config.lmm == CvodeLmm::kBdf;
+  const bool fixed_point = config.tuning.fixed_point;
+  cvode_detail::Pool* pool = config.tuning.reuse_memory ? cvode_detail::ThisThreadsPool() : nullptr;
+  if (pool != nullptr) return {pool->Take(nz, bdf, fixed_point, rhs, reused).release(), {}};
+  *reused = false;
+  return {new cvode_detail::Workspace(std::make_shared<cvode_detail::Context>(), nz, bdf,
+                                      fixed_point, rhs),
+          {}};
+}
+
 }  // namespace
 
 CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfig& config,
@@ -51,37 +195,50 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
       num_inputs_(plant.num_inputs()),
       period_s_(period_s),
       substeps_(substeps),
+      tuning_(config.tuning),
       C_(plant.C) {
-  const int n = num_states_;
   const int m = num_inputs_;
-  const int nz = n + m;
+  const int nz = num_states_ + m;
   A_z_ = plant.AugmentedA();
   B_z_ = plant.AugmentedB();
   accel_ = Eigen::VectorXd::Zero(m);
+  forcing_ = Eigen::VectorXd::Zero(nz);
+  a_sparse_.Assign(A_z_);
+  c_sparse_.Assign(C_);
+  workspace_ = TakeWorkspace(nz, config, Rhs, &reused_);
+  void* mem = memory();
 
-  SUNContext ctx = nullptr;
-  Check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
-  context_.reset(ctx);
-  y_.reset(N_VNew_Serial(nz, ctx));
-  atol_.reset(N_VNew_Serial(nz, ctx));
-  matrix_.reset(SUNDenseMatrix(nz, nz, ctx));
-  if (!y_ || !atol_ || !matrix_) throw std::bad_alloc();
-  solver_.reset(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx));
-  memory_.reset(CVodeCreate(config.lmm == CvodeLmm::kBdf ? CV_BDF : CV_ADAMS, ctx));
-  if (!solver_ || !memory_) throw std::bad_alloc();
-  void* mem = memory_.get();
-
-  View(y_.get()).setZero();
-  View(atol_.get()) = AbsoluteTolerances(plant, config, scale_accel_m_s2, scale_velocity_m_s);
+  const Eigen::VectorXd atol =
+      AbsoluteTolerances(plant, config, scale_accel_m_s2, scale_velocity_m_s);
   Check(CVodeSetErrHandlerFn(mem, RecordError, this), "CVodeSetErrHandlerFn");
-  Check(CVodeInit(mem, Rhs, 0.0, y_.get()), "CVodeInit");
   Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
-  Check(CVodeSVtolerances(mem, config.rtol, atol_.get()), "CVodeSVtolerances");
-  Check(CVodeSetLinearSolver(mem, solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
-  Check(CVodeSetJacFn(mem, Jacobian), "CVodeSetJacFn");
+  if (tuning_.per_state_atol) {
+    View(workspace_->atol) = atol;
+    Check(CVodeSVtolerances(mem, config.rtol, workspace_->atol), "CVodeSVtolerances");
+  } else {
+    Check(CVodeSStolerances(mem, config.rtol, atol.minCoeff()), "CVodeSStolerances");
+  }
+  if (!tuning_.fixed_point) {
+    // After CVodeSetUserData: the Jacobian's user data is taken from it here.
+    Check(CVodeSetJacFn(mem, tuning_.jacobian ? Jacobian : nullptr), "CVodeSetJacFn");
+  }
   Check(CVodeSetMaxNumSteps(mem, config.max_num_steps), "CVodeSetMaxNumSteps");
+  // Every integrator sets the order limit (a reused memory keeps the last one's).
+  const int max_order = tuning_.max_order > 0 ? tuning_.max_order
+                        : config.lmm == CvodeLmm::kBdf ? 5 : 12;
+  Check(CVodeSetMaxOrd(mem, max_order), "CVodeSetMaxOrd");
   Reset(Eigen::VectorXd::Zero(m));
 }
+
+CvodeIntegrator::~CvodeIntegrator() {
+  if (workspace_) {
+    // The memory may serve another integrator: nothing of this one may be called back.
+    CVodeSetErrHandlerFn(workspace_->memory, nullptr, nullptr);
+    CVodeSetUserData(workspace_->memory, nullptr);
+  }
+}
+
+void* CvodeIntegrator::memory() const { return workspace_->memory; }
 
 // Error weights: CVODE's norm is |e_i| / (rtol |y_i| + atol_i), and deflection states start
 // at 0, so atol sets the accuracy near rest. Scale it by what each state reaches statically
@@ -140,11 +297,35 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
   return atol;
 }
 
+void CvodeIntegrator::Sparse::Assign(const Eigen::MatrixXd& m) {
+  row_start.assign(1, 0);
+  col.clear();
+  value.clear();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    for (Eigen::Index j = 0; j < m.cols(); ++j) {
+      if (m(i, j) != 0.0) {
+        col.push_back(static_cast<int>(j));
+        value.push_back(m(i, j));
+      }
+    }
+    row_start.push_back(static_cast<int>(col.size()));
+  }
+}
+
+void CvodeIntegrator::Sparse::Multiply(const double* x, double* y) const {
+  for (std::size_t i = 0; i + 1 < row_start.size(); ++i) {
+    double sum = 0.0;
+    for (int e = row_start[i]; e < row_start[i + 1]; ++e) sum += value[e] * x[col[e]];
+    y[i] = sum;
+  }
+}
+
 int CvodeIntegrator::Rhs(sunrealtype /*t*/, N_Vector y, N_Vector ydot, void* user_data) {
   const auto* self = static_cast<const CvodeIntegrator*>(user_data);
-  Eigen::Map<Eigen::VectorXd> out = View(ydot);
-  out.noalias() = self->A_z_ * View(y);
-  out.noalias() += self->B_z_ * self->accel_;
+  double* out = N_VGetArrayPointer(ydot);
+  self->a_sparse_.Multiply(N_VGetArrayPointer(y), out);
+  const double* forcing = self->forcing_.data();
+  for (Eigen::Index i = 0; i < self->forcing_.size(); ++i) out[i] += forcing[i];
   return 0;
 }
 
@@ -160,13 +341,14 @@ int CvodeIntegrator::Jacobian(sunrealtype /*t*/, N_Vector /*y*/, N_Vector /*fy*/
 
 void CvodeIntegrator::RecordError(int /*code*/, const char* /*module*/, const char* /*function*/,
                                   char* msg, void* user_data) {
+  if (user_data == nullptr) return;
   static_cast<CvodeIntegrator*>(user_data)->last_message_ = msg != nullptr ? msg : "";
 }
 
 void CvodeIntegrator::Check(int flag, const char* call) const {
   if (flag >= 0) return;
   sunrealtype t_now = Time();
-  if (memory_) CVodeGetCurrentTime(memory_.get(), &t_now);
+  if (workspace_) CVodeGetCurrentTime(memory(), &t_now);
   std::ostringstream what;
   const std::string name = FlagName(flag);
   what << "CVODE failed at t = " << t_now << " s: " << name << ": " << PlainWords(flag) << " ("
@@ -184,14 +366,16 @@ void CvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   if (drive_velocity.size() != num_inputs_) {
     throw std::invalid_argument("CvodeIntegrator::Reset: wrong drive velocity size");
   }
-  Eigen::Map<Eigen::VectorXd> y = View(y_.get());
+  Eigen::Map<Eigen::VectorXd> y = View(workspace_->y);
   y.head(num_states_).setZero();
   y.tail(num_inputs_) = drive_velocity;
   accel_.setZero();
+  forcing_.setZero();
   count_ = 0;
   // Restart from t = 0 now (this also zeroes CVODE's counters); SetInput re-initialises
   // again only if the first acceleration is not 0.
-  Check(CVodeReInit(memory_.get(), 0.0, y_.get()), "CVodeReInit");
+  Check(CVodeReInit(memory(), 0.0, workspace_->y), "CVodeReInit");
+  stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   finished_ = {};
   need_reinit_ = false;
 }
@@ -204,12 +388,13 @@ void CvodeIntegrator::SetInput(const Eigen::VectorXd& drive_accel) {
   // unchanged value keeps the RHS smooth, so CVODE integrates straight through the tick.
   if (drive_accel != accel_) {
     accel_ = drive_accel;
+    forcing_.noalias() = B_z_ * accel_;
     need_reinit_ = true;
   }
 }
 
 void CvodeIntegrator::Reinit() {
-  void* mem = memory_.get();
+  void* mem = memory();
   long steps = 0;
   long rhs_evals = 0;
   CVodeGetNumSteps(mem, &steps);
@@ -217,24 +402,70 @@ void CvodeIntegrator::Reinit() {
   finished_.steps += steps;
   finished_.rhs_evals += rhs_evals;
   ++finished_.reinits;
-  Check(CVodeReInit(mem, Time(), y_.get()), "CVodeReInit");
+  Check(CVodeReInit(mem, Time(), workspace_->y), "CVodeReInit");
+  stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   need_reinit_ = false;
+}
+
+// SUNDIALS 6.4.1 forgets the stop time once reached (CV_TSTOP_RETURN) and on reinit; until
+// then it holds, so it is set again only after either, or when it moves.
+void CvodeIntegrator::SetStopTime(double t_stop) {
+  if (stop_set_ && stop_s_ == t_stop) return;
+  Check(CVodeSetStopTime(memory(), t_stop), "CVodeSetStopTime");
+  stop_set_ = true;
+  stop_s_ = t_stop;
+}
+
+void CvodeIntegrator::Advance(long count) {
+  sunrealtype t_reached = 0.0;
+  // CV_SUCCESS and CV_TSTOP_RETURN (tout == tstop) are both normal returns.
+  const int flag = CVode(memory(), TimeAt(count), workspace_->y, &t_reached, CV_NORMAL);
+  Check(flag, "CVode");
+  if (flag == CV_TSTOP_RETURN) stop_set_ = false;
 }
 
 void CvodeIntegrator::Step() {
   if (need_reinit_) Reinit();
-  void* mem = memory_.get();
   // Never step past the end of the current interpolation period: the input may jump there.
-  // SUNDIALS 6.4.1 forgets the stop time once reached (and on reinit): set it every call.
-  const long period_end = (count_ / substeps_ + 1) * substeps_;
-  Check(CVodeSetStopTime(mem, TimeAt(period_end)), "CVodeSetStopTime");
-  sunrealtype t_reached = 0.0;
-  // CV_SUCCESS and CV_TSTOP_RETURN (tout == tstop) are both normal returns.
-  Check(CVode(mem, TimeAt(count_ + 1), y_.get(), &t_reached, CV_NORMAL), "CVode");
+  SetStopTime(TimeAt((count_ / substeps_ + 1) * substeps_));
+  Advance(count_ + 1);
   ++count_;
 }
 
-Eigen::VectorXd CvodeIntegrator::Output() const { return C_ * View(y_.get()).head(num_states_); }
+void CvodeIntegrator::AdvancePeriod(const double* drive_accel, long same_input_periods,
+                                    double* outputs) {
+  const Eigen::Map<const Eigen::VectorXd> accel(drive_accel, num_inputs_);
+  if (accel != accel_) {
+    accel_ = accel;
+    forcing_.noalias() = B_z_ * accel_;
+    need_reinit_ = true;
+  }
+  const long period_start = count_ / substeps_ * substeps_;
+  long stop = period_start + substeps_;
+  switch (tuning_.input_mode) {
+    case CvodeInputMode::kContinuous:
+      // The input is held beyond this period: integrate across the ticks up to its change.
+      stop = period_start + std::max(1L, same_input_periods) * substeps_;
+      break;
+    case CvodeInputMode::kStopEveryTick:
+      break;
+    case CvodeInputMode::kRestartEveryTick:
+      if (count_ > 0) need_reinit_ = true;
+      break;
+  }
+  if (need_reinit_) Reinit();
+  SetStopTime(TimeAt(stop));
+  const Eigen::Index rows = C_.rows();
+  for (int j = 0; j < substeps_; ++j) {
+    Advance(count_ + 1);
+    ++count_;
+    c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), outputs + j * rows);
+  }
+}
+
+Eigen::VectorXd CvodeIntegrator::Output() const {
+  return C_ * View(workspace_->y).head(num_states_);
+}
 
 double CvodeIntegrator::Time() const { return TimeAt(count_); }
 
@@ -242,8 +473,8 @@ IntegratorStats CvodeIntegrator::Stats() const {
   IntegratorStats stats = finished_;
   long steps = 0;
   long rhs_evals = 0;
-  CVodeGetNumSteps(memory_.get(), &steps);
-  CVodeGetNumRhsEvals(memory_.get(), &rhs_evals);
+  CVodeGetNumSteps(memory(), &steps);
+  CVodeGetNumRhsEvals(memory(), &rhs_evals);
   stats.steps += steps;
   stats.rhs_evals += rhs_evals;
   return stats;

@@ -1,39 +1,33 @@
 // CVODE (SUNDIALS 6.4.1) integrator of a LinearPlant, dense direct linear solver with the
 // plant's constant Jacobian. The drive velocity v is integrated with the plant (v' = a) so
 // the right-hand side stays smooth within a tick; CVODE is re-initialised only where the
-// held acceleration changes.
+// held acceleration changes. Through AdvancePeriod (the co-simulation master's path) it
+// also integrates across the ticks where the acceleration stays the same
+// (CvodeInputMode::kContinuous), the output substeps then interpolated by CVODE.
+//
+// CVODE's memory (context, vectors, dense matrix and solver, CVODE's own) is taken from a
+// pool of this thread and given back when the integrator is destroyed, so the runs of a
+// sweep reuse it (CVodeReInit instead of CVodeCreate and CVodeInit); a run gives the same
+// results, bit for bit, on fresh or reused memory (tests/model/cvode_integrator_test.cc).
 #pragma once
 
 #include <memory>
 #include <string>
-#include <type_traits>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include "model/integrator.h"
 
 namespace shapebench::model {
 
 namespace cvode_detail {
-struct ContextDeleter {
-  void operator()(SUNContext ctx) const { SUNContext_Free(&ctx); }
-};
-struct VectorDeleter {
-  void operator()(N_Vector v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
-};
-struct LinearSolverDeleter {
-  void operator()(SUNLinearSolver ls) const { SUNLinSolFree(ls); }
-};
-struct MemoryDeleter {
-  void operator()(void* mem) const { CVodeFree(&mem); }
+struct Workspace;  // one problem size's CVODE memory (cvode_integrator.cc)
+struct WorkspaceReturn {
+  void operator()(Workspace* workspace) const;  // back to its pool, or freed
 };
 }  // namespace cvode_detail
 
@@ -41,6 +35,7 @@ class CvodeIntegrator final : public PlantIntegrator {
  public:
   CvodeIntegrator(const LinearPlant& plant, const IntegratorConfig& config, double period_s,
                   int substeps, double scale_accel_m_s2, double scale_velocity_m_s = 0.0);
+  ~CvodeIntegrator() override;
   CvodeIntegrator(const CvodeIntegrator&) = delete;  // CVODE holds a pointer to this
   CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
 
@@ -50,6 +45,14 @@ class CvodeIntegrator final : public PlantIntegrator {
   Eigen::VectorXd Output() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
+  int num_inputs() const override { return num_inputs_; }
+  int num_outputs() const override { return static_cast<int>(C_.rows()); }
+  int substeps() const override { return substeps_; }
+  void AdvancePeriod(const double* drive_accel, long same_input_periods,
+                     double* outputs) override;
+
+  // Whether this integrator's CVODE memory came from the thread's pool (used before).
+  bool reused_memory() const { return reused_; }
 
  private:
   static int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data);
@@ -59,7 +62,10 @@ class CvodeIntegrator final : public PlantIntegrator {
                           void* user_data);
   double TimeAt(long count) const;
   void Reinit();
+  void SetStopTime(double t_stop);
+  void Advance(long count);  // one output substep, to TimeAt(count)
   void Check(int flag, const char* call) const;
+  void* memory() const;
   Eigen::VectorXd AbsoluteTolerances(const LinearPlant& plant, const IntegratorConfig& config,
                                      double scale_accel_m_s2, double scale_velocity_m_s) const;
 
@@ -67,25 +73,33 @@ class CvodeIntegrator final : public PlantIntegrator {
   int num_inputs_;
   double period_s_;
   int substeps_;
+  CvodeTuning tuning_;
   Eigen::MatrixXd C_;
   Eigen::MatrixXd A_z_;  // [[A, B_vel], [0, 0]]: Jacobian of the augmented system
   Eigen::MatrixXd B_z_;  // [B_accel; I]
   Eigen::VectorXd accel_;
+  Eigen::VectorXd forcing_;  // B_z accel_, updated where the acceleration changes
+  // A_z and C without their zeros (row by row: column, value), for the right-hand side and
+  // the outputs, which CVODE and every output substep call for (small: a loop beats a GEMV).
+  struct Sparse {
+    std::vector<int> row_start;
+    std::vector<int> col;
+    std::vector<double> value;
+    void Assign(const Eigen::MatrixXd& m);
+    void Multiply(const double* x, double* y) const;  // y = M x
+  };
+  Sparse a_sparse_;
+  Sparse c_sparse_;
   bool need_reinit_ = false;  // the held acceleration changed since the last (re)init
+  bool stop_set_ = false;     // a stop time is active in CVODE (cleared on reaching it, reinit)
+  double stop_s_ = 0.0;
   long count_ = 0;
   // Counters of the runs before the last reinit (CVodeReInit zeroes CVODE's own); reinits
   // counts the restarts at changes of the held acceleration.
   IntegratorStats finished_;
   std::string last_message_;  // CVODE's own words for the last error
-
-  // Declaration order = reverse destruction order: the context outlives everything.
-  std::unique_ptr<std::remove_pointer_t<SUNContext>, cvode_detail::ContextDeleter> context_;
-  std::unique_ptr<std::remove_pointer_t<N_Vector>, cvode_detail::VectorDeleter> y_;
-  std::unique_ptr<std::remove_pointer_t<N_Vector>, cvode_detail::VectorDeleter> atol_;
-  std::unique_ptr<std::remove_pointer_t<SUNMatrix>, cvode_detail::MatrixDeleter> matrix_;
-  std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, cvode_detail::LinearSolverDeleter>
-      solver_;
-  std::unique_ptr<void, cvode_detail::MemoryDeleter> memory_;
+  bool reused_ = false;
+  std::unique_ptr<cvode_detail::Workspace, cvode_detail::WorkspaceReturn> workspace_;
 };
 
 }  // namespace shapebench::model

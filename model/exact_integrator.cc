@@ -1,6 +1,8 @@
 #include "model/exact_integrator.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 #include <unsupported/Eigen/MatrixFunctions>
@@ -45,53 +47,233 @@ Eigen::VectorXd BalancingScales(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
-ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int substeps)
-    : num_states_(plant.num_states()),
-      num_inputs_(plant.num_inputs()),
-      period_s_(period_s),
-      substeps_(substeps),
-      C_(plant.C) {
-  const int n = num_states_;
-  const int m = num_inputs_;
-  const int nz = n + m;
+std::shared_ptr<const ExactDiscretization> DiscretizeExactly(const LinearPlant& plant, double h) {
+  const Eigen::MatrixXd a_z = plant.AugmentedA();
+  const Eigen::MatrixXd b_z = plant.AugmentedB();
+  struct Entry {
+    Eigen::MatrixXd a_z;
+    Eigen::MatrixXd b_z;
+    double h;
+    std::shared_ptr<const ExactDiscretization> result;
+  };
+  constexpr std::size_t kKept = 8;
+  thread_local std::vector<Entry> cache;  // most recent first
+  for (std::size_t i = 0; i < cache.size(); ++i) {
+    const Entry& e = cache[i];
+    if (e.h == h && e.a_z.rows() == a_z.rows() && e.b_z.cols() == b_z.cols() && e.a_z == a_z &&
+        e.b_z == b_z) {
+      std::rotate(cache.begin(), cache.begin() + static_cast<std::ptrdiff_t>(i),
+                  cache.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+      return cache.front().result;
+    }
+  }
+  const Eigen::Index nz = a_z.rows();
+  const Eigen::Index m = b_z.cols();
   // z' = A_z z + B_z a (LinearPlant::AugmentedA/B). Van Loan:
   // exp([[A_z, B_z], [0, 0]] h) = [[Phi, Gamma], [0, I]], Gamma = int_0^h e^{A_z s} ds B_z.
   Eigen::MatrixXd block = Eigen::MatrixXd::Zero(nz + m, nz + m);
-  block.topLeftCorner(nz, nz) = plant.AugmentedA();
-  block.topRightCorner(nz, m) = plant.AugmentedB();
-  const double h = period_s / substeps;
+  block.topLeftCorner(nz, nz) = a_z;
+  block.topRightCorner(nz, m) = b_z;
   block *= h;
   const Eigen::VectorXd d = BalancingScales(block);
   const Eigen::MatrixXd balanced = d.cwiseInverse().asDiagonal() * block * d.asDiagonal();
   const Eigen::MatrixXd exp_block = d.asDiagonal() * balanced.exp() * d.cwiseInverse().asDiagonal();
-  phi_ = exp_block.topLeftCorner(nz, nz);
-  gamma_ = exp_block.topRightCorner(nz, m);
-  Reset(Eigen::VectorXd::Zero(m));
+  auto result = std::make_shared<ExactDiscretization>();
+  result->phi = exp_block.topLeftCorner(nz, nz);
+  result->gamma = exp_block.topRightCorner(nz, m);
+  if (cache.size() == kKept) cache.pop_back();
+  cache.insert(cache.begin(), Entry{a_z, b_z, h, result});
+  return result;
+}
+
+ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int substeps)
+    : num_states_(plant.num_states()),
+      num_inputs_(plant.num_inputs()),
+      num_outputs_(plant.num_outputs()),
+      period_s_(period_s),
+      substeps_(substeps),
+      discretization_(DiscretizeExactly(plant, period_s / substeps)) {
+  const Eigen::MatrixXd& phi = discretization_->phi;
+  const Eigen::MatrixXd& gamma = discretization_->gamma;
+  const int nz = num_states_ + num_inputs_;
+  // The states that reach an output: read by C, or (transitively) by such a state through
+  // phi. Exact zeros only (block structure: other axes, an unused drive velocity), so the
+  // outputs are those of the full recursion.
+  std::vector<bool> needed(nz, false);
+  for (int j = 0; j < num_states_; ++j) needed[j] = plant.C.col(j).cwiseAbs().maxCoeff() > 0.0;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int i = 0; i < nz; ++i) {
+      if (!needed[i]) continue;
+      for (int j = 0; j < nz; ++j) {
+        if (!needed[j] && phi(i, j) != 0.0) needed[j] = grew = true;
+      }
+    }
+  }
+  for (int j = 0; j < nz; ++j) {
+    if (needed[j]) kept_index_.push_back(j);
+  }
+  kept_ = static_cast<int>(kept_index_.size());
+  phi_.resize(static_cast<std::size_t>(kept_) * kept_);
+  gamma_.resize(static_cast<std::size_t>(kept_) * num_inputs_);
+  c_.assign(static_cast<std::size_t>(num_outputs_) * kept_, 0.0);
+  row_start_.push_back(0);
+  for (int r = 0; r < kept_; ++r) {
+    for (int c = 0; c < kept_; ++c) {
+      const double value = phi(kept_index_[r], kept_index_[c]);
+      phi_[static_cast<std::size_t>(r) * kept_ + c] = value;
+      if (value != 0.0) {
+        col_.push_back(c);
+        value_.push_back(value);
+      }
+    }
+    row_start_.push_back(static_cast<int>(col_.size()));
+    for (int c = 0; c < num_inputs_; ++c) {
+      gamma_[static_cast<std::size_t>(r) * num_inputs_ + c] = gamma(kept_index_[r], c);
+    }
+  }
+  for (int o = 0; o < num_outputs_; ++o) {
+    for (int c = 0; c < kept_; ++c) {
+      if (kept_index_[c] < num_states_) {
+        c_[static_cast<std::size_t>(o) * kept_ + c] = plant.C(o, kept_index_[c]);
+      }
+    }
+  }
+  c_row_start_.push_back(0);
+  for (int o = 0; o < num_outputs_; ++o) {
+    for (int c = 0; c < kept_; ++c) {
+      const double value = c_[static_cast<std::size_t>(o) * kept_ + c];
+      if (value != 0.0) {
+        c_col_.push_back(c);
+        c_value_.push_back(value);
+      }
+    }
+    c_row_start_.push_back(static_cast<int>(c_col_.size()));
+  }
+  z_.assign(kept_, 0.0);
+  g_.assign(kept_, 0.0);
+  next_.assign(kept_, 0.0);
+  accel_.assign(num_inputs_, 0.0);
+  Reset(Eigen::VectorXd::Zero(num_inputs_));
 }
 
 void ExactIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   if (drive_velocity.size() != num_inputs_) {
     throw std::invalid_argument("ExactIntegrator::Reset: wrong drive velocity size");
   }
-  z_ = Eigen::VectorXd::Zero(num_states_ + num_inputs_);
-  z_.tail(num_inputs_) = drive_velocity;
-  accel_ = Eigen::VectorXd::Zero(num_inputs_);
+  for (int r = 0; r < kept_; ++r) {
+    const int i = kept_index_[r];
+    z_[r] = i < num_states_ ? 0.0 : drive_velocity(i - num_states_);
+  }
+  std::fill(accel_.begin(), accel_.end(), 0.0);
+  std::fill(g_.begin(), g_.end(), 0.0);
   count_ = 0;
+}
+
+void ExactIntegrator::SetAccel(const double* drive_accel) {
+  std::copy(drive_accel, drive_accel + num_inputs_, accel_.begin());
+  for (int r = 0; r < kept_; ++r) {
+    const double* row = gamma_.data() + static_cast<std::size_t>(r) * num_inputs_;
+    double sum = 0.0;
+    for (int c = 0; c < num_inputs_; ++c) sum += row[c] * drive_accel[c];
+    g_[r] = sum;
+  }
 }
 
 void ExactIntegrator::SetInput(const Eigen::VectorXd& drive_accel) {
   if (drive_accel.size() != num_inputs_) {
     throw std::invalid_argument("ExactIntegrator::SetInput: wrong drive acceleration size");
   }
-  accel_ = drive_accel;
+  SetAccel(drive_accel.data());
 }
 
-void ExactIntegrator::Step() {
-  z_ = phi_ * z_ + gamma_ * accel_;
+namespace {
+
+// z <- phi z + g for a dense kept_ x kept_ phi of a size known at compile time (a single
+// mode: 2 states), summed in column order like the general case.
+template <int K>
+void StepDense(const double* phi, const double* g, double* z) {
+  double next[K];
+  for (int i = 0; i < K; ++i) {
+    double sum = 0.0;
+    for (int j = 0; j < K; ++j) sum += phi[i * K + j] * z[j];
+    next[i] = sum + g[i];
+  }
+  for (int i = 0; i < K; ++i) z[i] = next[i];
+}
+
+}  // namespace
+
+void ExactIntegrator::StepState() {
+  switch (kept_) {
+    case 1: StepDense<1>(phi_.data(), g_.data(), z_.data()); break;
+    case 2: StepDense<2>(phi_.data(), g_.data(), z_.data()); break;
+    case 3: StepDense<3>(phi_.data(), g_.data(), z_.data()); break;
+    case 4: StepDense<4>(phi_.data(), g_.data(), z_.data()); break;
+    default:
+      // The zeros left out, the same column order (adding exact zeros changes no sum).
+      for (int i = 0; i < kept_; ++i) {
+        double sum = 0.0;
+        for (int e = row_start_[i]; e < row_start_[i + 1]; ++e) sum += value_[e] * z_[col_[e]];
+        next_[i] = sum + g_[i];
+      }
+      z_.swap(next_);
+  }
   ++count_;
 }
 
-Eigen::VectorXd ExactIntegrator::Output() const { return C_ * z_.head(num_states_); }
+// C z over C's non-zero entries, in column order (the zeros left out change no sum).
+void ExactIntegrator::WriteOutputs(double* outputs) const {
+  for (int o = 0; o < num_outputs_; ++o) {
+    double sum = 0.0;
+    for (int e = c_row_start_[o]; e < c_row_start_[o + 1]; ++e) sum += c_value_[e] * z_[c_col_[e]];
+    outputs[o] = sum;
+  }
+}
+
+void ExactIntegrator::Step() { StepState(); }
+
+// AdvancePeriod for a dense phi of K states: StepState and WriteOutputs, inlined.
+template <int K>
+void ExactIntegrator::AdvanceDense(double* outputs) {
+  double z[K];
+  for (int i = 0; i < K; ++i) z[i] = z_[i];
+  const double* phi = phi_.data();
+  const double* g = g_.data();
+  for (int j = 0; j < substeps_; ++j) {
+    StepDense<K>(phi, g, z);
+    double* out = outputs + static_cast<std::ptrdiff_t>(j) * num_outputs_;
+    for (int o = 0; o < num_outputs_; ++o) {
+      double sum = 0.0;
+      for (int e = c_row_start_[o]; e < c_row_start_[o + 1]; ++e) sum += c_value_[e] * z[c_col_[e]];
+      out[o] = sum;
+    }
+  }
+  for (int i = 0; i < K; ++i) z_[i] = z[i];
+  count_ += substeps_;
+}
+
+void ExactIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
+                                    double* outputs) {
+  SetAccel(drive_accel);
+  switch (kept_) {
+    case 1: AdvanceDense<1>(outputs); return;
+    case 2: AdvanceDense<2>(outputs); return;
+    case 3: AdvanceDense<3>(outputs); return;
+    case 4: AdvanceDense<4>(outputs); return;
+    default: break;
+  }
+  for (int j = 0; j < substeps_; ++j) {
+    StepState();
+    WriteOutputs(outputs + static_cast<std::ptrdiff_t>(j) * num_outputs_);
+  }
+}
+
+Eigen::VectorXd ExactIntegrator::Output() const {
+  Eigen::VectorXd y(num_outputs_);
+  WriteOutputs(y.data());
+  return y;
+}
 
 double ExactIntegrator::Time() const { return static_cast<double>(count_) * period_s_ / substeps_; }
 

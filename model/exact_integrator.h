@@ -35,7 +35,7 @@ class ExactIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return num_outputs_; }
   int substeps() const override { return substeps_; }
-  void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+  void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
 
   // How many of the augmented states the integrator steps: those that reach an output
@@ -47,6 +47,8 @@ class ExactIntegrator final : public PlantIntegrator {
   void SetAccel(const double* drive_accel);
   void StepState();
   void WriteOutputs(double* outputs) const;
+  template <int K>
+  void AdvanceDense(double* outputs);
 
   int num_states_;
   int num_inputs_;
@@ -60,6 +62,11 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<double> phi_;    // kept_ x kept_
   std::vector<double> gamma_;  // kept_ x num_inputs_
   std::vector<double> c_;      // num_outputs_ x kept_
+  // C without its zeros: per output row, its (column, value) entries; rows without any
+  // are written as 0.
+  std::vector<int> c_row_start_;
+  std::vector<int> c_col_;
+  std::vector<double> c_value_;
   // phi_ without its zeros (CSR), for the larger, block-diagonal plants of several axes.
   std::vector<int> row_start_;
   std::vector<int> col_;

@@ -80,10 +80,10 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return inner_->num_outputs(); }
   int substeps() const override { return inner_->substeps(); }
-  void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+  void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override {
     for (std::size_t j = 0; j < used_.size(); ++j) selected_[j] = drive_accel[used_[j]];
-    inner_->AdvancePeriod(selected_.data(), same_input_until_s, outputs);
+    inner_->AdvancePeriod(selected_.data(), same_input_periods, outputs);
   }
 
  private:
@@ -121,7 +121,7 @@ std::unique_ptr<PlantIntegrator> MakeFullIntegrator(const LinearPlant& plant,
 
 }  // namespace
 
-void PlantIntegrator::AdvancePeriod(const double* drive_accel, double /*same_input_until_s*/,
+void PlantIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
                                     double* outputs) {
   SetInput(Eigen::Map<const Eigen::VectorXd>(drive_accel, num_inputs()));
   const int rows = num_outputs();

@@ -37,6 +37,7 @@ struct CvodeTuning {
   bool per_state_atol = true;  // AbsoluteTolerances per state; false: one scalar (their minimum)
   bool reuse_memory = true;    // CVODE memory from this thread's pool; false: created per integrator
   bool fixed_point = false;    // fixed-point (functional) iteration instead of Newton's
+  int max_order = 0;           // CVodeSetMaxOrd; 0: CVODE's (Adams 12, BDF 5)
 };
 
 struct IntegratorConfig {
@@ -92,11 +93,11 @@ class PlantIntegrator {
   // One whole interpolation period (the co-simulation master's fast path): holds
   // `drive_accel` (num_inputs values) over it, advances its `substeps` output substeps and
   // writes the outputs after each to `outputs` (substep after substep, num_outputs each).
-  // `same_input_until_s`: the master's promise that the input stays the same up to that time
-  // (>= the period's end); CVODE then integrates across the ticks in between. Results are
-  // those of SetInput and Step/Output per substep (exactly so for the exact integrator; CVODE
-  // may take other, longer steps within its tolerances).
-  virtual void AdvancePeriod(const double* drive_accel, double same_input_until_s,
+  // `same_input_periods` (>= 1): the master's promise that this input is held for this
+  // period and the next same_input_periods - 1; CVODE then integrates across the ticks in
+  // between. Results are those of SetInput and Step/Output per substep (bit for bit for the
+  // exact integrator; CVODE may take other, longer steps, within its tolerances).
+  virtual void AdvancePeriod(const double* drive_accel, long same_input_periods,
                              double* outputs);
 };
 

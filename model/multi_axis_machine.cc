@@ -50,11 +50,13 @@ void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
   grow(&plant->B_accel, n, kNumAxes);
   grow(&plant->B_vel, n, kNumAxes);
   grow(&plant->C, 2 * kNumAxes, n);
-  plant->A.block(n0, n0, nb, nb) = block.A;
-  plant->B_accel.block(n0, axis, nb, 1) = block.B_accel;
-  plant->B_vel.block(n0, axis, nb, 1) = block.B_vel;
-  plant->C.block(kDeflectionRow + axis, n0, 1, nb) = block.C.row(0);
-  plant->C.block(kToolErrorRow + axis, n0, 1, nb) = block.C.row(1);
+  if (nb > 0) {  // a rigid axis: no blocks (row() of an empty matrix offsets a null pointer)
+    plant->A.block(n0, n0, nb, nb) = block.A;
+    plant->B_accel.block(n0, axis, nb, 1) = block.B_accel;
+    plant->B_vel.block(n0, axis, nb, 1) = block.B_vel;
+    plant->C.block(kDeflectionRow + axis, n0, 1, nb) = block.C.row(0);
+    plant->C.block(kToolErrorRow + axis, n0, 1, nb) = block.C.row(1);
+  }
   plant->state_kinds.insert(plant->state_kinds.end(), block.state_kinds.begin(),
                             block.state_kinds.end());
   plant->max_frequency_rad_s = std::max(plant->max_frequency_rad_s, block.max_frequency_rad_s);

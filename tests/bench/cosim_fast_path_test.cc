@@ -1,0 +1,71 @@
+// RunOptions::record_trace off (what sweeps and checks run) gives the same metrics, bit for
+// bit, as the run that records the trace: the single-axis samples of cosim.cc against the
+// general loop, for every integrator and for the shipped scenarios.
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/cosim.h"
+#include "bench/scenario_loader.h"
+#include "tests/bench/sdof_fixture.h"
+
+namespace shapebench::bench {
+namespace {
+
+// Bit for bit, NaN (undefined metric) equal to NaN.
+void ExpectSameBits(const Metrics& a, const Metrics& b, const std::string& what) {
+  const auto x = a.Named();
+  const auto y = b.Named();
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&x[i].second, &y[i].second, sizeof(double)), 0)
+        << what << ": " << x[i].first << " " << x[i].second << " vs " << y[i].second;
+  }
+}
+
+void ExpectSameMetrics(const Scenario& scenario, const std::string& what) {
+  const RunResult traced = RunScenario(scenario);
+  const RunResult fast = RunScenario(scenario, RunOptions{false});
+  EXPECT_FALSE(traced.trace.time_s.empty());
+  EXPECT_TRUE(fast.trace.time_s.empty()) << what << ": no trace recorded";
+  EXPECT_GT(fast.metrics.peak_ratio, 0.5) << what;
+  ExpectSameBits(traced.metrics, fast.metrics, what);
+  EXPECT_EQ(traced.simulated_s, fast.simulated_s) << what;
+  EXPECT_EQ(traced.stats.steps, fast.stats.steps) << what;
+}
+
+// Tests the patent's SDOF move (one axis: the single-axis samples) with each integrator,
+// and moves in both directions along X and Y.
+TEST(CosimFastPath, SingleAxisMoveMatchesTheTracedRun) {
+  for (auto method : {model::IntegratorMethod::kExact, model::IntegratorMethod::kCvode,
+                      model::IntegratorMethod::kAuto}) {
+    for (double distance_mm : {213.0, -120.0}) {
+      Scenario s = testing::SdofScenario(23.0, 0.02, method);
+      s.move.distance_mm = distance_mm;
+      ExpectSameMetrics(s, "sdof " + std::to_string(static_cast<int>(method)) + " " +
+                               std::to_string(distance_mm));
+    }
+  }
+  Scenario x = testing::SdofScenario(25.0, 0.0, model::IntegratorMethod::kExact);
+  x.machine.axes[0] = x.machine.axes[1];
+  x.move.axis = 0;
+  ExpectSameMetrics(x, "x axis");
+}
+
+// Tests the shipped scenarios (programs on several axes, arcs, servo, stroke ends: the
+// general loop either way, and whatever the single-axis test leaves to it).
+TEST(CosimFastPath, ShippedScenariosMatchTheTracedRun) {
+  const std::string dir = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/";
+  for (const char* name : {"method1.yaml", "method2.yaml", "exponential.yaml", "pocket_corner.yaml",
+                           "circle_test.yaml", "stroke_end.yaml", "um_zv.yaml"}) {
+    const Scenario s = LoadScenario(dir + name, {});
+    const RunResult traced = RunScenario(s);
+    const RunResult fast = RunScenario(s, RunOptions{false});
+    ExpectSameBits(traced.metrics, fast.metrics, name);
+  }
+}
+
+}  // namespace
+}  // namespace shapebench::bench

@@ -1,0 +1,54 @@
+// Every input the fuzz targets found (fuzz/regressions/TARGET/*, issue 7) goes through the
+// target's body again (fuzz/fuzz_targets.h) and is accepted or refused with a located
+// error: no exception escapes, no invariant breaks (and, in the sanitized build, no
+// sanitizer report).
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "fuzz/fuzz_targets.h"
+
+namespace shapebench::fuzz {
+namespace {
+
+std::string Bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+void Replay(const std::string& target, const std::function<void(const std::string&)>& body) {
+  const std::filesystem::path dir = std::filesystem::path(SHAPEBENCH_SOURCE_DIR) / "fuzz/regressions" / target;
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.is_regular_file() && entry.path().filename() != "README.md") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.string());
+    try {
+      body(Bytes(file));
+    } catch (const Violation& violation) {
+      ADD_FAILURE() << violation.what;
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "escaped: " << error.what();
+    }
+  }
+}
+
+// Tests that the scenario loader's findings load or fail with a located ConfigError.
+TEST(FuzzRegressions, Scenario) { Replay("scenario", ScenarioTarget); }
+// Tests that the --set parser's findings load or fail with a located ConfigError.
+TEST(FuzzRegressions, Set) { Replay("set", SetTarget); }
+// Tests that the sweep loader's findings load or fail with a located ConfigError.
+TEST(FuzzRegressions, Sweep) { Replay("sweep", SweepTarget); }
+// Tests that the G-code parser's findings parse or fail with a located ProgramError.
+TEST(FuzzRegressions, Gcode) { Replay("gcode", GcodeTarget); }
+
+}  // namespace
+}  // namespace shapebench::fuzz
