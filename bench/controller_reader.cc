@@ -48,6 +48,14 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern,
     if (config.frequencies_hz.empty()) {
       throw frequencies->Error("expected at least one frequency, e.g. [25, 60]");
     }
+    // Guard rail (issue 7): the convolved shaper has the product of the shapers' impulse
+    // counts (4^10 for ten ZVDDs: minutes and gigabytes to realize).
+    constexpr std::size_t kMaxFrequencies = 8;
+    if (config.frequencies_hz.size() > kMaxFrequencies) {
+      throw frequencies->Error("at most " + std::to_string(kMaxFrequencies) + " design frequencies (got " +
+                               std::to_string(config.frequencies_hz.size()) +
+                               "): each multiplies the number of impulses of the shaper");
+    }
   }
   pattern.Read("design_damping_ratio", &config.design_damping_ratio);
   pattern.Read("vibration_tolerance", &config.vibration_tolerance);

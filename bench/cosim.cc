@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "common/validation_error.h"
@@ -312,6 +314,17 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   const SingleAxis single = record_trace ? SingleAxis{}
                                          : FindSingleAxis(command, positions, view, contour_gauge, has_stroke);
   double contour_sq = 0.0;
+  // The other axes' rows the single-axis samples must see at 0 (the rest are 0 by the
+  // integrator's structure).
+  std::vector<int> watched_rows;
+  if (single.axis >= 0 && rows == 6) {
+    for (int r = 0; r < rows; ++r) {
+      if (r % 3 != single.axis && !(integrator && integrator->OutputRowIsZero(r))) watched_rows.push_back(r);
+    }
+  }
+  double fast_peak = 0.0;  // the single-axis samples' peak (of peak and peak_axes(axis))
+  std::vector<double> taus(substeps);  // the substeps' times within a period
+  for (int j = 1; j <= substeps; ++j) taus[j - 1] = dt * static_cast<double>(j) / substeps;
   for (std::size_t k = 1; k <= max_ticks; ++k) {
     // FMI order: set the input held over (t_{k-1}, t_k], step, read the outputs.
     const bool commanded = k <= n;
@@ -322,13 +335,22 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     if (integrator) {
       integrator->AdvancePeriod(a.data(), same_input[k], outputs.data());
       if (others_zero) {
+        // Branch-free: the other rows' bits all zero (rows the integrator guarantees 0 not
+        // even looked at), the axis' own values finite (their sum is). Anything else (-0.0
+        // included) takes the general loop, which checks every value.
         const int ax = single.axis;
-        for (int j = 0; j < substeps && others_zero; ++j) {
+        std::uint64_t other_bits = 0;
+        double sum = 0.0;
+        for (int j = 0; j < substeps; ++j) {
           const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j) * rows;
-          others_zero = out[(ax + 1) % 3] == 0.0 && out[(ax + 2) % 3] == 0.0 &&
-                        out[3 + (ax + 1) % 3] == 0.0 && out[3 + (ax + 2) % 3] == 0.0 &&
-                        std::isfinite(out[ax]) && std::isfinite(out[3 + ax]);
+          for (int r : watched_rows) {
+            std::uint64_t bits;
+            std::memcpy(&bits, out + r, sizeof bits);
+            other_bits |= bits;
+          }
+          sum += out[ax] + out[3 + ax];
         }
+        others_zero = other_bits == 0 && std::isfinite(sum);
       }
       if (!others_zero) {
         for (int i = 0; i < substeps * rows; ++i) {
@@ -346,32 +368,51 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const bool after_motion = k >= motion_ticks;
     if (others_zero) {
       // The single-axis samples (SingleAxis): the general loop below, its other components
-      // left out.
+      // left out; the same operations in the same order.
       const int ax = single.axis;
       const double p0_a = p0(ax);
       const double v0_a = v0(ax);
-      const double a_a = a(ax);
-      for (int j = 1; j <= substeps; ++j) {
-        const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j - 1) * rows;
-        const double tau = dt * static_cast<double>(j) / substeps;
-        const double p = p0_a + v0_a * tau + 0.5 * a_a * tau * tau;
-        const double deflection = out[model::kDeflectionRow + ax];
-        const double actual = p + out[model::kToolErrorRow + ax];
-        const double magnitude = std::abs(deflection);
-        peak = std::max(peak, magnitude);
-        peak_axes(ax) = std::max(peak_axes(ax), magnitude);
+      const double half_a = 0.5 * a(ax);
+      const double* deflections = outputs.data() + model::kDeflectionRow + ax;
+      const double* tool_errors = outputs.data() + model::kToolErrorRow + ax;
+      // The samples' deflection magnitudes, and the contour error (squared) of each.
+      auto sample = [&](int j, double* magnitude) {
+        const double tau = taus[j];
+        const double p = p0_a + v0_a * tau + half_a * tau * tau;
+        const double actual = p + tool_errors[j * rows];
+        *magnitude = std::abs(deflections[j * rows]);
         const double along = std::clamp((actual - single.start_m) * single.direction, 0.0, single.length_m);
         const double off = actual - (single.start_m + along * single.direction);
-        contour_sq = std::max(contour_sq, off * off);
-        if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
-        if (after_motion && (k > motion_ticks || j == substeps)) {
-          if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
-          if (magnitude >= band) {
-            last_outside_band_s = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
-            quiet_since_tick = k;
+        return off * off;
+      };
+      double tick_peak = fast_peak;
+      double tick_contour = contour_sq;
+      if (!after_motion) {
+        double tick_cruise = cruise;
+        for (int j = 0; j < substeps; ++j) {
+          double magnitude;
+          tick_contour = std::max(tick_contour, sample(j, &magnitude));
+          tick_peak = std::max(tick_peak, magnitude);
+          if (cruising) tick_cruise = std::isnan(tick_cruise) ? magnitude : std::max(tick_cruise, magnitude);
+        }
+        cruise = tick_cruise;
+      } else {
+        for (int j = 0; j < substeps; ++j) {
+          double magnitude;
+          tick_contour = std::max(tick_contour, sample(j, &magnitude));
+          tick_peak = std::max(tick_peak, magnitude);
+          if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
+          if (k > motion_ticks || j + 1 == substeps) {
+            if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
+            if (magnitude >= band) {
+              last_outside_band_s = dt * static_cast<double>((k - 1) * substeps + j + 1) / substeps;
+              quiet_since_tick = k;
+            }
           }
         }
       }
+      fast_peak = tick_peak;
+      contour_sq = tick_contour;
     } else {
       const bool interpolating = k < interpolated_ticks;
       const int block = interpolating ? command.block[k] : -1;
@@ -381,7 +422,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       for (int j = 1; j <= substeps; ++j) {
         const double t = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
         const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j - 1) * rows;
-        const double tau = dt * static_cast<double>(j) / substeps;
+        const double tau = taus[j - 1];
         const Eigen::Vector3d p = p0 + v0 * tau + 0.5 * a * tau * tau;
         const Eigen::Vector3d deflection(out[model::kDeflectionRow], out[model::kDeflectionRow + 1],
                                          out[model::kDeflectionRow + 2]);
@@ -423,6 +464,10 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     }
   }
   contour = std::sqrt(contour_sq);
+  if (single.axis >= 0) {
+    peak = std::max(peak, fast_peak);
+    peak_axes(single.axis) = std::max(peak_axes(single.axis), fast_peak);
+  }
   result.simulated_s = static_cast<double>(last_tick) * dt;
   m.peak_deflection_m = peak;
   m.peak_ratio = peak / m.static_displacement_m;

@@ -67,8 +67,8 @@ std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_
   const std::size_t stride = TraceStride(samples, max_rows);
   WriteFileAtomically(path, [&](std::ostream& out) {
     if (stride > 1) {
-      out << "# decimated: every " << stride << "th of " << samples
-          << " samples (limits.max_trace_rows " << max_rows
+      out << "# decimated: 1 in " << stride << " of " << samples
+          << " samples kept (limits.max_trace_rows " << max_rows
           << "); the metrics use every sample\n";
     }
     out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"

@@ -29,7 +29,8 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 // deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
 // block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.
 // A trace of more than `max_rows` samples is decimated (TraceStride): every stride-th
-// sample from the first, and a first line "# decimated: ..." says so. Returns the stride.
+// sample from the first, and a first line "# decimated: 1 in K of N samples kept ..." says
+// so. Returns the stride.
 std::size_t WriteTraceCsv(const std::string& path, const Trace& trace,
                           long max_rows = RunLimits{}.max_trace_rows);
 

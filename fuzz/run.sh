@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # fuzz/run.sh BUILD_DIR SECONDS TARGET...: runs each libFuzzer target for SECONDS on a
-# working corpus in BUILD_DIR/corpus/TARGET seeded from fuzz/corpus/NAME (new inputs land
-# in the working corpus, the repository's seeds stay as they are), after replaying
+# working corpus in BUILD_DIR/corpus/TARGET seeded from fuzz/corpus/NAME, with a
+# dictionary of the input's words (fuzz/yaml.dict, fuzz/gcode.dict); new inputs land in
+# the working corpus, the repository's seeds stay as they are. Before that it replays
 # fuzz/regressions/NAME. A crash, a hang (-timeout, 10 s an input), a memory blow-up
 # (-rss_limit_mb) or a sanitizer report stops the target with its input in
 # BUILD_DIR/artifacts/ and makes this script fail. Prints the executions of each target.
@@ -22,9 +23,11 @@ for target in "$@"; do
     "$build/fuzz/$target" -runs=1 "${regressions[@]}" >/dev/null 2>"$log.regressions" ||
       { echo "$target: a regression input fails again (see $log.regressions)"; status=1; continue; }
   fi
+  dict=fuzz/yaml.dict
+  [ "$name" = gcode ] && dict=fuzz/gcode.dict
   echo "== $target: ${seconds} s"
   if "$build/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-       -print_final_stats=1 -artifact_prefix="$build/artifacts/$target-" \
+       -print_final_stats=1 -dict="$dict" -artifact_prefix="$build/artifacts/$target-" \
        "$work" "fuzz/corpus/$name" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     summary+=("$target: ${runs:-?} executions in ${seconds} s, no finding")

@@ -48,6 +48,9 @@ class CvodeIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return static_cast<int>(C_.rows()); }
   int substeps() const override { return substeps_; }
+  bool OutputRowIsZero(int row) const override {
+    return c_sparse_.row_start[row] == c_sparse_.row_start[row + 1];
+  }
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
 

@@ -150,6 +150,53 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
     }
     c_row_start_.push_back(static_cast<int>(c_col_.size()));
   }
+  if (kept_ <= kMaxBlock && num_outputs_ <= kMaxRows) {
+    // The distinct non-zero rows of C (a kinematic axis has the same row for deflection
+    // and tool error), then the period's products.
+    block_row_of_.assign(num_outputs_, -1);
+    for (int o = 0; o < num_outputs_; ++o) {
+      if (c_row_start_[o] == c_row_start_[o + 1]) continue;
+      for (std::size_t d = 0; d < block_rows_.size() && block_row_of_[o] < 0; ++d) {
+        const int first = block_rows_[d];
+        if (std::equal(c_.begin() + static_cast<std::ptrdiff_t>(o) * kept_,
+                       c_.begin() + static_cast<std::ptrdiff_t>(o + 1) * kept_,
+                       c_.begin() + static_cast<std::ptrdiff_t>(first) * kept_)) {
+          block_row_of_[o] = static_cast<int>(d);
+        }
+      }
+      if (block_row_of_[o] < 0) {
+        block_row_of_[o] = static_cast<int>(block_rows_.size());
+        block_rows_.push_back(o);
+      }
+    }
+    const Eigen::Index k = kept_;
+    const Eigen::Index m = num_inputs_;
+    const Eigen::Index rows = static_cast<Eigen::Index>(block_rows_.size());
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const RowMajor phi_k = Eigen::Map<const RowMajor>(phi_.data(), k, k);
+    const RowMajor gamma_k = Eigen::Map<const RowMajor>(gamma_.data(), k, m);
+    RowMajor c_k(rows, k);
+    for (Eigen::Index d = 0; d < rows; ++d) {
+      c_k.row(d) = Eigen::Map<const RowMajor>(c_.data() + block_rows_[d] * kept_, 1, k);
+    }
+    RowMajor power = phi_k;    // phi^j
+    RowMajor forced = gamma_k;  // gamma_j
+    for (int j = 0; j < substeps_; ++j) {
+      if (j > 0) {
+        forced = (phi_k * forced + gamma_k).eval();
+        power = (phi_k * power).eval();
+      }
+      const RowMajor c_power = c_k * power;
+      const RowMajor c_forced = c_k * forced;
+      block_c_phi_.insert(block_c_phi_.end(), c_power.data(), c_power.data() + rows * k);
+      block_c_gamma_.insert(block_c_gamma_.end(), c_forced.data(), c_forced.data() + rows * m);
+    }
+    block_phi_.assign(power.data(), power.data() + k * k);
+    block_gamma_.assign(forced.data(), forced.data() + k * m);
+    block_forced_.assign(static_cast<std::size_t>(substeps_) * rows, 0.0);
+    block_g_.assign(kept_, 0.0);
+    block_accel_.assign(num_inputs_, 0.0);
+  }
   z_.assign(kept_, 0.0);
   g_.assign(kept_, 0.0);
   next_.assign(kept_, 0.0);
@@ -231,43 +278,78 @@ void ExactIntegrator::WriteOutputs(double* outputs) const {
   }
 }
 
-void ExactIntegrator::Step() { StepState(); }
-
-// AdvancePeriod for a dense phi of K states: StepState and WriteOutputs, inlined.
+// AdvancePeriod for a small plant of K states: the period from its start state
+// (block_* members).
 template <int K>
-void ExactIntegrator::AdvanceDense(double* outputs) {
+void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
+  const int m = num_inputs_;
+  const int rows = static_cast<int>(block_rows_.size());
+  if (!block_ready_ || !std::equal(drive_accel, drive_accel + m, block_accel_.begin())) {
+    // The forced part, once per held acceleration (it changes a few times a move).
+    std::copy(drive_accel, drive_accel + m, block_accel_.begin());
+    for (std::size_t i = 0; i < block_forced_.size(); ++i) {
+      double sum = 0.0;
+      for (int c = 0; c < m; ++c) sum += block_c_gamma_[i * m + c] * drive_accel[c];
+      block_forced_[i] = sum;
+    }
+    for (int i = 0; i < K; ++i) {
+      double sum = 0.0;
+      for (int c = 0; c < m; ++c) sum += block_gamma_[static_cast<std::size_t>(i) * m + c] * drive_accel[c];
+      block_g_[i] = sum;
+    }
+    block_ready_ = true;
+  }
   double z[K];
   for (int i = 0; i < K; ++i) z[i] = z_[i];
-  const double* phi = phi_.data();
-  const double* g = g_.data();
-  for (int j = 0; j < substeps_; ++j) {
-    StepDense<K>(phi, g, z);
-    double* out = outputs + static_cast<std::ptrdiff_t>(j) * num_outputs_;
-    for (int o = 0; o < num_outputs_; ++o) {
+  const double* __restrict c_phi = block_c_phi_.data();
+  const double* __restrict forced = block_forced_.data();
+  const int* __restrict row_of = block_row_of_.data();
+  const int outputs_per_substep = num_outputs_;
+  const int substeps = substeps_;
+  for (int j = 0; j < substeps; ++j) {
+    double values[kMaxRows];  // the distinct rows of this substep
+    for (int d = 0; d < rows; ++d) {
       double sum = 0.0;
-      for (int e = c_row_start_[o]; e < c_row_start_[o + 1]; ++e) sum += c_value_[e] * z[c_col_[e]];
-      out[o] = sum;
+      for (int i = 0; i < K; ++i) sum += c_phi[i] * z[i];
+      values[d] = sum + forced[d];
+      c_phi += K;
+    }
+    forced += rows;
+    double* __restrict out = outputs + static_cast<std::ptrdiff_t>(j) * outputs_per_substep;
+    for (int o = 0; o < outputs_per_substep; ++o) {
+      const int d = row_of[o];
+      out[o] = d >= 0 ? values[d] : 0.0;
     }
   }
-  for (int i = 0; i < K; ++i) z_[i] = z[i];
+  double next[K];
+  for (int i = 0; i < K; ++i) {
+    double sum = 0.0;
+    for (int c = 0; c < K; ++c) sum += block_phi_[i * K + c] * z[c];
+    next[i] = sum + block_g_[i];
+  }
+  for (int i = 0; i < K; ++i) z_[i] = next[i];
   count_ += substeps_;
 }
 
 void ExactIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
                                     double* outputs) {
-  SetAccel(drive_accel);
-  switch (kept_) {
-    case 1: AdvanceDense<1>(outputs); return;
-    case 2: AdvanceDense<2>(outputs); return;
-    case 3: AdvanceDense<3>(outputs); return;
-    case 4: AdvanceDense<4>(outputs); return;
-    default: break;
+  if (count_ % substeps_ == 0 && !block_row_of_.empty()) {  // at a tick: the period at once
+    switch (kept_) {
+      case 1: AdvanceBlock<1>(drive_accel, outputs); return;
+      case 2: AdvanceBlock<2>(drive_accel, outputs); return;
+      case 3: AdvanceBlock<3>(drive_accel, outputs); return;
+      case 4: AdvanceBlock<4>(drive_accel, outputs); return;
+      default: break;
+    }
   }
+  SetAccel(drive_accel);
   for (int j = 0; j < substeps_; ++j) {
     StepState();
     WriteOutputs(outputs + static_cast<std::ptrdiff_t>(j) * num_outputs_);
   }
 }
+
+void ExactIntegrator::Step() { StepState(); }
 
 Eigen::VectorXd ExactIntegrator::Output() const {
   Eigen::VectorXd y(num_outputs_);

@@ -38,6 +38,10 @@ class ExactIntegrator final : public PlantIntegrator {
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
 
+  bool OutputRowIsZero(int row) const override {
+    return c_row_start_[row] == c_row_start_[row + 1];
+  }
+
   // How many of the augmented states the integrator steps: those that reach an output
   // (through C or through other such states); the rest (e.g. the drive velocity of a plant
   // with B_vel = 0) are left out, which changes no output.
@@ -48,7 +52,7 @@ class ExactIntegrator final : public PlantIntegrator {
   void StepState();
   void WriteOutputs(double* outputs) const;
   template <int K>
-  void AdvanceDense(double* outputs);
+  void AdvanceBlock(const double* drive_accel, double* outputs);
 
   int num_states_;
   int num_inputs_;
@@ -71,6 +75,22 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<int> row_start_;
   std::vector<int> col_;
   std::vector<double> value_;
+  // A small plant (kept_ <= kMaxBlock) advances a whole period from its start state: the
+  // outputs of substep j are (C phi^j) z + (C gamma_j) a with gamma_j = sum_{i<j} phi^i
+  // gamma, the state at its end phi^S z + gamma_S a. Independent products instead of a
+  // chain of S dependent steps (the same discretisation; rounding differs from Step's).
+  static constexpr int kMaxBlock = 4;
+  static constexpr int kMaxRows = 8;  // and at most this many outputs
+  std::vector<int> block_rows_;      // the distinct non-zero output rows (their first row)
+  std::vector<int> block_row_of_;    // per output row: its index in block_rows_, or -1
+  std::vector<double> block_c_phi_;  // [j][row][kept_]: C phi^(j+1)
+  std::vector<double> block_c_gamma_;  // [j][row][num_inputs_]: C gamma_(j+1)
+  std::vector<double> block_phi_;    // phi^S, kept_ x kept_
+  std::vector<double> block_gamma_;  // gamma_S, kept_ x num_inputs_
+  std::vector<double> block_forced_;  // [j][row]: C gamma_(j+1) a for the last a
+  std::vector<double> block_g_;       // gamma_S a for the last a
+  std::vector<double> block_accel_;   // that a
+  bool block_ready_ = false;          // block_forced_ and block_g_ hold block_accel_'s
   std::vector<double> z_;      // kept_
   std::vector<double> g_;      // gamma a, for the held a
   std::vector<double> next_;   // scratch

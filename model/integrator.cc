@@ -80,6 +80,7 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return inner_->num_outputs(); }
   int substeps() const override { return inner_->substeps(); }
+  bool OutputRowIsZero(int row) const override { return inner_->OutputRowIsZero(row); }
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override {
     for (std::size_t j = 0; j < used_.size(); ++j) selected_[j] = drive_accel[used_[j]];

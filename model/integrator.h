@@ -89,14 +89,18 @@ class PlantIntegrator {
   virtual int num_inputs() const = 0;
   virtual int num_outputs() const = 0;
   virtual int substeps() const = 0;  // output substeps per interpolation period
+  // True when output `row` is exactly 0 whatever the input (its row of C reaches no
+  // integrated state): the master need not look at it.
+  virtual bool OutputRowIsZero(int /*row*/) const { return false; }
 
   // One whole interpolation period (the co-simulation master's fast path): holds
   // `drive_accel` (num_inputs values) over it, advances its `substeps` output substeps and
   // writes the outputs after each to `outputs` (substep after substep, num_outputs each).
   // `same_input_periods` (>= 1): the master's promise that this input is held for this
   // period and the next same_input_periods - 1; CVODE then integrates across the ticks in
-  // between. Results are those of SetInput and Step/Output per substep (bit for bit for the
-  // exact integrator; CVODE may take other, longer steps, within its tolerances).
+  // between. Results are those of SetInput and Step/Output per substep up to rounding (the
+  // exact integrator of a small plant computes the period's substeps from its start state;
+  // CVODE may take other, longer steps, within its tolerances).
   virtual void AdvancePeriod(const double* drive_accel, long same_input_periods,
                              double* outputs);
 };

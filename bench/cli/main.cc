@@ -108,8 +108,8 @@ int RunCommand(const RunArgs& args) {
     if (stride > 1) {
       std::cerr << "note: " << scenario.source_file << ": the trace has " << result.trace.time_s.size()
                 << " samples, more than limits.max_trace_rows (" << scenario.limits.max_trace_rows
-                << "): trace.csv and the plots keep every " << stride
-                << "th; the metrics use every sample\n";
+                << "): trace.csv and the plots keep 1 in " << stride
+                << "; the metrics use every sample\n";
     }
     WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
     WritePathPlot((dir / "path.png").string(), result, scenario);

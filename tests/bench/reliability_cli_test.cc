@@ -287,9 +287,12 @@ TEST(GuardRails, LongTraceIsDecimatedWithANote) {
   EXPECT_NE(cut.err.find("note: " + scenario + ": the trace has "), std::string::npos) << cut.err;
   EXPECT_EQ(ReadText(dir.File("cut/metrics.json")), ReadText(dir.File("full/metrics.json")));
   const std::string text = ReadText(dir.File("cut/trace.csv"));
-  ASSERT_EQ(text.rfind("# decimated: every ", 0), 0u) << text.substr(0, 200);
+  ASSERT_EQ(text.rfind("# decimated: 1 in ", 0), 0u) << text.substr(0, 200);
   const std::size_t full_rows = Lines(dir.File("full/trace.csv")) - 1;
-  const std::size_t stride = std::stoul(text.substr(19));
+  const std::size_t stride = std::stoul(text.substr(18));
+  EXPECT_NE(text.find(" of " + std::to_string(full_rows) + " samples kept (limits.max_trace_rows 100); the "
+                      "metrics use every sample\n"),
+            std::string::npos);
   EXPECT_EQ(stride, (full_rows - 1 + 98) / 99);
   const std::size_t rows = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) - 2;
   EXPECT_LE(rows, 100u);
