@@ -1,5 +1,6 @@
 #include "bench/config_document.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -64,12 +65,44 @@ bool ReadInputFile(const std::string& path, std::string* text, std::string* erro
   return true;
 }
 
+namespace {
+
+struct ParsedFile {
+  std::string path;
+  std::string text;
+  YAML::Node tree;  // a copy no one else holds
+};
+
+thread_local int parse_cache_scopes = 0;
+thread_local std::vector<ParsedFile> parse_cache;  // most recently used first
+
+}  // namespace
+
+ParseCacheScope::ParseCacheScope() { ++parse_cache_scopes; }
+ParseCacheScope::~ParseCacheScope() { --parse_cache_scopes; }
+
 YAML::Node ConfigDocument::ParseFile(const std::string& path) {
   std::string text;
   std::string error;
   if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  const bool cached = parse_cache_scopes > 0;
+  if (cached) {
+    for (std::size_t i = 0; i < parse_cache.size(); ++i) {
+      if (parse_cache[i].path == path && parse_cache[i].text == text) {
+        std::rotate(parse_cache.begin(), parse_cache.begin() + static_cast<std::ptrdiff_t>(i),
+                    parse_cache.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        return YAML::Clone(parse_cache.front().tree);
+      }
+    }
+  }
   try {
-    return YAML::Load(text);
+    YAML::Node tree = YAML::Load(text);
+    if (cached) {
+      constexpr std::size_t kKept = 8;
+      if (parse_cache.size() == kKept) parse_cache.pop_back();
+      parse_cache.insert(parse_cache.begin(), ParsedFile{path, std::move(text), YAML::Clone(tree)});
+    }
+    return tree;
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path, e.mark.line + 1, e.mark.column + 1, "",
                       "malformed YAML: " + e.msg);

@@ -30,10 +30,23 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = 64u << 20;
 // a directory", "not a regular file", "larger than 64 MiB") when it cannot.
 bool ReadInputFile(const std::string& path, std::string* text, std::string* error);
 
+// While one is alive on a thread, ConfigDocument::ParseFile keeps what it parses there
+// (the last few files, keyed by path and bytes: never stale) and hands out copies. Copies
+// carry no source positions (yaml-cpp's Clone drops the marks): a loader that fails inside
+// a scope must load again outside one to locate its error. For the points of a sweep, which
+// read the same base scenario (and machine file) thousands of times (RunPoint).
+class ParseCacheScope {
+ public:
+  ParseCacheScope();
+  ~ParseCacheScope();
+  ParseCacheScope(const ParseCacheScope&) = delete;
+  ParseCacheScope& operator=(const ParseCacheScope&) = delete;
+};
+
 class ConfigDocument {
  public:
   // Reads and parses a file. A missing file or malformed YAML throws ConfigError
-  // (the latter at yaml-cpp's mark).
+  // (the latter at yaml-cpp's mark). Within a ParseCacheScope: see there.
   static YAML::Node ParseFile(const std::string& path);
 
   ConfigDocument(YAML::Node root, std::string file);

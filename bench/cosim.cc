@@ -181,6 +181,15 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const std::vector<double>& v = trajectory.velocity_m_s;
     velocity[0](axis) = v[0];
     double position = command.start_m(axis);
+    if (std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); })) {
+      // An axis that does not move: the same sums, of zeros (the first turns -0 into +0).
+      position += 0.0;
+      for (std::size_t k = 1; k <= n; ++k) {
+        velocity[k](axis) = 0.0;
+        positions[k](axis) = position;
+      }
+      continue;
+    }
     for (std::size_t k = 1; k <= n; ++k) {
       velocity[k](axis) = v[k];
       accel[k](axis) = trajectory.accel_m_s2(k);
@@ -204,8 +213,12 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
 
   // Motion ends at the last tick where a commanded velocity becomes (and stays) zero.
   std::size_t last_moving = 0;
-  for (std::size_t k = 0; k <= n; ++k) {
-    if (velocity[k] != Eigen::Vector3d::Zero()) last_moving = k;
+  for (std::size_t k = n + 1; k-- > 0;) {
+    const Eigen::Vector3d& v = velocity[k];
+    if (v(0) != 0.0 || v(1) != 0.0 || v(2) != 0.0) {
+      last_moving = k;
+      break;
+    }
   }
   const std::size_t motion_ticks = std::min(last_moving + 1, n);
   m.motion_time_s = static_cast<double>(motion_ticks) * dt;
@@ -294,22 +307,34 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   // Cruise: the commanded feed constant and non-zero, for at least one period of the
   // lowest mode in a row. Shorter constant stretches are steps of a pattern (method 2's
   // zero step, T/6), not the cruise whose vibration the metric reports.
-  std::vector<bool> cruise_tick(n + 1, false);
+  std::vector<char> cruise_tick(n + 1, 0);
   for (std::size_t k = 1, run_start = 1; k <= n + 1; ++k) {
-    const bool steady = k <= n && velocity[k] != Eigen::Vector3d::Zero() &&
+    const bool steady = k <= n &&
+                        (velocity[k](0) != 0.0 || velocity[k](1) != 0.0 || velocity[k](2) != 0.0) &&
                         accel[k].norm() <= 1e-9 * max_accel;
     if (steady) continue;
-    if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, true);
+    if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
     run_start = k + 1;
   }
   // For how many periods from tick k on the held acceleration stays a_k (the tail's is
-  // zero): the integrator may integrate across those ticks (AdvancePeriod).
-  std::vector<long> same_input(max_ticks + 2, 1);
-  for (std::size_t k = max_ticks; k >= 1; --k) {
-    const Eigen::Vector3d& here = k <= n ? accel[k] : accel[0];
-    const Eigen::Vector3d& next = k + 1 <= n ? accel[k + 1] : accel[0];
-    same_input[k] = k < max_ticks && here == next ? same_input[k + 1] + 1 : 1;
-  }
+  // zero): an integrator that can (CVODE) integrates across those ticks (AdvancePeriod).
+  // Found on the way, for the integrators that use it.
+  const bool holds = integrator && integrator->UsesInputHolds();
+  auto accel_at = [&](std::size_t k) -> const Eigen::Vector3d& { return k <= n ? accel[k] : accel[0]; };
+  std::size_t next_change = 0;  // the first tick after k whose acceleration differs from a_k
+  auto same_input = [&](std::size_t k) -> long {
+    if (!holds) return 1;
+    if (k >= next_change) {
+      const Eigen::Vector3d& here = accel_at(k);
+      next_change = k + 1;
+      while (next_change <= max_ticks) {
+        const Eigen::Vector3d& next = accel_at(next_change);
+        if (next(0) != here(0) || next(1) != here(1) || next(2) != here(2)) break;
+        ++next_change;
+      }
+    }
+    return static_cast<long>(next_change - k);
+  };
   const std::size_t interpolated_ticks = command.path_position_m.size();
   const SingleAxis single = record_trace ? SingleAxis{}
                                          : FindSingleAxis(command, positions, view, contour_gauge, has_stroke);
@@ -322,6 +347,30 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       if (r % 3 != single.axis && !(integrator && integrator->OutputRowIsZero(r))) watched_rows.push_back(r);
     }
   }
+  // When every other row is 0 by the integrator's structure, only the axis' deflection
+  // and tool error are asked for: every period takes the single-axis samples.
+  int width = rows;  // outputs per substep in `outputs`
+  int deflection_at = model::kDeflectionRow + std::max(single.axis, 0);
+  int tool_error_at = model::kToolErrorRow + std::max(single.axis, 0);
+  if (single.axis >= 0 && rows == 6 && watched_rows.empty() && integrator) {
+    integrator->SelectOutputs({model::kDeflectionRow + single.axis, model::kToolErrorRow + single.axis});
+    width = 2;
+    deflection_at = 0;
+    tool_error_at = 1;
+  }
+  // Every output of period k finite, else the run fails (a degenerate model: never reported
+  // as numbers), at the first substep that is not.
+  auto check_finite = [&](std::size_t k) {
+    for (int i = 0; i < substeps * width; ++i) {
+      if (!std::isfinite(outputs[i])) {
+        const long count = static_cast<long>((k - 1) * substeps) + i / width + 1;
+        throw model::SolverError("NON_FINITE_STATE",
+                                 "the plant's deflection became non-finite at t = " +
+                                     std::to_string(dt * static_cast<double>(count) / substeps) +
+                                     " s (a degenerate model)");
+      }
+    }
+  };
   double fast_peak = 0.0;  // the single-axis samples' peak (of peak and peak_axes(axis))
   std::vector<double> taus(substeps);  // the substeps' times within a period
   for (int j = 1; j <= substeps; ++j) taus[j - 1] = dt * static_cast<double>(j) / substeps;
@@ -333,14 +382,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const Eigen::Vector3d& p0 = commanded ? positions[k - 1] : positions.back();
     bool others_zero = single.axis >= 0 && rows == 6;  // the other axes' outputs all exactly 0
     if (integrator) {
-      integrator->AdvancePeriod(a.data(), same_input[k], outputs.data());
-      if (others_zero) {
-        // Branch-free: the other rows' bits all zero (rows the integrator guarantees 0 not
-        // even looked at), the axis' own values finite (their sum is). Anything else (-0.0
-        // included) takes the general loop, which checks every value.
-        const int ax = single.axis;
+      integrator->AdvancePeriod(a.data(), same_input(k), outputs.data());
+      if (others_zero && !watched_rows.empty()) {
+        // Branch-free: the other rows' bits all zero (rows the integrator guarantees 0 are
+        // not even looked at). Anything else (-0.0 included) takes the general loop.
         std::uint64_t other_bits = 0;
-        double sum = 0.0;
         for (int j = 0; j < substeps; ++j) {
           const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j) * rows;
           for (int r : watched_rows) {
@@ -348,21 +394,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
             std::memcpy(&bits, out + r, sizeof bits);
             other_bits |= bits;
           }
-          sum += out[ax] + out[3 + ax];
         }
-        others_zero = other_bits == 0 && std::isfinite(sum);
+        others_zero = other_bits == 0;
       }
-      if (!others_zero) {
-        for (int i = 0; i < substeps * rows; ++i) {
-          if (!std::isfinite(outputs[i])) {  // a degenerate model: never reported as numbers
-            const long count = static_cast<long>((k - 1) * substeps) + i / rows + 1;
-            throw model::SolverError("NON_FINITE_STATE",
-                                     "the plant's deflection became non-finite at t = " +
-                                         std::to_string(dt * static_cast<double>(count) / substeps) +
-                                         " s (a degenerate model)");
-          }
-        }
-      }
+      // The single-axis samples check their own values' finiteness (below).
+      if (!others_zero) check_finite(k);
     }
     const bool cruising = commanded && cruise_tick[k];
     const bool after_motion = k >= motion_ticks;
@@ -373,25 +409,28 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       const double p0_a = p0(ax);
       const double v0_a = v0(ax);
       const double half_a = 0.5 * a(ax);
-      const double* deflections = outputs.data() + model::kDeflectionRow + ax;
-      const double* tool_errors = outputs.data() + model::kToolErrorRow + ax;
+      const double* deflections = outputs.data() + deflection_at;
+      const double* tool_errors = outputs.data() + tool_error_at;
       // The samples' deflection magnitudes, and the contour error (squared) of each.
       auto sample = [&](int j, double* magnitude) {
         const double tau = taus[j];
         const double p = p0_a + v0_a * tau + half_a * tau * tau;
-        const double actual = p + tool_errors[j * rows];
-        *magnitude = std::abs(deflections[j * rows]);
+        const double actual = p + tool_errors[j * width];
+        *magnitude = std::abs(deflections[j * width]);
         const double along = std::clamp((actual - single.start_m) * single.direction, 0.0, single.length_m);
         const double off = actual - (single.start_m + along * single.direction);
         return off * off;
       };
       double tick_peak = fast_peak;
       double tick_contour = contour_sq;
+      double finite = 0.0;  // not finite if a deflection or tool error was not (or a square overflowed)
       if (!after_motion) {
         double tick_cruise = cruise;
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
-          tick_contour = std::max(tick_contour, sample(j, &magnitude));
+          const double square = sample(j, &magnitude);
+          finite += square + magnitude;
+          tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (cruising) tick_cruise = std::isnan(tick_cruise) ? magnitude : std::max(tick_cruise, magnitude);
         }
@@ -399,7 +438,9 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       } else {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
-          tick_contour = std::max(tick_contour, sample(j, &magnitude));
+          const double square = sample(j, &magnitude);
+          finite += square + magnitude;
+          tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
           if (k > motion_ticks || j + 1 == substeps) {
@@ -411,6 +452,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
           }
         }
       }
+      if (integrator && !std::isfinite(finite)) check_finite(k);  // throws for a non-finite output
       fast_peak = tick_peak;
       contour_sq = tick_contour;
     } else {

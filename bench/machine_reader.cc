@@ -15,9 +15,21 @@ const std::vector<std::pair<std::string, int>>& AxisChoices() {
   return kChoices;
 }
 
+// Guard rail (issue 7): a model's states per axis. The modal analysis and the exact
+// integrator's matrix exponential grow with their cube (400 bodies: 17 s a run).
+constexpr std::size_t kMaxModelEntries = 100;
+
+void CheckModelSize(const NodeReader& list, const char* what, std::size_t max = kMaxModelEntries) {
+  if (list.node().IsSequence() && list.node().size() > max) {
+    throw list.Error("at most " + std::to_string(max) + " " + what + " per axis (got " +
+                     std::to_string(list.node().size()) + ")");
+  }
+}
+
 model::ModalMachineConfig ReadModal(const NodeReader& machine) {
   model::ModalMachineConfig modal;
   modal.modes.clear();
+  CheckModelSize(*machine.Child("modes"), "modes");
   for (const NodeReader& entry : machine.Child("modes")->Elements()) {
     entry.ExpectMap({"frequency_hz", "damping_ratio", "gain"});
     model::ModalMode mode;
@@ -32,6 +44,7 @@ model::ModalMachineConfig ReadModal(const NodeReader& machine) {
 model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
   model::LumpedMachineConfig lumped;
   if (auto bodies = machine.Child("bodies")) {
+    CheckModelSize(*bodies, "bodies");
     for (const NodeReader& entry : bodies->Elements()) {
       entry.ExpectMap({"name", "mass_kg"});
       model::LumpedBody body;
@@ -41,6 +54,7 @@ model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
     }
   }
   if (auto elements = machine.Child("elements")) {
+    CheckModelSize(*elements, "elements", 2 * kMaxModelEntries);
     for (const NodeReader& entry : elements->Elements()) {
       entry.ExpectMap({"name", "from", "to", "stiffness_n_m", "damping_n_s_m"});
       model::LumpedElement element;

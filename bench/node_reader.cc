@@ -4,7 +4,6 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
-#include <regex>
 #include <set>
 
 #include "bench/key_path.h"
@@ -12,15 +11,44 @@
 namespace shapebench::bench {
 namespace {
 
-// YAML 1.2 core-schema decimal numbers only: no hex, no .inf/.nan, no quoted strings.
-const std::regex& NumberPattern() {
-  static const std::regex pattern(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)");
-  return pattern;
+bool IsDigit(char c) { return c >= '0' && c <= '9'; }
+
+// Skips digits from *i; how many.
+std::size_t Digits(const std::string& text, std::size_t* i) {
+  const std::size_t start = *i;
+  while (*i < text.size() && IsDigit(text[*i])) ++*i;
+  return *i - start;
 }
 
-const std::regex& IntegerPattern() {
-  static const std::regex pattern(R"([-+]?\d+)");
-  return pattern;
+// YAML 1.2 core-schema decimal numbers only: no hex, no .inf/.nan, no quoted strings.
+// The whole text matches [-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)? (a hand-written matcher:
+// std::regex made reading a scenario several times slower, which sweeps do per point).
+bool IsNumberText(const std::string& text) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  if (Digits(text, &i) > 0) {
+    if (i < text.size() && text[i] == '.') {
+      ++i;
+      Digits(text, &i);
+    }
+  } else {
+    if (i >= text.size() || text[i] != '.') return false;
+    ++i;
+    if (Digits(text, &i) == 0) return false;
+  }
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (Digits(text, &i) == 0) return false;
+  }
+  return i == text.size();
+}
+
+// [-+]?\d+, the whole text.
+bool IsIntegerText(const std::string& text) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  return Digits(text, &i) > 0 && i == text.size();
 }
 
 bool IsQuoted(const YAML::Node& node) { return node.Tag() == "!"; }
@@ -107,7 +135,7 @@ std::vector<NodeReader> NodeReader::Elements() const {
 }
 
 double NodeReader::AsNumber() const {
-  if (!node_.IsScalar() || IsQuoted(node_) || !std::regex_match(node_.Scalar(), NumberPattern())) {
+  if (!node_.IsScalar() || IsQuoted(node_) || !IsNumberText(node_.Scalar())) {
     throw Error("expected a number, got " + Shown());
   }
   errno = 0;
@@ -118,7 +146,7 @@ double NodeReader::AsNumber() const {
 
 long NodeReader::AsInteger() const {
   if (!node_.IsScalar() || IsQuoted(node_) ||
-      !std::regex_match(node_.Scalar(), IntegerPattern())) {
+      !IsIntegerText(node_.Scalar())) {
     throw Error("expected an integer, got " + Shown());
   }
   errno = 0;

@@ -566,7 +566,15 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
   SweepPoint point;
   try {
     point = MakePoint(sweep, index, sets);
-    const Scenario scenario = LoadScenario(sweep.base, point.overrides);
+    // The base (and its machine file) parsed once per thread (ParseCacheScope); a point
+    // whose scenario does not load is loaded again without, which locates its error.
+    Scenario scenario;
+    try {
+      const ParseCacheScope parse_once;
+      scenario = LoadScenario(sweep.base, point.overrides);
+    } catch (const std::exception&) {
+      scenario = LoadScenario(sweep.base, point.overrides);
+    }
     try {
       outcome.metrics = RunScenario(scenario, RunOptions{false}).metrics;  // no trace needed
     } catch (const ValidationError& error) {

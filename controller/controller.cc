@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "common/format.h"
 #include "common/validation_error.h"
@@ -249,13 +250,13 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.short_block = controller.short_block;
   settings.stroke_end = controller.stroke_end;
   settings.stroke_limits = controller.stroke_limits;
-  const SpeedPlan plan = PlanPathSpeed(program, path, settings);
-  const InterpolatedPulses pulses = Interpolate(path, plan, dt);
+  SpeedPlan plan = PlanPathSpeed(program, path, settings);
+  InterpolatedPulses pulses = Interpolate(path, plan, dt);
 
   const PulseFilter filter = PostInterpFilter(controller);
   std::vector<Eigen::Vector3d> out;
   if (filter.is_identity()) {
-    out = pulses.axis_pulses_m;
+    out = std::move(pulses.axis_pulses_m);
   } else if (controller.post_interp.distribution == Distribution::kTangential) {
     out = DistributeTangentially(pulses.axis_pulses_m, pulses.tangential_pulses_m, filter, dt);
   } else {
@@ -279,10 +280,10 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
     axis.velocity_m_s.assign(out.size() + 1, 0.0);
     for (std::size_t k = 0; k < out.size(); ++k) axis.velocity_m_s[k + 1] = out[k](a) / dt;
   }
-  command.path_position_m = pulses.path_position_m;
-  command.block = pulses.block;
-  command.block_feed_m_s = plan.block_feed_m_s;
-  command.block_clamped = plan.block_clamped;
+  command.path_position_m = std::move(pulses.path_position_m);
+  command.block = std::move(pulses.block);
+  command.block_feed_m_s = std::move(plan.block_feed_m_s);
+  command.block_clamped = std::move(plan.block_clamped);
   command.short_block_clamps = plan.short_block_clamps;
   command.stroke_alarm = plan.stroke_alarm;
   command.warnings = ShortBlockWarnings(controller.short_block);

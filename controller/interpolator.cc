@@ -14,12 +14,25 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
   std::size_t hint = 0;
   std::size_t next_stop = 0;
   double s = 0.0;
-  Eigen::Vector3d point = path.PointAt(0.0, &hint);
-  auto block_at = [&](std::size_t element) {
-    return path.elements().empty() ? -1 : path.elements()[element].block;
+  const std::vector<PathElement>& elements = path.elements();
+  // PathGeometry::PointAt(s, &hint), in its two parts: the element (the hint walked on),
+  // then the point on it. Within one line the pulse needs no point (it is ds times the
+  // direction), so the point is computed only where it is used, from the element the
+  // tick found: the same numbers, once per element change instead of once per tick.
+  auto point_on = [&](std::size_t element, double s_m) -> Eigen::Vector3d {
+    if (elements.empty()) return path.start_m();
+    const PathElement& e = elements[element];
+    if (e.length_m == 0.0) return e.end_m;
+    return e.PointAtFraction((s_m - e.start_s_m) / e.length_m);
   };
+  auto block_at = [&](std::size_t element) {
+    return elements.empty() ? -1 : elements[element].block;
+  };
+  hint = elements.empty() ? 0 : path.ElementAt(0.0, hint);
+  std::size_t point_element = hint;  // where `s` was found (the previous tick's point)
   out.path_position_m.push_back(0.0);
   out.block.push_back(block_at(hint));
+  const PathElement none;
   for (std::size_t k = 1; k <= n; ++k) {
     double ds = plan.speed_m_s[k] * period_s;
     double s_next = s + ds;
@@ -31,20 +44,20 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
       s_next = plan.stops[next_stop].second;
     }
     const std::size_t element_before = hint;
-    const Eigen::Vector3d next = path.PointAt(s_next, &hint);
-    const PathElement& e = path.elements().empty() ? PathElement{} : path.elements()[hint];
+    if (!elements.empty()) hint = path.ElementAt(s_next, hint);
+    const PathElement& e = elements.empty() ? none : elements[hint];
     Eigen::Vector3d pulse;
     if (hint == element_before && !e.is_arc() && e.length_m > 0.0) {
       pulse = ds * e.direction;  // within one line: exact, no differencing
     } else {
-      pulse = next - point;
+      pulse = point_on(hint, s_next) - point_on(point_element, s);
     }
     out.axis_pulses_m.push_back(pulse);
     out.tangential_pulses_m.push_back(ds);
     out.path_position_m.push_back(s_next);
     out.block.push_back(block_at(hint));
     s = s_next;
-    point = next;
+    point_element = hint;
   }
   return out;
 }

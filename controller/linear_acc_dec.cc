@@ -331,6 +331,7 @@ CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>
   CommandTrajectory best_trajectory;
   double best = 0.0;
   double best_f = std::numeric_limits<double>::infinity();
+  constexpr int kMaxStalled = 2;
   int stalled = 0;  // evaluations in a row that did not improve on best_f
   auto error = [&](double nominal_m) {
     CommandTrajectory trajectory = RealizeOnTicksWith(plan(nominal_m), period_s, design, &cache);
@@ -340,12 +341,13 @@ CommandTrajectory RealizeExactDistance(const std::function<IdealProfile(double)>
       best_f = std::abs(f);
       best_trajectory = std::move(trajectory);
       stalled = 0;
+    } else if (std::abs(f) == best_f && trajectory.velocity_m_s == best_trajectory.velocity_m_s) {
+      stalled = kMaxStalled;  // another nominal distance, the same ticks: a plateau
     } else {
       ++stalled;
     }
     return f;
   };
-  constexpr int kMaxStalled = 2;
   const double x0 = distance_m;
   const double f0 = error(x0);
   if (f0 == 0.0) return best_trajectory;

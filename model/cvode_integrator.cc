@@ -455,11 +455,17 @@ void CvodeIntegrator::AdvancePeriod(const double* drive_accel, long same_input_p
   }
   if (need_reinit_) Reinit();
   SetStopTime(TimeAt(stop));
-  const Eigen::Index rows = C_.rows();
+  const int width = output_width();
+  all_outputs_.resize(C_.rows());
   for (int j = 0; j < substeps_; ++j) {
     Advance(count_ + 1);
     ++count_;
-    c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), outputs + j * rows);
+    if (selected_rows_.empty()) {
+      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), outputs + j * width);
+    } else {
+      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), all_outputs_.data());
+      WriteSelected(all_outputs_.data(), outputs + j * width);
+    }
   }
 }
 

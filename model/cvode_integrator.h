@@ -48,6 +48,9 @@ class CvodeIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return static_cast<int>(C_.rows()); }
   int substeps() const override { return substeps_; }
+  bool UsesInputHolds() const override {
+    return tuning_.input_mode == CvodeInputMode::kContinuous;
+  }
   bool OutputRowIsZero(int row) const override {
     return c_sparse_.row_start[row] == c_sparse_.row_start[row + 1];
   }
@@ -93,6 +96,7 @@ class CvodeIntegrator final : public PlantIntegrator {
   };
   Sparse a_sparse_;
   Sparse c_sparse_;
+  std::vector<double> all_outputs_;  // scratch: every output of a substep
   bool need_reinit_ = false;  // the held acceleration changed since the last (re)init
   bool stop_set_ = false;     // a stop time is active in CVODE (cleared on reaching it, reinit)
   double stop_s_ = 0.0;

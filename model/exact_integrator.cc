@@ -196,6 +196,11 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
     block_forced_.assign(static_cast<std::size_t>(substeps_) * rows, 0.0);
     block_g_.assign(kept_, 0.0);
     block_accel_.assign(num_inputs_, 0.0);
+    block_value_of_ = block_row_of_;
+    for (int& d : block_value_of_) {
+      if (d < 0) d = static_cast<int>(block_rows_.size());  // the 0 after the rows
+    }
+    block_selected_value_of_ = block_value_of_;
   }
   z_.assign(kept_, 0.0);
   g_.assign(kept_, 0.0);
@@ -303,11 +308,24 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   for (int i = 0; i < K; ++i) z[i] = z_[i];
   const double* __restrict c_phi = block_c_phi_.data();
   const double* __restrict forced = block_forced_.data();
-  const int* __restrict row_of = block_row_of_.data();
-  const int outputs_per_substep = num_outputs_;
+  const int width = output_width();
+  const int* __restrict row_of = block_selected_value_of_.data();
   const int substeps = substeps_;
-  for (int j = 0; j < substeps; ++j) {
-    double values[kMaxRows];  // the distinct rows of this substep
+  const bool twin = rows == 1 && width == 2 && row_of[0] == 0 && row_of[1] == 0;
+  if (twin) {
+    // One distinct row asked for twice (a kinematic axis: deflection = tool error).
+    for (int j = 0; j < substeps; ++j) {
+      double sum = 0.0;
+      for (int i = 0; i < K; ++i) sum += c_phi[i] * z[i];
+      const double value = sum + forced[j];
+      c_phi += K;
+      outputs[2 * j] = value;
+      outputs[2 * j + 1] = value;
+    }
+  }
+  for (int j = 0; j < substeps && !twin; ++j) {
+    double values[kMaxRows + 1];  // the distinct rows of this substep, then a 0
+    values[rows] = 0.0;
     for (int d = 0; d < rows; ++d) {
       double sum = 0.0;
       for (int i = 0; i < K; ++i) sum += c_phi[i] * z[i];
@@ -315,10 +333,19 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
       c_phi += K;
     }
     forced += rows;
-    double* __restrict out = outputs + static_cast<std::ptrdiff_t>(j) * outputs_per_substep;
-    for (int o = 0; o < outputs_per_substep; ++o) {
-      const int d = row_of[o];
-      out[o] = d >= 0 ? values[d] : 0.0;
+    double* __restrict out = outputs + static_cast<std::ptrdiff_t>(j) * width;
+    if (width == 2) {  // a single axis' deflection and tool error (cosim.cc)
+      out[0] = values[row_of[0]];
+      out[1] = values[row_of[1]];
+    } else if (width == 6) {  // a machine's rows (multi_axis_machine.h), unrolled
+      out[0] = values[row_of[0]];
+      out[1] = values[row_of[1]];
+      out[2] = values[row_of[2]];
+      out[3] = values[row_of[3]];
+      out[4] = values[row_of[4]];
+      out[5] = values[row_of[5]];
+    } else {
+      for (int o = 0; o < width; ++o) out[o] = values[row_of[o]];
     }
   }
   double next[K];
@@ -343,9 +370,24 @@ void ExactIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input
     }
   }
   SetAccel(drive_accel);
+  const int width = output_width();
+  std::vector<double>& all = next_outputs_;
+  all.resize(num_outputs_);
   for (int j = 0; j < substeps_; ++j) {
     StepState();
-    WriteOutputs(outputs + static_cast<std::ptrdiff_t>(j) * num_outputs_);
+    WriteOutputs(all.data());
+    WriteSelected(all.data(), outputs + static_cast<std::ptrdiff_t>(j) * width);
+  }
+}
+
+void ExactIntegrator::SelectOutputs(const std::vector<int>& rows) {
+  PlantIntegrator::SelectOutputs(rows);
+  if (block_value_of_.empty()) return;
+  block_selected_value_of_.clear();
+  if (rows.empty()) {
+    block_selected_value_of_ = block_value_of_;
+  } else {
+    for (int r : rows) block_selected_value_of_.push_back(block_value_of_[r]);
   }
 }
 

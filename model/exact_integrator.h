@@ -37,6 +37,7 @@ class ExactIntegrator final : public PlantIntegrator {
   int substeps() const override { return substeps_; }
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
+  void SelectOutputs(const std::vector<int>& rows) override;
 
   bool OutputRowIsZero(int row) const override {
     return c_row_start_[row] == c_row_start_[row + 1];
@@ -83,6 +84,9 @@ class ExactIntegrator final : public PlantIntegrator {
   static constexpr int kMaxRows = 8;  // and at most this many outputs
   std::vector<int> block_rows_;      // the distinct non-zero output rows (their first row)
   std::vector<int> block_row_of_;    // per output row: its index in block_rows_, or -1
+  std::vector<int> block_value_of_;  // the same, with block_rows_.size() (a 0) for -1
+  std::vector<int> block_selected_value_of_;  // block_value_of_ of the selected rows
+  std::vector<double> next_outputs_;  // scratch: all outputs of a substep
   std::vector<double> block_c_phi_;  // [j][row][kept_]: C phi^(j+1)
   std::vector<double> block_c_gamma_;  // [j][row][num_inputs_]: C gamma_(j+1)
   std::vector<double> block_phi_;    // phi^S, kept_ x kept_

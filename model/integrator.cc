@@ -1,5 +1,6 @@
 #include "model/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
@@ -81,6 +82,11 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   int num_outputs() const override { return inner_->num_outputs(); }
   int substeps() const override { return inner_->substeps(); }
   bool OutputRowIsZero(int row) const override { return inner_->OutputRowIsZero(row); }
+  bool UsesInputHolds() const override { return inner_->UsesInputHolds(); }
+  void SelectOutputs(const std::vector<int>& rows) override {
+    PlantIntegrator::SelectOutputs(rows);
+    inner_->SelectOutputs(rows);
+  }
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override {
     for (std::size_t j = 0; j < used_.size(); ++j) selected_[j] = drive_accel[used_[j]];
@@ -125,11 +131,20 @@ std::unique_ptr<PlantIntegrator> MakeFullIntegrator(const LinearPlant& plant,
 void PlantIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
                                     double* outputs) {
   SetInput(Eigen::Map<const Eigen::VectorXd>(drive_accel, num_inputs()));
-  const int rows = num_outputs();
+  const int width = output_width();
   for (int j = 0; j < substeps(); ++j) {
     Step();
-    Eigen::Map<Eigen::VectorXd>(outputs + static_cast<std::ptrdiff_t>(j) * rows, rows) = Output();
+    const Eigen::VectorXd all = Output();
+    WriteSelected(all.data(), outputs + static_cast<std::ptrdiff_t>(j) * width);
   }
+}
+
+void PlantIntegrator::WriteSelected(const double* all, double* outputs) const {
+  if (selected_rows_.empty()) {
+    std::copy(all, all + num_outputs(), outputs);
+    return;
+  }
+  for (std::size_t i = 0; i < selected_rows_.size(); ++i) outputs[i] = all[selected_rows_[i]];
 }
 
 IntegratorMethod ResolveMethod(IntegratorMethod method, const LinearPlant& /*plant*/) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -103,6 +104,21 @@ class PlantIntegrator {
   // CVODE may take other, longer steps, within its tolerances).
   virtual void AdvancePeriod(const double* drive_accel, long same_input_periods,
                              double* outputs);
+
+  // Whether AdvancePeriod makes use of same_input_periods (else the master may pass 1).
+  virtual bool UsesInputHolds() const { return false; }
+
+  // From now on AdvancePeriod writes only these output rows, in this order (rows.size()
+  // values per substep); empty: all of them. The master asks for what it reads.
+  virtual void SelectOutputs(const std::vector<int>& rows) { selected_rows_ = rows; }
+  int output_width() const {
+    return selected_rows_.empty() ? num_outputs() : static_cast<int>(selected_rows_.size());
+  }
+
+ protected:
+  // Writes `all` (num_outputs values) as AdvancePeriod's selection to `outputs`.
+  void WriteSelected(const double* all, double* outputs) const;
+  std::vector<int> selected_rows_;
 };
 
 // The method kAuto stands for with this plant: kExact (every LinearPlant is linear).

@@ -79,6 +79,24 @@ pid_t Spawn(const std::vector<std::string>& args, const std::string& err_file) {
   return pid;
 }
 
+// Waits (at most 20 s) until process `pid` catches `signal` (its handler is installed:
+// /proc/PID/status SigCgt), so that a signal sent then meets the handler, not the default.
+bool WaitForHandler(pid_t pid, int signal) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    while (std::getline(status, line)) {
+      if (line.rfind("SigCgt:", 0) == 0 &&
+          (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1) & 1) != 0) {
+        return true;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
 std::size_t Lines(const std::string& path) {
   const std::string text = ReadText(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
@@ -152,7 +170,8 @@ TEST(Interrupt, RunInterruptedWhileSimulatingWritesNothing) {
   const std::string out = dir.File("out");
   const pid_t pid = Spawn({"run", "tests/bench/data/reliability/long_run.yaml", "--out", out}, dir.File("err.txt"));
   ASSERT_GT(pid, 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  ASSERT_TRUE(WaitForHandler(pid, SIGTERM));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // loading, then simulating (~2 s)
   kill(pid, SIGTERM);
   int status = 0;
   waitpid(pid, &status, 0);
