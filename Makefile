@@ -56,3 +56,29 @@ fuzz:
 	  -DSHAPEBENCH_FUZZ=ON >/dev/null
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 	@fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# Issue 6. `make bench`: Google Benchmark over benchmarks/cases/ (case 1 one mode, case 2
+# the moving column with the servo, case 3 a 1000-point sweep, CVODE's choices at equal
+# accuracy), the Python baselines on case 1 (scripts/baseline.py; needs python3-scipy and
+# python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
+# resident memory; a few minutes), then one table of it all (scripts/baseline_table.py).
+# The README's "Performance" section quotes it. Everything lands in $(BUILD_DIR)/bench.
+.PHONY: bench
+BENCH_OUT = $(BUILD_DIR)/bench
+bench: deps
+	@scripts/install-deps.sh libbenchmark-dev
+	@scripts/install-deps.sh python3-scipy python3-numpy || echo "(no python3-scipy/numpy: the baselines are skipped)"
+	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target shapebench shapebench_benchmarks
+	@mkdir -p $(BENCH_OUT)
+	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --export_case1=$(BENCH_OUT)/case1.json
+	@/usr/bin/python3 scripts/baseline.py $(BENCH_OUT)/case1.json > $(BENCH_OUT)/baseline.json
+	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --benchmark_out=$(BENCH_OUT)/benchmarks.json \
+	  --benchmark_out_format=json > $(BENCH_OUT)/benchmarks.txt
+	@rm -rf $(BENCH_OUT)/million
+	@/usr/bin/time -v -o $(BENCH_OUT)/memory.txt $(BUILD_DIR)/shapebench sweep \
+	  benchmarks/cases/million_sweep.yaml --jobs 2 --out $(BENCH_OUT)/million > $(BENCH_OUT)/million.txt
+	@cat $(BENCH_OUT)/million.txt >> $(BENCH_OUT)/memory.txt
+	@rm -rf $(BENCH_OUT)/million
+	@/usr/bin/python3 scripts/baseline_table.py $(BENCH_OUT)/benchmarks.json \
+	  $(BENCH_OUT)/baseline.json $(BENCH_OUT)/memory.txt

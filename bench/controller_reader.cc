@@ -1,5 +1,7 @@
 #include "bench/controller_reader.h"
 
+#include "controller/program_builder.h"
+
 namespace shapebench::bench {
 namespace {
 
@@ -147,6 +149,12 @@ controller::ControllerConfig ReadController(const NodeReader& controller) {
   controller.Read("feed_mm_min", &config.feed_mm_min);
   controller.Read("accel_time_s", &config.accel_time_s);
   controller.Read("rapid_feed_mm_min", &config.rapid_feed_mm_min);
+  for (const char* key : {"feed_mm_min", "rapid_feed_mm_min"}) {
+    const auto node = controller.Child(key);
+    if (node && node->AsNumber() > controller::kMaxFeedMmMin) {
+      throw node->Error("must be at most 1000000 (mm/min, 1 km/min), got " + node->node().Scalar());
+    }
+  }
   controller.Read("corner_velocity_change_mm_min", &config.corner_velocity_change_mm_min);
   if (auto pattern = controller.Child("pattern")) config.pattern = ReadPattern(*pattern);
   if (auto post_interp = controller.Child("post_interp")) {

@@ -300,7 +300,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   const bool has_stroke = std::any_of(scenario.machine.stroke_m.begin(),
                                       scenario.machine.stroke_m.end(),
                                       [](const auto& limits) { return limits.has_value(); });
-  double last_outside_band_s = NAN;  // last sample after the motion outside the band
+  long last_outside_band = -1;  // last sample (substep count) after the motion outside the band
   std::size_t quiet_since_tick = motion_ticks;
   bool settled = false;
   std::size_t last_tick = 0;
@@ -446,7 +446,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
           if (k > motion_ticks || j + 1 == substeps) {
             if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
             if (magnitude >= band) {
-              last_outside_band_s = dt * static_cast<double>((k - 1) * substeps + j + 1) / substeps;
+              last_outside_band = static_cast<long>((k - 1) * substeps) + j + 1;
               quiet_since_tick = k;
             }
           }
@@ -462,7 +462,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
                                 ? 0.0
                                 : command.path_position_m[std::min(k, interpolated_ticks - 1)];
       for (int j = 1; j <= substeps; ++j) {
-        const double t = dt * static_cast<double>((k - 1) * substeps + j) / substeps;
+        const long count = static_cast<long>((k - 1) * substeps) + j;  // this sample's
         const double* out = outputs.data() + static_cast<std::ptrdiff_t>(j - 1) * rows;
         const double tau = taus[j - 1];
         const Eigen::Vector3d p = p0 + v0 * tau + 0.5 * a * tau * tau;
@@ -474,7 +474,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         if (record_trace) {
           const Eigen::Vector3d v = v0 + a * tau;
           travelled_m += v.norm() * dt / substeps;
-          record(t, p, v, a, deflection, actual, block);
+          record(dt * static_cast<double>(count) / substeps, p, v, a, deflection, actual, block);
         }
         const double magnitude = std::abs(view.Of(deflection));
         peak = std::max(peak, magnitude);
@@ -493,7 +493,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         if (after_motion && (k > motion_ticks || j == substeps)) {
           if (k <= motion_ticks + residual_ticks) residual = std::max(residual, magnitude);
           if (magnitude >= band) {
-            last_outside_band_s = t;
+            last_outside_band = count;
             quiet_since_tick = k;
           }
         }
@@ -517,9 +517,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   m.residual_ratio = residual / m.static_displacement_m;
   m.cruise_residual_ratio = cruise / m.static_displacement_m;
   if (settled) {
-    m.settling_time_s = std::isnan(last_outside_band_s)
-                            ? 0.0
-                            : last_outside_band_s + dt / substeps - m.motion_time_s;
+    // The sample's time as the loop has it: dt * count / substeps.
+    m.settling_time_s =
+        last_outside_band < 0
+            ? 0.0
+            : dt * static_cast<double>(last_outside_band) / substeps + dt / substeps - m.motion_time_s;
   }
   m.max_contour_error_m = contour;
   for (const ArcWindow& w : arcs) {

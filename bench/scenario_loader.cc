@@ -146,7 +146,9 @@ model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
   model::IntegratorConfig config;
   integrator.Read<model::IntegratorMethod>(
       "method",
-      {{"cvode", model::IntegratorMethod::kCvode}, {"exact", model::IntegratorMethod::kExact}},
+      {{"cvode", model::IntegratorMethod::kCvode},
+       {"exact", model::IntegratorMethod::kExact},
+       {"auto", model::IntegratorMethod::kAuto}},
       &config.method);
   integrator.Read("rtol", &config.rtol);
   integrator.Read("atol_scale", &config.atol_scale);
@@ -207,13 +209,16 @@ void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
   const double ticks = seconds / scenario.controller.period_s;
   const RunLimits& limits = scenario.limits;
   if (seconds > limits.max_simulated_s) {
+    // The suggested limit as text (a double: the bound may exceed any integer type).
+    char suggested[32];
+    std::snprintf(suggested, sizeof suggested, "%.3g", std::ceil(seconds * 2.0));
     throw document.ErrorAtPath(
         "limits.max_simulated_s",
         "scenario '" + scenario.name + "' would simulate at least " + Seconds(seconds) + " (" +
             breakdown + "), more than limits.max_simulated_s (" + Seconds(limits.max_simulated_s) +
-            "); raise it (e.g. --set limits.max_simulated_s=" +
-            std::to_string(static_cast<long long>(std::ceil(seconds * 2.0))) +
-            ") to run it anyway");
+            (std::isfinite(seconds) ? "); raise it (e.g. --set limits.max_simulated_s=" +
+                                          std::string(suggested) + ") to run it anyway"
+                                    : "); its path is too long to simulate"));
   }
   if (ticks > static_cast<double>(limits.max_ticks)) {
     char count[32];

@@ -71,7 +71,10 @@ Band BandAroundDesign(const std::function<double(double)>& residual, double leve
   double start = 1.0;
   if (!Inside(residual(start), level)) {
     // The sample nearest the design point that is inside, on a grid of kStep or finer.
-    const long samples = std::max(2L, static_cast<long>(std::ceil((to - from) / kStep)) + 1);
+    // At most a million samples (a huge ratio range must neither overflow the count nor
+    // take forever; issue 7).
+    const long samples =
+        std::max(2L, static_cast<long>(std::min(1e6, std::ceil((to - from) / kStep))) + 1);
     double best = -1.0;
     for (long k = 0; k < samples; ++k) {
       const double r = from + (to - from) * static_cast<double>(k) / static_cast<double>(samples - 1);

@@ -7,10 +7,10 @@ namespace shapebench::controller {
 InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, double period_s) {
   InterpolatedPulses out;
   const std::size_t n = plan.speed_m_s.size() - 1;
-  out.axis_pulses_m.reserve(n);
-  out.tangential_pulses_m.reserve(n);
-  out.path_position_m.reserve(n + 1);
-  out.block.reserve(n + 1);
+  out.axis_pulses_m.resize(n);
+  out.tangential_pulses_m.resize(n);
+  out.path_position_m.resize(n + 1);
+  out.block.resize(n + 1);
   std::size_t hint = 0;
   std::size_t next_stop = 0;
   double s = 0.0;
@@ -30,11 +30,12 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
   };
   hint = elements.empty() ? 0 : path.ElementAt(0.0, hint);
   std::size_t point_element = hint;  // where `s` was found (the previous tick's point)
-  out.path_position_m.push_back(0.0);
-  out.block.push_back(block_at(hint));
+  out.path_position_m[0] = 0.0;
+  out.block[0] = block_at(hint);
   const PathElement none;
+  const double* speed = plan.speed_m_s.data();
   for (std::size_t k = 1; k <= n; ++k) {
-    double ds = plan.speed_m_s[k] * period_s;
+    const double ds = speed[k] * period_s;
     double s_next = s + ds;
     // Land exactly on each motion's end, so rounding never carries over.
     while (next_stop < plan.stops.size() && plan.stops[next_stop].first < k) ++next_stop;
@@ -44,18 +45,24 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
       s_next = plan.stops[next_stop].second;
     }
     const std::size_t element_before = hint;
-    if (!elements.empty()) hint = path.ElementAt(s_next, hint);
+    if (!elements.empty()) {
+      // ElementAt(s_next, hint), whose answer is the hint itself while s_next stays inside
+      // a line of positive length (the common case, checked first).
+      const PathElement& current = elements[hint];
+      const bool inside = s_next >= current.start_s_m && s_next <= current.end_s_m() &&
+                          current.length_m > 0.0;
+      if (!inside) hint = path.ElementAt(s_next, hint);
+    }
     const PathElement& e = elements.empty() ? none : elements[hint];
-    Eigen::Vector3d pulse;
+    Eigen::Vector3d& pulse = out.axis_pulses_m[k - 1];
     if (hint == element_before && !e.is_arc() && e.length_m > 0.0) {
       pulse = ds * e.direction;  // within one line: exact, no differencing
     } else {
       pulse = point_on(hint, s_next) - point_on(point_element, s);
     }
-    out.axis_pulses_m.push_back(pulse);
-    out.tangential_pulses_m.push_back(ds);
-    out.path_position_m.push_back(s_next);
-    out.block.push_back(block_at(hint));
+    out.tangential_pulses_m[k - 1] = ds;
+    out.path_position_m[k] = s_next;
+    out.block[k] = block_at(hint);
     s = s_next;
     point_element = hint;
   }

@@ -173,6 +173,9 @@ void ProgramBuilder::Apply(const Block& block) {
     if (!(feed_mm_min > 0)) {
       throw word_error(word_at('F'), "F must be > 0 (mm/min), got '" + shown(word_at('F')) + "'");
     }
+    if (feed_mm_min > kMaxFeedMmMin) {
+      throw word_error(word_at('F'), "F must be at most 1000000 (mm/min), got '" + shown(word_at('F')) + "'");
+    }
     feed_m_s_ = feed_mm_min * kMmPerMinToMPerS;
   }
 

@@ -436,9 +436,18 @@ void CvodeIntegrator::AdvancePeriod(const double* drive_accel, long same_input_p
                                     double* outputs) {
   const Eigen::Map<const Eigen::VectorXd> accel(drive_accel, num_inputs_);
   if (accel != accel_) {
+    // A change of rounding size (the command's accelerations are differences of its tick
+    // velocities: a held level wanders by an ulp or so) is taken on without a restart: the
+    // history is off by that much, 1e-12 of the input at most, far below any tolerance,
+    // where a restart costs dozens of small steps. Anything larger restarts.
+    bool rounding = true;
+    for (int i = 0; i < num_inputs_; ++i) {
+      const double scale = std::max(std::abs(accel(i)), std::abs(accel_(i)));
+      rounding = rounding && std::abs(accel(i) - accel_(i)) <= 1e-12 * scale;
+    }
     accel_ = accel;
     forcing_.noalias() = B_z_ * accel_;
-    need_reinit_ = true;
+    if (!rounding) need_reinit_ = true;
   }
   const long period_start = count_ / substeps_ * substeps_;
   long stop = period_start + substeps_;

@@ -201,6 +201,7 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
       if (d < 0) d = static_cast<int>(block_rows_.size());  // the 0 after the rows
     }
     block_selected_value_of_ = block_value_of_;
+    block_kernel_ = true;
   }
   z_.assign(kept_, 0.0);
   g_.assign(kept_, 0.0);
@@ -220,6 +221,7 @@ void ExactIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   std::fill(accel_.begin(), accel_.end(), 0.0);
   std::fill(g_.begin(), g_.end(), 0.0);
   count_ = 0;
+  tick_count_ = 0;
 }
 
 void ExactIntegrator::SetAccel(const double* drive_accel) {
@@ -356,11 +358,12 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   }
   for (int i = 0; i < K; ++i) z_[i] = next[i];
   count_ += substeps_;
+  tick_count_ = count_;
 }
 
 void ExactIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
                                     double* outputs) {
-  if (count_ % substeps_ == 0 && !block_row_of_.empty()) {  // at a tick: the period at once
+  if (block_kernel_ && count_ == tick_count_) {  // at a tick: the period at once
     switch (kept_) {
       case 1: AdvanceBlock<1>(drive_accel, outputs); return;
       case 2: AdvanceBlock<2>(drive_accel, outputs); return;

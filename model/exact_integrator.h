@@ -100,6 +100,8 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<double> next_;   // scratch
   std::vector<double> accel_;  // num_inputs_
   long count_ = 0;
+  long tick_count_ = 0;        // count_ at the last tick AdvanceBlock ended on
+  bool block_kernel_ = false;  // the block_* members are set up (a small plant)
 };
 
 }  // namespace shapebench::model

@@ -67,5 +67,24 @@ TEST(CosimFastPath, ShippedScenariosMatchTheTracedRun) {
   }
 }
 
+// Tests `integrator.method: auto` from YAML: accepted, and (every plant being linear) the
+// exact integrator's run, bit for bit, on the SDOF case and the servo-driven moving column.
+TEST(CosimFastPath, MethodAutoIsTheExactRun) {
+  const std::string scenarios = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/";
+  for (const char* name : {"sdof_method1.yaml", "pocket_corner.yaml"}) {
+    const std::vector<Override> servo = {{"drive.type", "servo"}};
+    std::vector<Override> automatic = servo;
+    automatic.push_back({"integrator.method", "auto"});
+    std::vector<Override> exact = servo;
+    exact.push_back({"integrator.method", "exact"});
+    const Scenario a = LoadScenario(scenarios + name, automatic);
+    EXPECT_EQ(a.integrator.method, model::IntegratorMethod::kAuto);
+    const RunResult by_auto = RunScenario(a, RunOptions{false});
+    const RunResult by_exact = RunScenario(LoadScenario(scenarios + name, exact), RunOptions{false});
+    ExpectSameBits(by_auto.metrics, by_exact.metrics, name);
+    EXPECT_EQ(by_auto.stats.rhs_evals, 0) << name << ": no CVODE";
+  }
+}
+
 }  // namespace
 }  // namespace shapebench::bench

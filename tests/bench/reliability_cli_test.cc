@@ -320,6 +320,44 @@ TEST(GuardRails, LongTraceIsDecimatedWithANote) {
   EXPECT_TRUE(IsPng(dir.File("cut/deflection.png")));
 }
 
+// Tests the bounds that keep the controller's and the model's arithmetic and costs sane,
+// each found by fuzzing or review (fuzz/regressions/): a feed above 1e6 mm/min (F1e30
+// made the planner ask for terabytes), more than 8 design frequencies (2^24 impulses),
+// more than 100 bodies per axis (400: 17 s a run); each refused at once, located.
+TEST(GuardRails, AbsurdFeedsShapersAndModelsAreRefused) {
+  const std::string scenario = DataPath("shaped_method1.yaml");
+  const CliResult feed = RunCli({"run", scenario, "--set", "controller.feed_mm_min=1e7"}, kSourceDir);
+  EXPECT_EQ(feed.exit_code, 2);
+  EXPECT_EQ(feed.err, "error: --set:1:1: controller.feed_mm_min: must be at most 1000000 (mm/min, 1 km/min), got 1e7\n");
+  const std::string gcode = "fuzz/regressions/gcode/feed_1e30_planner_allocates_terabytes.nc";
+  ScratchDir dir;
+  const std::string with_program = dir.Write("p.yaml", "program_file: " + std::string(kSourceDir) + "/" + gcode + "\n");
+  const CliResult f = RunCli({"run", with_program}, kSourceDir);
+  EXPECT_EQ(f.exit_code, 2);
+  EXPECT_NE(f.err.find(gcode + ":1:8: program_file: F must be at most 1000000 (mm/min), got 'F1009999999099999999999999999999'"),
+            std::string::npos)
+      << f.err;
+  const CliResult shapers = RunCli({"run", "fuzz/regressions/scenario/many_design_frequencies.yaml"}, kSourceDir);
+  EXPECT_EQ(shapers.exit_code, 2);
+  EXPECT_NE(shapers.err.find(":2:41: controller.pattern.frequencies_hz: at most 8 design frequencies (got 24)"),
+            std::string::npos)
+      << shapers.err;
+  const CliResult bodies = RunCli({"run", "fuzz/regressions/scenario/four_hundred_bodies.yaml"}, kSourceDir);
+  EXPECT_EQ(bodies.exit_code, 2);
+  EXPECT_NE(bodies.err.find(":3:5: machine.bodies: at most 100 bodies per axis (got 400)"), std::string::npos)
+      << bodies.err;
+  // A sensitivity ratio range to 1e300 whose design point lies outside the band: the
+  // search for the nearest sample inside used to count 1e303 samples (a float-to-integer
+  // overflow, then forever); now at most a million.
+  const std::string sensitivity = dir.Write(
+      "s.yaml", "shapers:\n  - {method: zv, frequency_hz: 25, design_damping_ratio: 0.5}\n"
+                "ratio: {from: 0.5, to: 1.0e+300, steps: 3}\nlevel: 0.0001\n");
+  const auto start = std::chrono::steady_clock::now();
+  const CliResult s = RunCli({"sensitivity", sensitivity}, kSourceDir);
+  EXPECT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60));
+}
+
 // Tests that input paths that are not regular files (a device that never ends, a
 // directory) are refused at once, as the scenario, a machine file or a G-code file.
 TEST(GuardRails, InputFilesMustBeRegularFiles) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "controller/grid_realization.h"
+
 namespace shapebench::controller {
 namespace {
 
@@ -133,6 +135,27 @@ TEST(LinearAccDecTest, GridAlignedPatternIsCarriedExactly) {
   for (std::size_t k = 0; k <= command.num_ticks(); ++k) {
     ASSERT_NEAR(command.velocity_m_s[k], ideal.VelocityAt(command.tick_time_s(k)), 1e-12) << k;
   }
+}
+
+// Tests that the grid realization adds nothing to steps already on ticks: a method-1 group
+// (a/2 at t, a/2 at t + T/2, T = 40 ms) on the 1 ms grid comes back as exactly its two
+// impulses, also late in a move where t carries rounding (1.07 s), while the least-squares
+// correction of an off-grid group (method 2's T/6) still acts. (The correction of nothing
+// but rounding used to spread ~1e-17 over every tick of the group.)
+TEST(LinearAccDecTest, GridAlignedGroupsComeBackUnchanged) {
+  const double a = 0.5 / 0.3;
+  for (double t0 : {0.0, 0.3, 1.07, 12.345}) {
+    const std::vector<Impulse> group = {{t0, 0.5 * a}, {t0 + 0.02, 0.5 * a}};
+    const std::vector<GridImpulse> grid = RealizeOnGrid(group, 1e-3, 25.0, 0.0, a);
+    ASSERT_EQ(grid.size(), 2u) << t0;
+    EXPECT_EQ(grid[0].tick, std::lround(t0 / 1e-3)) << t0;
+    EXPECT_EQ(grid[1].tick, std::lround(t0 / 1e-3) + 20) << t0;
+    EXPECT_EQ(grid[0].amplitude, 0.5 * a) << t0;
+    EXPECT_EQ(grid[1].amplitude, 0.5 * a) << t0;
+  }
+  const double t6 = 1.0 / 25.0 / 6.0;  // 6.67 ms: between ticks
+  const std::vector<Impulse> off_grid = {{0.0, a}, {t6, -a}, {2 * t6, a}};
+  EXPECT_GT(RealizeOnGrid(off_grid, 1e-3, 25.0, 0.0, a).size(), 5u);
 }
 
 }  // namespace

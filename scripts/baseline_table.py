@@ -1,0 +1,239 @@
+#!/usr/bin/python3
+"""The one table of `make bench` (issue 6): every figure of one run of the benchmarks, the
+baselines and the memory measurement, as time per run, runs per second and the ratio to
+shapebench's exact path on the same case (and, for the sweep, the same number of jobs).
+
+usage: baseline_table.py BENCHMARKS.json BASELINE.json MEMORY.txt [--markdown]
+
+BENCHMARKS.json: shapebench_benchmarks --benchmark_out (JSON). BASELINE.json: what
+scripts/baseline.py printed (may hold {"error": ...}). MEMORY.txt: `/usr/bin/time -v` of
+the 1,000,000-point sweep (may be missing). Only the standard library: it runs with any
+python3. --markdown prints the table for the README.
+"""
+import json
+import re
+import sys
+
+TARGETS = {
+    "case1_exact_us": 50.0,          # at most, per run
+    "case1_cvode_us": 1000.0,        # at most, per run (rtol 1e-8)
+    "case1_cvode_peak": 1e-6,        # |peak_ratio - exact's|
+    "case3_exact_runs_s": 20000.0,   # at least, two jobs
+    "case3_cvode_runs_s": 1500.0,    # at least, two jobs
+    "scipy_over_cvode": 50.0,        # at least
+    "numpy_over_exact": 20.0,        # at least
+    "baseline_peak": 1e-6,           # |peak_ratio - shapebench's|
+    "memory_mb": 200.0,              # at most, 1,000,000-point sweep
+}
+
+
+def load_benchmarks(path):
+    with open(path) as f:
+        data = json.load(f)
+    by_name = {}
+    for b in data.get("benchmarks", []):
+        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
+            continue
+        name = b.get("run_name", b["name"])
+        by_name[name] = b
+    return data.get("context", {}), by_name
+
+
+def seconds(b, real=False):
+    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+    return (b["real_time"] if real else b["cpu_time"]) * unit
+
+
+def find(by_name, prefix):
+    for name, b in by_name.items():
+        if name == prefix or name.startswith(prefix + "/"):
+            return b
+    return None
+
+
+def fmt_time(s):
+    if s is None:
+        return "n/a"
+    if s >= 1.0:
+        return "%.2f s" % s
+    if s >= 1e-3:
+        return "%.2f ms" % (s * 1e3)
+    return "%.1f us" % (s * 1e6)
+
+
+def fmt_num(x, digits=3):
+    if x is None:
+        return ""
+    if x == 0:
+        return "0"
+    if abs(x) >= 100:
+        return "{:,.0f}".format(x)
+    return ("%." + str(digits) + "g") % x
+
+
+def main(argv):
+    markdown = "--markdown" in argv
+    args = [a for a in argv[1:] if a != "--markdown"]
+    if len(args) < 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    context, bench = load_benchmarks(args[0])
+    try:
+        with open(args[1]) as f:
+            baseline = json.load(f)
+    except (OSError, ValueError) as e:
+        baseline = {"error": str(e)}
+    memory = None
+    if len(args) > 2:
+        try:
+            with open(args[2]) as f:
+                text = f.read()
+            rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", text)
+            wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", text)
+            points = re.search(r"(\d[\d,]*) points", text)
+            if rss:
+                parts = [float(p) for p in wall.group(1).split(":")] if wall else []
+                secs = sum(p * 60 ** i for i, p in enumerate(reversed(parts))) if parts else None
+                memory = {"rss_mb": int(rss.group(1)) / 1024.0, "seconds": secs,
+                          "points": int(points.group(1).replace(",", "")) if points else None}
+        except OSError:
+            pass
+
+    rows = []  # (what, time per run s, runs/s, ratio, steps/sim s, rhs/sim s, peak_ratio, note)
+    checks = []
+
+    def add(what, s, exact_s, b=None, peak=None, note="", runs_s=None):
+        ratio = s / exact_s if (s is not None and exact_s) else None
+        steps = b.get("steps_per_sim_s") if b else None
+        rhs = b.get("rhs_per_sim_s") if b else None
+        if runs_s is None and s:
+            runs_s = 1.0 / s
+        rows.append((what, s, runs_s, ratio, steps, rhs, peak, note))
+
+    c1e = find(bench, "BM_Case1_Exact")
+    c1c = find(bench, "BM_Case1_Cvode")
+    exact1 = seconds(c1e) if c1e else None
+    if c1e:
+        add("case 1, shapebench exact", exact1, exact1, c1e, c1e.get("peak_ratio"))
+        checks.append(("case 1 exact <= 50 us per run", exact1 * 1e6 <= TARGETS["case1_exact_us"],
+                       fmt_time(exact1)))
+    if c1c:
+        s = seconds(c1c)
+        add("case 1, shapebench CVODE (rtol 1e-8)", s, exact1, c1c, c1c.get("peak_ratio"),
+            "metrics within %.1e of exact" % c1c.get("error_vs_exact", float("nan")))
+        checks.append(("case 1 CVODE <= 1 ms per run", s * 1e3 <= 1.0, fmt_time(s)))
+        if c1e:
+            d = abs(c1c["peak_ratio"] - c1e["peak_ratio"])
+            checks.append(("case 1 CVODE peak_ratio within 1e-6 of exact", d <= 1e-6, "%.1e" % d))
+    for key, what in (("scipy_solve_ivp", "case 1, scipy solve_ivp restarted every period"),
+                      ("numpy_exact_loop", "case 1, numpy exact discretisation loop")):
+        entry = baseline.get(key)
+        if entry:
+            add(what, entry["seconds_per_run"], exact1, None, entry["peak_ratio"])
+        else:
+            rows.append((what, None, None, None, None, None, None,
+                         baseline.get("error", "not run")))
+    if "scipy_solve_ivp" in baseline and c1c:
+        r = baseline["scipy_solve_ivp"]["seconds_per_run"] / seconds(c1c)
+        checks.append(("CVODE >= 50x faster than scipy", r >= TARGETS["scipy_over_cvode"], "%.0fx" % r))
+        d = abs(baseline["scipy_solve_ivp"]["peak_ratio"] - c1c["peak_ratio"])
+        checks.append(("scipy peak_ratio within 1e-6 of shapebench CVODE", d <= 1e-6, "%.1e" % d))
+    if "numpy_exact_loop" in baseline and c1e:
+        r = baseline["numpy_exact_loop"]["seconds_per_run"] / exact1
+        checks.append(("exact >= 20x faster than the numpy loop", r >= TARGETS["numpy_over_exact"], "%.0fx" % r))
+        d = abs(baseline["numpy_exact_loop"]["peak_ratio"] - c1e["peak_ratio"])
+        checks.append(("numpy peak_ratio within 1e-6 of shapebench exact", d <= 1e-6, "%.1e" % d))
+    for name, what in (("BM_Case1_Exact_WithTrace", "case 1, exact, trace recorded (run --out)"),
+                       ("BM_Case1_CommandOnly", "case 1, the command alone (controller)")):
+        b = find(bench, name)
+        if b:
+            add(what, seconds(b), exact1, None)
+
+    c2e = find(bench, "BM_Case2_Exact")
+    c2c = find(bench, "BM_Case2_Cvode")
+    exact2 = seconds(c2e) if c2e else None
+    if c2e:
+        add("case 2, shapebench exact", exact2, exact2, c2e, c2e.get("peak_ratio"))
+    if c2c:
+        add("case 2, shapebench CVODE (rtol 1e-8)", seconds(c2c), exact2, c2c, c2c.get("peak_ratio"),
+            "metrics within %.1e of exact" % c2c.get("error_vs_exact", float("nan")))
+
+    sweep = {}
+    for method in ("Exact", "Cvode"):
+        for jobs in (1, 2):
+            b = find(bench, "BM_Case3_%s/%d" % (method, jobs))
+            if b:
+                per_run = seconds(b, real=True) / b.get("points", 1000)
+                sweep[(method, jobs)] = per_run
+    for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
+        for jobs in (1, 2):
+            s = sweep.get((method, jobs))
+            if s is None:
+                continue
+            base = sweep.get(("Exact", jobs))
+            note = ""
+            if jobs == 2 and (method, 1) in sweep:
+                note = "%.2fx from 1 job" % (sweep[(method, 1)] / s)
+            add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
+                s, base, None, None, note)
+    if ("Exact", 2) in sweep:
+        r = 1.0 / sweep[("Exact", 2)]
+        checks.append(("case 3 exact >= 20,000 runs/s (2 jobs)", r >= TARGETS["case3_exact_runs_s"], fmt_num(r)))
+    if ("Cvode", 2) in sweep:
+        r = 1.0 / sweep[("Cvode", 2)]
+        checks.append(("case 3 CVODE >= 1,500 runs/s (2 jobs)", r >= TARGETS["case3_cvode_runs_s"], fmt_num(r)))
+
+    tuning = sorted((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/"))
+    for name, b in tuning:
+        if b.get("error_occurred"):
+            rows.append(("CVODE tuning, case %s, %s" % (name.split("/")[1], b.get("label", "")), None,
+                         None, None, None, None, None, b.get("error_message", "")))
+            continue
+        which = name.split("/")[1]
+        base = exact1 if which == "1" else exact2
+        add("CVODE tuning, case %s, %s" % (which, b.get("label", "")), seconds(b), base, b,
+            b.get("peak_ratio"), "rtol %.0e, metrics within %.1e of exact" %
+            (b.get("rtol", float("nan")), b.get("error_vs_exact", float("nan"))))
+
+    if memory:
+        rows.append(("1,000,000-point sweep (exact, 2 jobs): peak resident %.0f MB" % memory["rss_mb"],
+                     memory["seconds"] / memory["points"] if memory.get("seconds") and memory.get("points") else None,
+                     None, None, None, None, None, "/usr/bin/time -v"))
+        checks.append(("1,000,000-point sweep < 200 MB resident", memory["rss_mb"] < TARGETS["memory_mb"],
+                       "%.0f MB" % memory["rss_mb"]))
+
+    header = ("figure", "time/run", "runs/s", "x exact", "steps/sim s", "RHS/sim s", "peak_ratio", "note")
+    table = []
+    for what, s, runs, ratio, steps, rhs, peak, note in rows:
+        table.append((what, fmt_time(s), fmt_num(runs) if runs else "", fmt_num(ratio) if ratio else "",
+                      fmt_num(steps) if steps else "", fmt_num(rhs) if rhs else "",
+                      ("%.9f" % peak) if peak is not None else "", note))
+    cpu = context.get("num_cpus", "?")
+    mhz = context.get("mhz_per_cpu", "?")
+    intro = ("shapebench benchmarks, %s, %s CPUs at %s MHz (time/run: CPU time, sweeps: wall time "
+             "per point)" % (context.get("date", ""), cpu, mhz))
+    if markdown:
+        print(intro + "\n")
+        print("| " + " | ".join(header) + " |")
+        print("|" + "|".join("---" for _ in header) + "|")
+        for r in table:
+            print("| " + " | ".join(r) + " |")
+        print("\n| target | met | measured |\n|---|---|---|")
+        for what, ok, value in checks:
+            print("| %s | %s | %s |" % (what, "yes" if ok else "**no**", value))
+    else:
+        widths = [max(len(str(r[i])) for r in [header] + table) for i in range(len(header))]
+        print(intro)
+        line = "  ".join(h.ljust(widths[i]) for i, h in enumerate(header))
+        print(line)
+        print("-" * len(line))
+        for r in table:
+            print("  ".join(str(c).ljust(widths[i]) for i, c in enumerate(r)))
+        print()
+        for what, ok, value in checks:
+            print("%-4s %-52s %s" % ("ok" if ok else "MISS", what, value))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
