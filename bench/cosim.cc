@@ -64,10 +64,6 @@ struct ArcWindow {
   long samples = 0;
 };
 
-}  // namespace
-
-namespace {
-
 int AutoSubstepsOf(const std::vector<model::AxisModes>& modes, double period_s) {
   double fastest_hz = 0.0;
   for (const model::AxisModes& axis : modes) {
@@ -149,8 +145,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   result.program = scenario.RunProgram();
   controller::ControllerConfig controller = scenario.controller;
   controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
-  result.command = controller::GenerateProgramCommand(controller, result.program);
-  const controller::MultiAxisCommand& command = result.command;
+  if (options.command == nullptr) {
+    result.command = controller::GenerateProgramCommand(controller, result.program);
+  }
+  const controller::MultiAxisCommand& command =
+      options.command != nullptr ? *options.command : result.command;
   const double dt = command.period_s;
   const controller::PathGeometry path(result.program);
   const ContourGauge contour_gauge(path);
@@ -204,10 +203,14 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   double static_m = 0.0;
   for (std::size_t k = 1; k <= n; ++k) {
     const Eigen::Vector3d& a = accel[k];
-    max_accel = std::max(max_accel, a.norm());
-    max_speed = std::max(max_speed, velocity[k].norm());
+    // Largest squared norms, their roots below: the root of the largest square is the
+    // largest norm (norm() is the root of squaredNorm(), the root is monotone).
+    max_accel = std::max(max_accel, a.squaredNorm());
+    max_speed = std::max(max_speed, velocity[k].squaredNorm());
     static_m = std::max(static_m, std::abs(view.Of(machine.static_gain * a)));
   }
+  max_accel = std::sqrt(max_accel);
+  max_speed = std::sqrt(max_speed);
   Metrics& m = result.metrics;
   m.static_displacement_m = static_m;
 
@@ -254,9 +257,10 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   Trace& trace = result.trace;
   const bool record_trace = options.record_trace;
   if (record_trace) {
-    // Every run simulates the motion and the residual window; most settle a period later.
-    const std::size_t expected =
-        std::min(max_ticks, motion_ticks + residual_ticks + period_ticks) * substeps + 1;
+    // Every run simulates the motion and the residual window; most settle a period later
+    // (reserved up to a few million samples; a longer trace grows as it goes).
+    const std::size_t expected = std::min<std::size_t>(
+        std::min(max_ticks, motion_ticks + residual_ticks + period_ticks) * substeps + 1, 4'000'000);
     trace.time_s.reserve(expected);
     trace.command_position_m.reserve(expected);
     trace.command_velocity_m_s.reserve(expected);
@@ -311,7 +315,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   for (std::size_t k = 1, run_start = 1; k <= n + 1; ++k) {
     const bool steady = k <= n &&
                         (velocity[k](0) != 0.0 || velocity[k](1) != 0.0 || velocity[k](2) != 0.0) &&
-                        accel[k].norm() <= 1e-9 * max_accel;
+                        (accel[k].squaredNorm() == 0.0 || accel[k].norm() <= 1e-9 * max_accel);
     if (steady) continue;
     if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
     run_start = k + 1;

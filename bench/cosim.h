@@ -48,6 +48,10 @@ struct RunOptions {
   // Record the Trace (every output substep: run --out's trace.csv and plots). Sweeps and
   // checks need only the metrics, which are the same bit for bit either way.
   bool record_trace = true;
+  // The command of this scenario's controller and program, generated before (a sweep's
+  // points that differ only in keys the controller does not read share it): used as it is,
+  // and RunResult::command is then left empty. Null: generated here.
+  const controller::MultiAxisCommand* command = nullptr;
 };
 
 // Throws ValidationError (bad scenario), model::SolverError (CVODE failure).

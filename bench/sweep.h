@@ -93,6 +93,7 @@ struct Sweep {
   std::vector<SweepPlot> plots;
   std::vector<Check> checks;
   std::uint64_t points = 0;
+  std::uint64_t id = 0;  // unique to this load of the sweep (RunPoint's shared commands)
 
   // Every swept key in column order (axes in order, a zip group's keys as written).
   std::vector<std::string> Keys() const;

@@ -278,6 +278,12 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
     CommandTrajectory& axis = command.axes[a];
     axis.period_s = dt;
     axis.velocity_m_s.assign(out.size() + 1, 0.0);
+    // An axis whose pulses are all +0 stays at the 0.0 assigned (0 / dt, without dividing).
+    bool moves = false;
+    for (std::size_t k = 0; k < out.size() && !moves; ++k) {
+      moves = out[k](a) != 0.0 || std::signbit(out[k](a));
+    }
+    if (!moves) continue;
     for (std::size_t k = 0; k < out.size(); ++k) axis.velocity_m_s[k + 1] = out[k](a) / dt;
   }
   command.path_position_m = std::move(pulses.path_position_m);

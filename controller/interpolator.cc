@@ -7,6 +7,7 @@ namespace shapebench::controller {
 InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, double period_s) {
   InterpolatedPulses out;
   const std::size_t n = plan.speed_m_s.size() - 1;
+  out.axis_pulses_m.reserve(n + 1);  // GenerateProgramCommand may append the rest pulse
   out.axis_pulses_m.resize(n);
   out.tangential_pulses_m.resize(n);
   out.path_position_m.resize(n + 1);

@@ -313,16 +313,17 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   const int width = output_width();
   const int* __restrict row_of = block_selected_value_of_.data();
   const int substeps = substeps_;
-  const bool twin = rows == 1 && width == 2 && row_of[0] == 0 && row_of[1] == 0;
+  const bool twin = block_twin_;
   if (twin) {
     // One distinct row asked for twice (a kinematic axis: deflection = tool error).
+    double* __restrict out = outputs;
     for (int j = 0; j < substeps; ++j) {
+      const double* __restrict row = c_phi + j * K;
       double sum = 0.0;
-      for (int i = 0; i < K; ++i) sum += c_phi[i] * z[i];
+      for (int i = 0; i < K; ++i) sum += row[i] * z[i];
       const double value = sum + forced[j];
-      c_phi += K;
-      outputs[2 * j] = value;
-      outputs[2 * j + 1] = value;
+      out[2 * j] = value;
+      out[2 * j + 1] = value;
     }
   }
   for (int j = 0; j < substeps && !twin; ++j) {
@@ -392,6 +393,9 @@ void ExactIntegrator::SelectOutputs(const std::vector<int>& rows) {
   } else {
     for (int r : rows) block_selected_value_of_.push_back(block_value_of_[r]);
   }
+  // One distinct row asked for twice (a kinematic axis: deflection = tool error).
+  block_twin_ = block_rows_.size() == 1 && block_selected_value_of_.size() == 2 &&
+                block_selected_value_of_[0] == 0 && block_selected_value_of_[1] == 0;
 }
 
 void ExactIntegrator::Step() { StepState(); }

@@ -102,6 +102,7 @@ class ExactIntegrator final : public PlantIntegrator {
   long count_ = 0;
   long tick_count_ = 0;        // count_ at the last tick AdvanceBlock ended on
   bool block_kernel_ = false;  // the block_* members are set up (a small plant)
+  bool block_twin_ = false;    // the selection is one distinct row, twice
 };
 
 }  // namespace shapebench::model
