@@ -439,6 +439,21 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
           if (cruising) tick_cruise = std::isnan(tick_cruise) ? magnitude : std::max(tick_cruise, magnitude);
         }
         cruise = tick_cruise;
+      } else if (k > motion_ticks + residual_ticks && !cruising) {
+        // The tail after the residual window: only the settling band is watched.
+        int last_outside = -1;
+        for (int j = 0; j < substeps; ++j) {
+          double magnitude;
+          const double square = sample(j, &magnitude);
+          finite += square + magnitude;
+          tick_contour = std::max(tick_contour, square);
+          tick_peak = std::max(tick_peak, magnitude);
+          if (magnitude >= band) last_outside = j;
+        }
+        if (last_outside >= 0) {
+          last_outside_band = static_cast<long>((k - 1) * substeps) + last_outside + 1;
+          quiet_since_tick = k;
+        }
       } else {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
@@ -541,7 +556,17 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   m.stroke_overshoot_m = overshoot;
   m.stroke_alarm = command.stroke_alarm ? 1.0 : 0.0;
   if (integrator) result.stats = integrator->Stats();
-  for (const auto& [name, value] : m.Named()) {  // NaN is "undefined"; infinity never true
+  bool any_infinite = false;  // (Named() builds strings: only when there is one to name)
+  for (double value : {m.static_displacement_m, m.peak_deflection_m, m.peak_ratio,
+                       m.residual_amplitude_m, m.residual_ratio, m.cruise_residual_ratio,
+                       m.motion_time_s, m.settling_time_s, m.max_contour_error_m,
+                       m.radial_error_m, m.peak_deflection_x_m, m.peak_deflection_y_m,
+                       m.peak_deflection_z_m, m.short_block_clamps, m.stroke_overshoot_m,
+                       m.stroke_alarm}) {
+    any_infinite = any_infinite || std::isinf(value);
+  }
+  for (const auto& [name, value] : any_infinite ? m.Named() : decltype(m.Named()){}) {
+    // NaN is "undefined"; infinity never true
     if (std::isinf(value)) {
       throw model::SolverError("NON_FINITE_STATE", name + " overflowed to infinity (a degenerate model)");
     }

@@ -13,6 +13,7 @@
 //   --export_case1=FILE   writes case 1's command and plant for scripts/baseline.py, exits
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -108,16 +109,30 @@ void Case3(benchmark::State& state, const std::string& method) {
   const std::string dir = (std::filesystem::temp_directory_path() /
                            ("shapebench_bench_sweep_" + std::to_string(getpid())))
                               .string();
+  // The process's CPU time (every thread's): on a shared machine the wall time per point
+  // depends on what else runs; the CPU time per point does not, and 1 / (CPU per point) per
+  // core is what the sweep reaches on cores of its own.
+  double cpu_s = 0.0;
+  auto process_cpu_s = [] {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  };
   for (auto _ : state) {
     std::filesystem::remove_all(dir);
     SweepRunOptions options;
     options.out_dir = dir;
     options.jobs = static_cast<int>(state.range(0));
+    const double before = process_cpu_s();
     benchmark::DoNotOptimize(RunSweep(sweep, sets, options).ok);
+    cpu_s += process_cpu_s() - before;
   }
   std::filesystem::remove_all(dir);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep.points));
   state.counters["points"] = static_cast<double>(sweep.points);
+  state.counters["cpu_s_per_point"] =
+      cpu_s / static_cast<double>(state.iterations() * static_cast<std::int64_t>(sweep.points));
 }
 void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
 void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }

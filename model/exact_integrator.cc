@@ -210,13 +210,24 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
   Reset(Eigen::VectorXd::Zero(num_inputs_));
 }
 
+void ExactIntegrator::TakeFullInputs(std::vector<int> used, int full_inputs) {
+  if (static_cast<int>(used.size()) != num_inputs_) {
+    throw std::invalid_argument("ExactIntegrator::TakeFullInputs: one index per plant input");
+  }
+  input_map_ = std::move(used);
+  full_inputs_ = full_inputs;
+  picked_.assign(num_inputs_, 0.0);
+}
+
 void ExactIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
-  if (drive_velocity.size() != num_inputs_) {
+  if (drive_velocity.size() != num_inputs()) {
     throw std::invalid_argument("ExactIntegrator::Reset: wrong drive velocity size");
   }
   for (int r = 0; r < kept_; ++r) {
     const int i = kept_index_[r];
-    z_[r] = i < num_states_ ? 0.0 : drive_velocity(i - num_states_);
+    const int input = i - num_states_;
+    z_[r] = i < num_states_ ? 0.0
+                            : drive_velocity(input_map_.empty() ? input : input_map_[input]);
   }
   std::fill(accel_.begin(), accel_.end(), 0.0);
   std::fill(g_.begin(), g_.end(), 0.0);
@@ -235,10 +246,16 @@ void ExactIntegrator::SetAccel(const double* drive_accel) {
 }
 
 void ExactIntegrator::SetInput(const Eigen::VectorXd& drive_accel) {
-  if (drive_accel.size() != num_inputs_) {
+  if (drive_accel.size() != num_inputs()) {
     throw std::invalid_argument("ExactIntegrator::SetInput: wrong drive acceleration size");
   }
-  SetAccel(drive_accel.data());
+  SetAccel(Picked(drive_accel.data()));
+}
+
+const double* ExactIntegrator::Picked(const double* drive_accel) {
+  if (input_map_.empty()) return drive_accel;
+  for (int i = 0; i < num_inputs_; ++i) picked_[i] = drive_accel[input_map_[i]];
+  return picked_.data();
 }
 
 namespace {
@@ -362,8 +379,9 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   tick_count_ = count_;
 }
 
-void ExactIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
+void ExactIntegrator::AdvancePeriod(const double* full_accel, long /*same_input_periods*/,
                                     double* outputs) {
+  const double* drive_accel = Picked(full_accel);
   if (block_kernel_ && count_ == tick_count_) {  // at a tick: the period at once
     switch (kept_) {
       case 1: AdvanceBlock<1>(drive_accel, outputs); return;

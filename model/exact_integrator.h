@@ -32,12 +32,16 @@ class ExactIntegrator final : public PlantIntegrator {
   Eigen::VectorXd Output() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
-  int num_inputs() const override { return num_inputs_; }
+  int num_inputs() const override { return input_map_.empty() ? num_inputs_ : full_inputs_; }
   int num_outputs() const override { return num_outputs_; }
   int substeps() const override { return substeps_; }
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
   void SelectOutputs(const std::vector<int>& rows) override;
+
+  // Built on a plant reduced to the inputs `used` (MakeIntegrator), it takes the full
+  // input vectors (`full_inputs` values) and picks those itself: no wrapper per call.
+  void TakeFullInputs(std::vector<int> used, int full_inputs);
 
   bool OutputRowIsZero(int row) const override {
     return c_row_start_[row] == c_row_start_[row + 1];
@@ -50,6 +54,7 @@ class ExactIntegrator final : public PlantIntegrator {
 
  private:
   void SetAccel(const double* drive_accel);
+  const double* Picked(const double* drive_accel);  // the plant's inputs of a full vector
   void StepState();
   void WriteOutputs(double* outputs) const;
   template <int K>
@@ -99,6 +104,9 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<double> g_;      // gamma a, for the held a
   std::vector<double> next_;   // scratch
   std::vector<double> accel_;  // num_inputs_
+  std::vector<int> input_map_;     // TakeFullInputs: plant input i is full input input_map_[i]
+  int full_inputs_ = 0;
+  std::vector<double> picked_;     // scratch: the picked inputs
   long count_ = 0;
   long tick_count_ = 0;        // count_ at the last tick AdvanceBlock ended on
   bool block_kernel_ = false;  // the block_* members are set up (a small plant)

@@ -200,6 +200,12 @@ std::unique_ptr<PlantIntegrator> MakeIntegrator(const LinearPlant& plant,
     return MakeFullIntegrator(plant, config, period_s, substeps, scale_accel_m_s2,
                               scale_velocity_m_s);
   }
+  if (ResolveMethod(config.method, plant) == IntegratorMethod::kExact) {
+    // The exact integrator picks its inputs itself (one virtual call less per period).
+    auto exact = std::make_unique<ExactIntegrator>(SelectInputs(plant, used), period_s, substeps);
+    exact->TakeFullInputs(std::move(used), plant.num_inputs());
+    return exact;
+  }
   return std::make_unique<InputSelectingIntegrator>(
       MakeFullIntegrator(SelectInputs(plant, used), config, period_s, substeps,
                          scale_accel_m_s2, scale_velocity_m_s),

@@ -159,29 +159,39 @@ def main(argv):
             "metrics within %.1e of exact" % c2c.get("error_vs_exact", float("nan")))
 
     sweep = {}
+    cpu = {}
     for method in ("Exact", "Cvode"):
         for jobs in (1, 2):
             b = find(bench, "BM_Case3_%s/%d" % (method, jobs))
             if b:
                 per_run = seconds(b, real=True) / b.get("points", 1000)
                 sweep[(method, jobs)] = per_run
+                cpu[(method, jobs)] = b.get("cpu_s_per_point")
     for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
         for jobs in (1, 2):
             s = sweep.get((method, jobs))
             if s is None:
                 continue
             base = sweep.get(("Exact", jobs))
-            note = ""
+            note = "wall time per point"
             if jobs == 2 and (method, 1) in sweep:
-                note = "%.2fx from 1 job" % (sweep[(method, 1)] / s)
+                note += ", %.2fx from 1 job" % (sweep[(method, 1)] / s)
+            c = cpu.get((method, jobs))
+            if c:
+                note += "; CPU %s per point: %s runs/s on %d free core%s" % (
+                    fmt_time(c), fmt_num(jobs / c), jobs, "s" if jobs > 1 else "")
             add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
                 s, base, None, None, note)
-    if ("Exact", 2) in sweep:
-        r = 1.0 / sweep[("Exact", 2)]
-        checks.append(("case 3 exact >= 20,000 runs/s (2 jobs)", r >= TARGETS["case3_exact_runs_s"], fmt_num(r)))
-    if ("Cvode", 2) in sweep:
-        r = 1.0 / sweep[("Cvode", 2)]
-        checks.append(("case 3 CVODE >= 1,500 runs/s (2 jobs)", r >= TARGETS["case3_cvode_runs_s"], fmt_num(r)))
+    for method, label, key, target in (("Exact", "exact", "case3_exact_runs_s", "20,000"),
+                                       ("Cvode", "CVODE", "case3_cvode_runs_s", "1,500")):
+        if (method, 2) in sweep:
+            r = 1.0 / sweep[(method, 2)]
+            checks.append(("case 3 %s >= %s runs/s (2 jobs, wall)" % (label, target),
+                           r >= TARGETS[key], fmt_num(r)))
+            c = cpu.get((method, 2))
+            if c:
+                checks.append(("case 3 %s >= %s runs/s (2 jobs, from CPU per point)" % (label, target),
+                               2.0 / c >= TARGETS[key], fmt_num(2.0 / c)))
 
     tuning = sorted((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/"))
     for name, b in tuning:
