@@ -20,9 +20,19 @@ std::size_t Digits(const std::string& text, std::size_t* i) {
   return *i - start;
 }
 
-// YAML 1.2 core-schema decimal numbers only: no hex, no .inf/.nan, no quoted strings.
-// The whole text matches [-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)? (a hand-written matcher:
-// std::regex made reading a scenario several times slower, which sweeps do per point).
+// [-+]?\d+, the whole text.
+bool IsIntegerText(const std::string& text) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  return Digits(text, &i) > 0 && i == text.size();
+}
+
+bool IsQuoted(const YAML::Node& node) { return node.Tag() == "!"; }
+
+}  // namespace
+
+// A hand-written matcher: std::regex made reading a scenario several times slower, which
+// sweeps do per point.
 bool IsNumberText(const std::string& text) {
   std::size_t i = 0;
   if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
@@ -43,17 +53,6 @@ bool IsNumberText(const std::string& text) {
   }
   return i == text.size();
 }
-
-// [-+]?\d+, the whole text.
-bool IsIntegerText(const std::string& text) {
-  std::size_t i = 0;
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-  return Digits(text, &i) > 0 && i == text.size();
-}
-
-bool IsQuoted(const YAML::Node& node) { return node.Tag() == "!"; }
-
-}  // namespace
 
 std::string JoinNames(const std::vector<std::string>& names, const std::string& separator) {
   std::string joined;

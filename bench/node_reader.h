@@ -13,6 +13,10 @@
 
 namespace shapebench::bench {
 
+// YAML 1.2 core-schema decimal numbers only: no hex, no .inf/.nan, no quoted strings. The
+// whole text matches [-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?: what NodeReader reads as a number.
+bool IsNumberText(const std::string& text);
+
 class NodeReader {
  public:
   NodeReader(const ConfigDocument& document, YAML::Node node, std::string path);

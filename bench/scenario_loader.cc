@@ -200,12 +200,30 @@ std::string Seconds(double seconds) {
   return text;
 }
 
+void CheckPlantFinite(const Scenario& scenario) {
+  const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
+  if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
+      !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
+      !plant.static_gain.allFinite()) {
+    throw ValidationError("machine",
+                          "degenerate model: its state-space matrices or static gain are not "
+                          "finite (a frequency, stiffness, damping or gain too large, or a "
+                          "mass too small, for double precision)");
+  }
+}
+
+bool RunLengthWithinLimits(const Scenario& scenario, double seconds) {
+  return !(seconds > scenario.limits.max_simulated_s) &&
+         !(seconds / scenario.controller.period_s > static_cast<double>(scenario.limits.max_ticks));
+}
+
 // Guard rail: a run known to be longer than limits: allow is refused before any command
 // is generated (a giant move, a low design frequency, a long filter would otherwise take
 // the machine's memory and time).
 void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
   std::string breakdown;
   const double seconds = MinimumRunSeconds(scenario, &breakdown);
+  if (RunLengthWithinLimits(scenario, seconds)) return;
   const double ticks = seconds / scenario.controller.period_s;
   const RunLimits& limits = scenario.limits;
   if (seconds > limits.max_simulated_s) {
@@ -280,17 +298,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   Validated(document, "integrator", [&] { scenario.integrator.validate(); });
   // A degenerate model (a frequency or stiffness so large that its matrices overflow)
   // would make the integrators loop or return NaN: refused here, at the machine.
-  Validated(document, "", [&] {
-    const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
-    if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
-        !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
-        !plant.static_gain.allFinite()) {
-      throw ValidationError("machine",
-                            "degenerate model: its state-space matrices or static gain are not "
-                            "finite (a frequency, stiffness, damping or gain too large, or a "
-                            "mass too small, for double precision)");
-    }
-  });
+  Validated(document, "", [&] { CheckPlantFinite(scenario); });
   if (options.plan_move && !scenario.program) {
     // Its fields are scenario-root paths already ("move.distance_mm").
     Validated(document, "", [&] {
@@ -422,6 +430,16 @@ model::MachineConfig LoadMachine(const std::string& path,
                           " is rigid (no model); the single-axis view needs its model");
   }
   return *driven;
+}
+
+bool MachineChecksPass(const Scenario& scenario) {
+  try {
+    scenario.machine.validate();
+    CheckPlantFinite(scenario);
+    return RunLengthWithinLimits(scenario, MinimumRunSeconds(scenario));
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 ConfigError LocateValidationError(const std::string& path,

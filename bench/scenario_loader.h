@@ -62,6 +62,13 @@ model::MachineConfig LoadMachine(const std::string& path, const std::vector<Over
 // limits.max_simulated_s or limits.max_ticks periods (a ConfigError naming the scenario).
 double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
 
+// What LoadScenario checks of a scenario's machine once it is read, without its sources:
+// the machine's validate(), a finite state-space model, the run length within limits:.
+// True when all hold. A sweep point that changes only numbers of the structure on a loaded
+// scenario (structure_numbers.h) asks this; on false the point is loaded from its sources,
+// which locates the error.
+bool MachineChecksPass(const Scenario& scenario);
+
 // Locates a ValidationError raised later about a loaded scenario (its field a scenario
 // key path, e.g. from RunScenario) in the scenario's sources.
 ConfigError LocateValidationError(const std::string& path,

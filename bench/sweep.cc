@@ -1,5 +1,6 @@
 #include "bench/sweep.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "bench/key_path.h"
 #include "bench/node_reader.h"
 #include "bench/scenario_loader.h"
+#include "bench/structure_numbers.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 
@@ -600,6 +602,22 @@ std::string CommandKey(const SweepPoint& point) {
   return key;
 }
 
+// The scenario a point of a sweep loaded on this thread, with what it depends on besides
+// the point's own values: the sweep and the --set options.
+struct LoadedScenario {
+  std::uint64_t sweep_id = 0;
+  std::string sets_key;
+  Scenario scenario;
+};
+
+std::string SetsKey(const SweepPoint& point) {
+  std::string key;
+  for (std::size_t i = point.keys.size(); i < point.overrides.size(); ++i) {
+    key += point.overrides[i].key_path + "=" + point.overrides[i].value_yaml + "\n";
+  }
+  return key;
+}
+
 }  // namespace
 
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
@@ -608,14 +626,30 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
   SweepPoint point;
   try {
     point = MakePoint(sweep, index, sets);
-    // The base (and its machine file) parsed once per thread (ParseCacheScope); a point
-    // whose scenario does not load is loaded again without, which locates its error.
+    // A point that changes only numbers of the structure takes the scenario the last
+    // point loaded on this thread and sets them (structure_numbers.h). Otherwise the base
+    // (and its machine file) is parsed once per thread (ParseCacheScope); a point whose
+    // scenario does not load is loaded again without, which locates its error.
+    thread_local LoadedScenario loaded;
+    const bool structure_only =
+        std::all_of(point.keys.begin(), point.keys.end(), IsStructureNumberKey);
+    const std::string sets_key = SetsKey(point);
     Scenario scenario;
-    try {
-      const ParseCacheScope parse_once;
-      scenario = LoadScenario(sweep.base, point.overrides);
-    } catch (const std::exception&) {
-      scenario = LoadScenario(sweep.base, point.overrides);
+    bool set = false;
+    if (structure_only && loaded.sweep_id == sweep.id && sweep.id != 0 && loaded.sets_key == sets_key) {
+      scenario = loaded.scenario;
+      const std::vector<Override> values(point.overrides.begin(),
+                                         point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
+      set = SetStructureNumbers(&scenario, values);
+    }
+    if (!set) {
+      try {
+        const ParseCacheScope parse_once;
+        scenario = LoadScenario(sweep.base, point.overrides);
+      } catch (const std::exception&) {
+        scenario = LoadScenario(sweep.base, point.overrides);
+      }
+      if (structure_only) loaded = {sweep.id, sets_key, scenario};
     }
     try {
       // Points that differ only in keys the controller does not read (the natural-period

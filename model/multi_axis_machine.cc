@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "common/validation_error.h"
 #include "model/servo_drive.h"
@@ -140,6 +141,22 @@ std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine
     if (machine.axes[axis]) result.push_back({axis, AnalyzeModes(*machine.axes[axis])});
   }
   return result;
+}
+
+bool IsUndamped(const MultiAxisMachineConfig& machine) {
+  for (const auto& axis : machine.axes) {
+    if (!axis) continue;
+    if (const auto* modal = std::get_if<ModalMachineConfig>(&axis->form)) {
+      for (const ModalMode& mode : modal->modes) {
+        if (mode.damping_ratio != 0.0) return false;
+      }
+    } else if (const auto* lumped = std::get_if<LumpedMachineConfig>(&axis->form)) {
+      for (const LumpedElement& element : lumped->elements) {
+        if (element.damping_n_s_m != 0.0) return false;
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace shapebench::model

@@ -70,4 +70,9 @@ struct AxisModes {
 // The modes of every modelled axis, in axis order.
 std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine);
 
+// True when no modelled axis has any damping (every modal damping_ratio and every lumped
+// element's damping_n_s_m exactly 0): under the kinematic drive such a structure keeps
+// the vibration the motion leaves in it for ever (each mode's energy is conserved).
+bool IsUndamped(const MultiAxisMachineConfig& machine);
+
 }  // namespace shapebench::model

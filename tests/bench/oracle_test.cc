@@ -51,7 +51,7 @@ std::array<double, 4> PatentSteps(PatternMethod method, double k1, double t1) {
     }
     case PatternMethod::kMethod4:
       return {1.0, t1, 1 - 1 / (2 * std::cos(2 * kPi * t1 / kT)), kT / 2 - 2 * t1};
-    case PatternMethod::kNone: break;
+    default: break;  // kNone, the shaper library: not the patent's steps
   }
   return {1.0, 0.0, 1.0, 0.0};
 }

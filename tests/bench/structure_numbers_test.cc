@@ -1,0 +1,151 @@
+// bench/structure_numbers.h: a sweep point that changes only numbers of the structure is
+// set on a scenario loaded once. The oracle is the loader itself, reading the point from
+// its sources: the two must agree field for field and run for run, bit for bit.
+#include "bench/structure_numbers.h"
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/cosim.h"
+#include "bench/scenario_loader.h"
+#include "bench/sweep.h"
+#include "bench_test_support.h"
+#include "model/multi_axis_machine.h"
+
+namespace shapebench::bench {
+namespace {
+
+using testing::DataPath;
+using testing::ScratchDir;
+
+const std::string kSource = SHAPEBENCH_SOURCE_DIR;
+
+void ExpectSamePlant(const Scenario& a, const Scenario& b) {
+  const model::MachinePlant x = model::BuildMachinePlant(a.machine, a.drive);
+  const model::MachinePlant y = model::BuildMachinePlant(b.machine, b.drive);
+  EXPECT_TRUE(x.plant.A == y.plant.A);
+  EXPECT_TRUE(x.plant.B_accel == y.plant.B_accel);
+  EXPECT_TRUE(x.plant.B_vel == y.plant.B_vel);
+  EXPECT_TRUE(x.plant.C == y.plant.C);
+  EXPECT_TRUE(x.static_gain == y.static_gain);
+}
+
+struct StructureCase {
+  const char* name;
+  std::string base;
+  std::vector<Override> first;   // the point loaded from its sources
+  std::vector<Override> second;  // the point set on it
+};
+
+class StructureNumbersTest : public ::testing::TestWithParam<StructureCase> {};
+
+// Tests that setting a point's structure numbers on the scenario of another point gives
+// the scenario the loader reads for it: the same model and, for the single mode, the same
+// metrics bit for bit.
+TEST_P(StructureNumbersTest, EqualsLoadingThePoint) {
+  const StructureCase& c = GetParam();
+  Scenario set = LoadScenario(c.base, c.first);
+  ASSERT_TRUE(SetStructureNumbers(&set, c.second));
+  const Scenario loaded = LoadScenario(c.base, c.second);
+  ExpectSamePlant(set, loaded);
+  if (loaded.machine.single_form) {
+    const auto x = RunScenario(set, RunOptions{false}).metrics.Named();
+    const auto y = RunScenario(loaded, RunOptions{false}).metrics.Named();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&x[i].second, &y[i].second, sizeof(double)), 0) << x[i].first;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Keys, StructureNumbersTest,
+    ::testing::Values(
+        StructureCase{"modal_frequency", DataPath("sweeps/sdof_method1.yaml"),
+                      {{"machine.modes[0].frequency_hz", "25"}},
+                      {{"machine.modes[0].frequency_hz", "21.3456789012345"}}},
+        StructureCase{"modal_three_fields", DataPath("sweeps/sdof_method1.yaml"),
+                      {{"machine.modes[0].damping_ratio", "0"}, {"machine.modes[0].gain", "1"},
+                       {"machine.modes[0].frequency_hz", "25"}},
+                      {{"machine.modes[0].damping_ratio", "0.03"}, {"machine.modes[0].gain", ".7"},
+                       {"machine.modes[0].frequency_hz", "3.1e1"}}},
+        StructureCase{"lumped_axes", kSource + "/configs/scenarios/pocket_corner.yaml",
+                      {{"machine.axes.y.bodies[1].mass_kg", "2400"},
+                       {"machine.axes.x.elements[1].stiffness_n_m", "1e8"},
+                       {"machine.axes.z.elements[0].damping_n_s_m", "2.7e5"}},
+                      {{"machine.axes.y.bodies[1].mass_kg", "+2000.5"},
+                       {"machine.axes.x.elements[1].stiffness_n_m", "9.5E7"},
+                       {"machine.axes.z.elements[0].damping_n_s_m", "1000"}}}),
+    [](const ::testing::TestParamInfo<StructureCase>& info) { return info.param.name; });
+
+// Tests which keys are structure numbers: the three modal fields, a body's mass, an
+// element's stiffness and damping, in either form; nothing else.
+TEST(StructureNumbers, KnowsItsKeys) {
+  for (const char* key :
+       {"machine.modes[0].frequency_hz", "machine.modes[12].damping_ratio", "machine.modes[0].gain",
+        "machine.bodies[3].mass_kg", "machine.elements[0].stiffness_n_m",
+        "machine.elements[1].damping_n_s_m", "machine.axes.x.modes[0].frequency_hz",
+        "machine.axes.z.bodies[0].mass_kg", "machine.axes.y.elements[2].damping_n_s_m"}) {
+    EXPECT_TRUE(IsStructureNumberKey(key)) << key;
+  }
+  for (const char* key :
+       {"controller.feed_mm_min", "machine.modes[0]", "machine.modes.frequency_hz",
+        "machine.modes[0].frequency_hz.x", "machine.bodies[0].name", "machine.elements[0].from",
+        "machine.stroke.x", "machine.axes.w.modes[0].gain", "machine.axes.x.modes.gain",
+        "machine.axes.x", "machine.modes[0].mass_kg", "drive.position_gain", "machine"}) {
+    EXPECT_FALSE(IsStructureNumberKey(key)) << key;
+  }
+}
+
+// Tests that every value the loader would refuse, or reads otherwise, is not set: the
+// point then goes to the loader, which locates the error.
+TEST(StructureNumbers, LeavesWhatTheLoaderRefusesToIt) {
+  const std::string base = DataPath("sweeps/sdof_method1.yaml");
+  const Scenario loaded = LoadScenario(base, {});
+  for (const char* text : {"abc", "0x10", ".inf", "1e999", "'25'", "25 # c", "", "[25]", "1_000"}) {
+    Scenario scenario = loaded;
+    EXPECT_FALSE(SetStructureNumbers(&scenario, {{"machine.modes[0].frequency_hz", text}})) << text;
+  }
+  for (const Override& bad : std::vector<Override>{
+           {"machine.modes[0].frequency_hz", "-25"},        // validate(): must be > 0
+           {"machine.modes[0].damping_ratio", "1.5"},       // validate(): in [0, 1)
+           {"machine.modes[1].frequency_hz", "30"},         // no second mode
+           {"machine.axes.y.modes[0].frequency_hz", "30"},  // the other form
+           {"machine.bodies[0].mass_kg", "10"},             // the other form
+           {"machine.modes[0].frequency_hz", "1e-9"}}) {    // a run far beyond limits:
+    Scenario scenario = loaded;
+    EXPECT_FALSE(SetStructureNumbers(&scenario, {bad})) << bad.key_path << "=" << bad.value_yaml;
+  }
+}
+
+// Tests a natural-period sweep with a bad value among good ones: the good points equal
+// independent runs, the bad one reports its value's place in the sweep file.
+TEST(StructureNumbers, SweepPointsStayExactAndErrorsLocated) {
+  ScratchDir dir;
+  const std::string path = dir.Write(
+      "sweep.yaml", "base: " + DataPath("sweeps/sdof_method1.yaml") +
+                        "\ngrid:\n  machine.modes[0].frequency_hz: [20, 22.5, -5, 30]\n");
+  const Sweep sweep = LoadSweep(path, {});
+  for (const std::uint64_t p : {0u, 1u, 2u, 3u, 1u}) {
+    const PointOutcome outcome = RunPoint(sweep, {}, p);
+    if (p == 2) {
+      ASSERT_FALSE(outcome.ok());
+      EXPECT_EQ(outcome.error.rfind(path + ":3:", 0), 0u) << outcome.error;
+      EXPECT_NE(outcome.error.find("frequency_hz"), std::string::npos) << outcome.error;
+      continue;
+    }
+    ASSERT_TRUE(outcome.ok()) << outcome.error;
+    const auto alone =
+        RunScenario(LoadScenario(sweep.base, MakePoint(sweep, p, {}).overrides)).metrics.Named();
+    const auto x = outcome.metrics.Named();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&x[i].second, &alone[i].second, sizeof(double)), 0)
+          << "point " << p << " " << x[i].first;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shapebench::bench
