@@ -435,13 +435,15 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       };
       double tick_peak = fast_peak;
       double tick_contour = contour_sq;
-      double finite = 0.0;  // not finite if a deflection or tool error was not (or a square overflowed)
+      // Set when a deflection or tool error was not finite (or a square overflowed): an
+      // `or` of comparisons, not a running sum, keeps the samples independent.
+      bool not_finite = false;
       if (!after_motion) {
         double tick_cruise = cruise;
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          finite += square + magnitude;
+          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (cruising) tick_cruise = std::isnan(tick_cruise) ? magnitude : std::max(tick_cruise, magnitude);
@@ -453,7 +455,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          finite += square + magnitude;
+          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (magnitude >= band) last_outside = j;
@@ -466,7 +468,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          finite += square + magnitude;
+          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
@@ -479,7 +481,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
           }
         }
       }
-      if (integrator && !std::isfinite(finite)) check_finite(k);  // throws for a non-finite output
+      if (integrator && not_finite) check_finite(k);  // throws for a non-finite output
       fast_peak = tick_peak;
       contour_sq = tick_contour;
     } else {

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,11 @@
 #include "bench/sweep.h"
 #include "bench/sweep_runner.h"
 #include "model/multi_axis_machine.h"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
 
 namespace {
 
@@ -129,6 +135,23 @@ void Case3(benchmark::State& state, const std::string& method) {
     cpu_s += process_cpu_s() - before;
   }
   std::filesystem::remove_all(dir);
+  // The integrator's work per simulated second over the sweep's points (run again, once,
+  // outside the timing: RunSweep keeps only the metrics).
+  if (method == "cvode" && state.range(0) == 1) {
+    long steps = 0;
+    long rhs_evals = 0;
+    double simulated_s = 0.0;
+    for (std::uint64_t p = 0; p < sweep.points; ++p) {
+      const RunResult run = RunScenario(LoadScenario(sweep.base, MakePoint(sweep, p, sets).overrides),
+                                        RunOptions{false});
+      steps += run.stats.steps;
+      rhs_evals += run.stats.rhs_evals;
+      simulated_s += run.simulated_s;
+    }
+    state.counters["steps_per_sim_s"] = static_cast<double>(steps) / simulated_s;
+    state.counters["rhs_per_sim_s"] = static_cast<double>(rhs_evals) / simulated_s;
+    state.counters["sim_s"] = simulated_s / static_cast<double>(sweep.points);
+  }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep.points));
   state.counters["points"] = static_cast<double>(sweep.points);
   state.counters["cpu_s_per_point"] =
@@ -210,6 +233,132 @@ void TuningArgs(benchmark::internal::Benchmark* b) {
   }
 }
 
+// ---- the floor: CVODE alone on case 3's oscillation ----
+
+// CVODE with nothing of shapebench around it: the free undamped mode of each of case 3's
+// points (x'' = -w^2 x from the static deflection under the run's acceleration: an
+// oscillation of about the amplitude the off-design points carry), for the point's
+// simulated time, CV_NORMAL at the point's output samples, with shapebench's settings
+// (Adams, dense Newton with the exact Jacobian, rtol 1e-8, atol rtol times the static
+// deflection, times w for the velocity). No restarts: shapebench restarts at each of the
+// move's 8 changes of the acceleration, so this is a floor of what CVODE must cost.
+struct FloorPoint {
+  double w_rad_s;
+  double static_m;
+  double simulated_s;
+  long samples;
+};
+
+int FloorRhs(sunrealtype, N_Vector y, N_Vector ydot, void* data) {
+  const double w = *static_cast<const double*>(data);
+  const double* x = N_VGetArrayPointer(y);
+  double* dx = N_VGetArrayPointer(ydot);
+  dx[0] = x[1];
+  dx[1] = -w * w * x[0];
+  return 0;
+}
+
+int FloorJacobian(sunrealtype, N_Vector, N_Vector, SUNMatrix jac, void* data, N_Vector, N_Vector,
+                  N_Vector) {
+  const double w = *static_cast<const double*>(data);
+  SM_ELEMENT_D(jac, 0, 0) = 0.0;
+  SM_ELEMENT_D(jac, 0, 1) = 1.0;
+  SM_ELEMENT_D(jac, 1, 0) = -w * w;
+  SM_ELEMENT_D(jac, 1, 1) = 0.0;
+  return 0;
+}
+
+// RAII owners of the C objects.
+struct CvodeMemoryFree {
+  void operator()(void* memory) const { CVodeFree(&memory); }
+};
+struct VectorDestroy {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDestroy {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct SolverFree {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+struct ContextFree {
+  void operator()(SUNContext c) const { SUNContext_Free(&c); }
+};
+
+const std::vector<FloorPoint>& Case3FloorPoints() {
+  static const std::vector<FloorPoint> points = [] {
+    const std::vector<Override> sets = {{"integrator.method", "exact"}};
+    const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/case3_sweep.yaml", sets);
+    std::vector<FloorPoint> result;
+    for (std::uint64_t p = 0; p < sweep.points; ++p) {
+      const Scenario scenario = LoadScenario(sweep.base, MakePoint(sweep, p, sets).overrides);
+      const RunResult run = RunScenario(scenario, RunOptions{false});
+      const double w = 2.0 * M_PI *
+                       std::get<model::ModalMachineConfig>(scenario.machine.axes[1]->form).modes[0].frequency_hz;
+      const long ticks = std::lround(run.simulated_s / scenario.controller.period_s);
+      result.push_back({w, run.metrics.static_displacement_m, run.simulated_s, ticks * run.substeps});
+    }
+    return result;
+  }();
+  return points;
+}
+
+void BM_Case3_CvodeFloor(benchmark::State& state) {
+  const std::vector<FloorPoint>& points = Case3FloorPoints();
+  SUNContext raw_context = nullptr;
+  if (SUNContext_Create(nullptr, &raw_context) != 0) {
+    state.SkipWithError("SUNContext_Create failed");
+    return;
+  }
+  const std::unique_ptr<_SUNContext, ContextFree> context(raw_context);
+  const std::unique_ptr<_generic_N_Vector, VectorDestroy> y(N_VNew_Serial(2, raw_context));
+  const std::unique_ptr<_generic_N_Vector, VectorDestroy> atol(N_VNew_Serial(2, raw_context));
+  const std::unique_ptr<_generic_SUNMatrix, MatrixDestroy> matrix(SUNDenseMatrix(2, 2, raw_context));
+  const std::unique_ptr<_generic_SUNLinearSolver, SolverFree> solver(
+      SUNLinSol_Dense(y.get(), matrix.get(), raw_context));
+  const std::unique_ptr<void, CvodeMemoryFree> memory(CVodeCreate(CV_ADAMS, raw_context));
+  double w = 1.0;
+  double* x = N_VGetArrayPointer(y.get());
+  x[0] = 0.0;
+  x[1] = 0.0;
+  CVodeInit(memory.get(), FloorRhs, 0.0, y.get());
+  CVodeSetLinearSolver(memory.get(), solver.get(), matrix.get());
+  CVodeSetUserData(memory.get(), &w);
+  CVodeSetJacFn(memory.get(), FloorJacobian);
+  CVodeSetMaxNumSteps(memory.get(), 100000);
+  long steps = 0;
+  double simulated_s = 0.0;
+  std::int64_t runs = 0;
+  for (auto _ : state) {
+    for (const FloorPoint& point : points) {
+      w = point.w_rad_s;
+      x[0] = point.static_m;
+      x[1] = 0.0;
+      double* a = N_VGetArrayPointer(atol.get());
+      a[0] = 1e-8 * point.static_m;
+      a[1] = 1e-8 * point.static_m * point.w_rad_s;
+      CVodeReInit(memory.get(), 0.0, y.get());
+      CVodeSVtolerances(memory.get(), 1e-8, atol.get());
+      sunrealtype t = 0.0;
+      for (long k = 1; k <= point.samples; ++k) {
+        if (CVode(memory.get(), point.simulated_s * static_cast<double>(k) / static_cast<double>(point.samples),
+                  y.get(), &t, CV_NORMAL) < 0) {
+          state.SkipWithError("CVode failed");
+          return;
+        }
+      }
+      long point_steps = 0;
+      CVodeGetNumSteps(memory.get(), &point_steps);
+      steps += point_steps;
+      simulated_s += point.simulated_s;
+      ++runs;
+    }
+  }
+  state.SetItemsProcessed(runs);
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["steps_per_sim_s"] = static_cast<double>(steps) / simulated_s;
+}
+
 // ---- the command and plant of case 1 for scripts/baseline.py ----
 
 int ExportCase1(const std::string& path) {
@@ -247,6 +396,7 @@ BENCHMARK(BM_Case2_Exact)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case2_Cvode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
 BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
+BENCHMARK(BM_Case3_CvodeFloor)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CvodeTuning)->Apply(TuningArgs)->Unit(benchmark::kMicrosecond);
 
 int main(int argc, char** argv) {

@@ -36,6 +36,32 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
   const PathElement none;
   const double* speed = plan.speed_m_s.data();
   for (std::size_t k = 1; k <= n; ++k) {
+    // The common run of ticks inside one line of positive length, up to the next motion
+    // end: the general tick below with its answers known (the hint stays, the pulse is ds
+    // times the direction, no stop), in a loop with no calls, so `s` stays in a register.
+    if (!elements.empty() && hint == point_element) {
+      const PathElement& line = elements[hint];
+      if (!line.is_arc() && line.length_m > 0.0) {
+        while (next_stop < plan.stops.size() && plan.stops[next_stop].first < k) ++next_stop;
+        const std::size_t stop_k = next_stop < plan.stops.size() ? plan.stops[next_stop].first : n + 1;
+        const std::size_t last = std::min(n, stop_k - 1);
+        const double start_s = line.start_s_m;
+        const double end_s = line.end_s_m();
+        const Eigen::Vector3d direction = line.direction;
+        const int block = line.block;
+        for (; k <= last; ++k) {
+          const double ds = speed[k] * period_s;
+          const double s_next = s + ds;
+          if (!(s_next >= start_s && s_next <= end_s)) break;
+          out.axis_pulses_m[k - 1] = ds * direction;
+          out.tangential_pulses_m[k - 1] = ds;
+          out.path_position_m[k] = s_next;
+          out.block[k] = block;
+          s = s_next;
+        }
+        if (k > n) break;
+      }
+    }
     const double ds = speed[k] * period_s;
     double s_next = s + ds;
     // Land exactly on each motion's end, so rounding never carries over.

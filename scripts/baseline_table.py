@@ -160,6 +160,7 @@ def main(argv):
 
     sweep = {}
     cpu = {}
+    sweep_bench = {}
     for method in ("Exact", "Cvode"):
         for jobs in (1, 2):
             b = find(bench, "BM_Case3_%s/%d" % (method, jobs))
@@ -167,6 +168,7 @@ def main(argv):
                 per_run = seconds(b, real=True) / b.get("points", 1000)
                 sweep[(method, jobs)] = per_run
                 cpu[(method, jobs)] = b.get("cpu_s_per_point")
+                sweep_bench[(method, jobs)] = b
     for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
         for jobs in (1, 2):
             s = sweep.get((method, jobs))
@@ -181,7 +183,18 @@ def main(argv):
                 note += "; CPU %s per point: %s runs/s on %d free core%s" % (
                     fmt_time(c), fmt_num(jobs / c), jobs, "s" if jobs > 1 else "")
             add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
-                s, base, None, None, note)
+                s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note)
+    floor = find(bench, "BM_Case3_CvodeFloor")
+    if floor:
+        per_point = seconds(floor) / floor.get("points", 1000)
+        note = "CVODE alone, each point's mode oscillating freely, its time and samples, no restarts"
+        c = cpu.get(("Cvode", 1))
+        if c:
+            note += "; shapebench's CVODE path takes %.2fx this" % (c / per_point)
+        note += "; at most %s runs/s on 2 free cores" % fmt_num(2.0 / per_point)
+        add("case 3, the floor: CVODE alone, 1 core", per_point, sweep.get(("Exact", 1)), floor, None,
+            note)
+
     for method, label, key, target in (("Exact", "exact", "case3_exact_runs_s", "20,000"),
                                        ("Cvode", "CVODE", "case3_cvode_runs_s", "1,500")):
         if (method, 2) in sweep:
