@@ -128,9 +128,9 @@ SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
     for (double v : command.axes[a].velocity_m_s) {
       if (v != 0.0) return none;
     }
-    for (const Eigen::Vector3d& p : positions) {
-      if (p(a) != e->start_m(a)) return none;
-    }
+    // Its velocities all (+ or -) 0, the axis' positions are its start plus sums of
+    // zeros: each equals (==) the first.
+    if (positions.front()(a) != e->start_m(a)) return none;
   }
   return {axis, e->start_m(axis), e->direction(axis), e->length_m};
 }
