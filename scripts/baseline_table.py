@@ -182,12 +182,18 @@ def main(argv):
             if c:
                 note += "; CPU %s per point: %s runs/s on %d free core%s" % (
                     fmt_time(c), fmt_num(jobs / c), jobs, "s" if jobs > 1 else "")
+            e = sweep_bench.get((method, jobs), {}).get("error_vs_exact")
+            if e is not None:
+                note += "; metrics within %.1e of exact" % e
             add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
                 s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note)
-    floor = find(bench, "BM_Case3_CvodeFloor")
-    if floor:
+    for arg in (0, 1):
+        floor = find(bench, "BM_Case3_CvodeFloor/%d" % arg)
+        if not floor:
+            continue
         per_point = seconds(floor) / floor.get("points", 1000)
-        note = "CVODE alone, each point's mode oscillating freely, its time and samples, no restarts"
+        note = ("CVODE alone (%s), each point's mode oscillating freely, its time and samples, "
+                "no restarts" % floor.get("label", ""))
         c = cpu.get(("Cvode", 1))
         if c:
             note += "; shapebench's CVODE path takes %.2fx this" % (c / per_point)
