@@ -15,11 +15,13 @@
 #include "bench/override.h"
 #include "bench/scenario.h"
 #include "bench/scenario_loader.h"
+#include "bench/structure_numbers.h"
 #include "bench/sweep.h"
 #include "bench/sweep_runner.h"
 #include "common/validation_error.h"
 #include "controller/controller.h"
 #include "controller/gcode_parser.h"
+#include "model/multi_axis_machine.h"
 #include "fuzz/fuzz_support.h"
 
 namespace shapebench::fuzz {
@@ -95,9 +97,37 @@ inline void ScenarioTarget(const std::string& bytes) {
   }
 }
 
+// Sweep points' structure numbers (bench/structure_numbers.h), differentially: the
+// overrides that are structure numbers, set on the loaded base, must give what the loader
+// reads with them, bit for bit (or not be set at all: the loader then decides).
+inline void StructureNumbersAgree(const std::string& path, const std::vector<bench::Override>& overrides) {
+  std::vector<bench::Override> numbers;
+  for (const bench::Override& o : overrides) {
+    if (bench::IsStructureNumberKey(o.key_path)) numbers.push_back(o);
+  }
+  if (numbers.empty()) return;
+  bench::Scenario set = bench::LoadScenario(path, SmallLimits());  // a shipped scenario: loads
+  if (!bench::SetStructureNumbers(&set, numbers)) return;
+  std::vector<bench::Override> with_limits = numbers;
+  for (const bench::Override& limit : SmallLimits()) with_limits.push_back(limit);
+  bench::Scenario loaded;
+  try {
+    loaded = bench::LoadScenario(path, with_limits);
+  } catch (const bench::ConfigError& error) {
+    throw Violation{"structure numbers set where the loader refuses them: " + std::string(error.what())};
+  }
+  const model::MachinePlant a = model::BuildMachinePlant(set.machine, set.drive);
+  const model::MachinePlant b = model::BuildMachinePlant(loaded.machine, loaded.drive);
+  if (!(a.plant.A == b.plant.A) || !(a.plant.B_accel == b.plant.B_accel) ||
+      !(a.plant.B_vel == b.plant.B_vel) || !(a.plant.C == b.plant.C) || !(a.static_gain == b.static_gain)) {
+    throw Violation{"structure numbers set give another plant than the loader reads"};
+  }
+}
+
 // --set parser (bench/override.h, ConfigDocument::ApplyOverride): the first byte picks a
 // shipped file, every following line is one --set KEY=VALUE; parsed, applied and loaded
-// (a machine file as `modes` reads it).
+// (a machine file as `modes` reads it); the structure numbers among them, differentially
+// (StructureNumbersAgree).
 inline void SetTarget(const std::string& bytes) {
   static const char* const kBases[] = {"demo.yaml",
                                        "scenarios/method2.yaml",
@@ -128,6 +158,7 @@ inline void SetTarget(const std::string& bytes) {
     if (base.rfind("machines/", 0) == 0) {
       bench::LoadMachineAxes(path, overrides);
     } else {
+      StructureNumbersAgree(path, overrides);
       for (const bench::Override& limit : SmallLimits()) overrides.push_back(limit);
       bench::LoadScenario(path, overrides);
     }

@@ -4,6 +4,7 @@
 #include "bench/structure_numbers.h"
 
 #include <cstring>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,8 @@ struct StructureCase {
   std::vector<Override> first;   // the point loaded from its sources
   std::vector<Override> second;  // the point set on it
 };
+
+void PrintTo(const StructureCase& c, std::ostream* os) { *os << c.name; }
 
 class StructureNumbersTest : public ::testing::TestWithParam<StructureCase> {};
 
