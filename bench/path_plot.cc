@@ -65,6 +65,13 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
     std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(scenario.name + title).c_str());
     std::fprintf(gnuplot, "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n");
     std::fprintf(gnuplot, "set size ratio -1\nset grid\n");
+    // A square window around the path: a move along one axis has no extent in the other
+    // (gnuplot would warn of an empty range); the magnified deviation (about 5% of the
+    // extent) stays inside.
+    const Eigen::Vector3d center_mm = 0.5e3 * (lo + hi);
+    const double half_mm = 0.6e3 * extent;
+    std::fprintf(gnuplot, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", center_mm.x() - half_mm,
+                 center_mm.x() + half_mm, center_mm.y() - half_mm, center_mm.y() + half_mm);
     std::fprintf(gnuplot, "set bmargin 6\nset key at screen 0.5, screen 0.02 center bottom horizontal box\n");
     std::fprintf(gnuplot, "$programmed << EOD\n");
     for (const Eigen::Vector3d& p : programmed) std::fprintf(gnuplot, "%.10g %.10g\n", p.x() * 1e3, p.y() * 1e3);
