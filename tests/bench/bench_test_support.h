@@ -2,6 +2,7 @@
 // the built CLI (SHAPEBENCH_BINARY) as a child process.
 #pragma once
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -103,6 +104,29 @@ inline CliResult RunCli(const std::vector<std::string>& args, const std::string&
   result.out = ReadText(capture.File("out"));
   result.err = ReadText(capture.File("err"));
   return result;
+}
+
+// Starts the CLI as a child process in `work_dir` and returns its pid (the caller waits
+// for it or signals it). stdout goes to /dev/null, stderr to `err_file` (empty: /dev/null).
+inline pid_t SpawnCli(const std::vector<std::string>& args, const std::string& work_dir,
+                      const std::string& err_file = "") {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    const int err = err_file.empty() ? null : open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(null, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    if (chdir(work_dir.c_str()) != 0) _exit(127);
+    std::vector<char*> argv;
+    std::string binary = SHAPEBENCH_BINARY;
+    argv.push_back(binary.data());
+    std::vector<std::string> copies = args;
+    for (auto& arg : copies) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
 }
 
 }  // namespace shapebench::bench::testing

@@ -2,7 +2,6 @@
 // and resume, CSV-hostile error messages, guard rails (run length, trace decimation,
 // non-regular input files), gnuplot given hostile titles, paths relative to the file
 // that names them. The README's table "Faults and bad input" points here.
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -28,6 +27,7 @@ using testing::DataPath;
 using testing::ReadText;
 using testing::RunCli;
 using testing::ScratchDir;
+using testing::SpawnCli;
 
 const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 
@@ -55,28 +55,6 @@ std::vector<std::string> TempFiles(const std::string& dir) {
     }
   }
   return found;
-}
-
-// The CLI as a child process in the source directory, stdout to /dev/null and stderr to
-// `err_file`; returns its pid.
-pid_t Spawn(const std::vector<std::string>& args, const std::string& err_file) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(null, STDOUT_FILENO);
-    dup2(err, STDERR_FILENO);
-    if (chdir(kSourceDir) != 0) _exit(127);
-    std::vector<char*> argv;
-    std::string binary = SHAPEBENCH_BINARY;
-    argv.push_back(binary.data());
-    std::vector<std::string> copies = args;
-    for (auto& arg : copies) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    execv(binary.c_str(), argv.data());
-    _exit(127);
-  }
-  return pid;
 }
 
 // Waits (at most 20 s) until process `pid` catches `signal` (its handler is installed:
@@ -124,7 +102,7 @@ TEST(Interrupt, SweepStopsCleanlyAndResumesToTheSameFile) {
     // A loaded machine may let the sweep finish before the signal: retry.
     for (int attempt = 0; attempt < 5 && !interrupted; ++attempt) {
       fs::remove_all(out);
-      const pid_t pid = Spawn({"sweep", kSlowSweep, "--jobs", "2", "--out", out}, err_file);
+      const pid_t pid = SpawnCli({"sweep", kSlowSweep, "--jobs", "2", "--out", out}, kSourceDir, err_file);
       ASSERT_GT(pid, 0);
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
       while (std::chrono::steady_clock::now() < deadline && Lines(partial) < 6 &&
@@ -168,7 +146,7 @@ TEST(Interrupt, SweepStopsCleanlyAndResumesToTheSameFile) {
 TEST(Interrupt, RunInterruptedWhileSimulatingWritesNothing) {
   ScratchDir dir;
   const std::string out = dir.File("out");
-  const pid_t pid = Spawn({"run", "tests/bench/data/reliability/long_run.yaml", "--out", out}, dir.File("err.txt"));
+  const pid_t pid = SpawnCli({"run", "tests/bench/data/reliability/long_run.yaml", "--out", out}, kSourceDir, dir.File("err.txt"));
   ASSERT_GT(pid, 0);
   ASSERT_TRUE(WaitForHandler(pid, SIGTERM));
   std::this_thread::sleep_for(std::chrono::milliseconds(100));  // loading, then simulating (~2 s)

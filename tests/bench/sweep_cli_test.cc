@@ -1,7 +1,6 @@
 // `shapebench sweep`, `merge` and `check` on sweep files through the built CLI (issue 5,
 // must-show 2 and 4): results.csv independent of --jobs, of sharding and of a kill and
 // restart; failing points recorded; plots; JUnit naming the point.
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,6 +24,7 @@ using testing::CliResult;
 using testing::ReadText;
 using testing::RunCli;
 using testing::ScratchDir;
+using testing::SpawnCli;
 
 const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 const std::string kNaturalPeriod = "tests/bench/data/sweeps/natural_period.yaml";
@@ -135,26 +135,6 @@ TEST(SweepCli, ShardsMergeToTheUnshardedFile) {
   EXPECT_FALSE(std::filesystem::exists(dir.File("m3/results.csv")));
 }
 
-// Starts the CLI as a child process (stdout, stderr to /dev/null) and returns its pid.
-pid_t Spawn(const std::vector<std::string>& args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDERR_FILENO);
-    if (chdir(kSourceDir) != 0) _exit(127);
-    std::vector<char*> argv;
-    std::string binary = SHAPEBENCH_BINARY;
-    argv.push_back(binary.data());
-    std::vector<std::string> copies = args;
-    for (auto& arg : copies) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    execv(binary.c_str(), argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
 // Tests that a sweep killed (SIGKILL) after some rows and started again with the same
 // --out (and another --jobs) skips the rows already written and ends with the
 // uninterrupted run's results.csv byte for byte, a torn last row included.
@@ -167,7 +147,7 @@ TEST(SweepCli, KillAndRestartGivesTheSameFile) {
   // The sweep takes ~0.2 s; a loaded machine may let it finish before the kill: retry.
   for (int attempt = 0; attempt < 5 && rows_before_kill == 0; ++attempt) {
     std::filesystem::remove_all(out);
-    const pid_t pid = Spawn(Args({"sweep", kNaturalPeriod, "--jobs", "1", "--out", out}, kMethod4));
+    const pid_t pid = SpawnCli(Args({"sweep", kNaturalPeriod, "--jobs", "1", "--out", out}, kMethod4), kSourceDir);
     ASSERT_GT(pid, 0);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (std::chrono::steady_clock::now() < deadline && Lines(partial) < 11 &&
