@@ -1,15 +1,20 @@
 #include "model/cvode_integrator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include "model/serial_vector_ops.h"
 
 namespace shapebench::model {
 namespace {
@@ -48,6 +53,18 @@ std::string PlainWords(int flag) {
 }
 
 
+// The longest step over which the Hermite output (CvodeOutput::kHermite) is used. Its
+// error is at most |y^(8)| h^8 / (8! 2^8) (the two-point remainder, largest mid-step); a
+// linear plant's state is a sum of modes, each of whose derivatives grow by at most the
+// spectral radius rho of its matrix per order, so relative to a state's amplitude the error
+// is at most (rho h)^8 / (8! 2^8). Below rtol / 10 of it (and rho h <= 1, a sixth of a cycle)
+// it is well under what CVODE's own step and interpolation allow (about rtol).
+double HermiteMaxStep(const Eigen::MatrixXd& a, double rtol) {
+  const double rho = a.eigenvalues().cwiseAbs().maxCoeff();
+  const double rho_h = std::min(1.0, std::pow(0.1 * rtol * 40320.0 * 256.0, 1.0 / 8.0));
+  return rho > 0.0 ? rho_h / rho : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 namespace cvode_detail {
@@ -73,7 +90,9 @@ struct Workspace {
   int nz = 0;
   bool bdf = false;
   bool fixed_point = false;
+  bool optimized_ops = false;
   N_Vector y = nullptr;
+  N_Vector y_step = nullptr;  // CVode's output in CV_ONE_STEP mode (the Hermite output)
   N_Vector atol = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver solver = nullptr;
@@ -81,19 +100,31 @@ struct Workspace {
   void* memory = nullptr;
 
   Workspace(std::shared_ptr<Context> shared, int size, bool use_bdf, bool use_fixed_point,
-            CVRhsFn rhs)
-      : context(std::move(shared)), nz(size), bdf(use_bdf), fixed_point(use_fixed_point) {
+            bool use_optimized_ops, CVRhsFn rhs)
+      : context(std::move(shared)),
+        nz(size),
+        bdf(use_bdf),
+        fixed_point(use_fixed_point),
+        optimized_ops(use_optimized_ops) {
     SUNContext ctx = context->ctx;
     y = N_VNew_Serial(nz, ctx);
+    y_step = N_VNew_Serial(nz, ctx);
     atol = N_VNew_Serial(nz, ctx);
     memory = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
-    if (y == nullptr || atol == nullptr || memory == nullptr) throw std::bad_alloc();
+    if (y == nullptr || y_step == nullptr || atol == nullptr || memory == nullptr) {
+      throw std::bad_alloc();
+    }
     N_VConst(0.0, y);
     // Fused vector operations (one pass for a linear combination instead of one call per
     // term): CVODE clones its vectors from y, so they all get them. Interpolating the
     // output substeps (CVodeGetDky, a combination of q + 1 history vectors) is most of a
     // run's CVODE time.
     if (N_VEnableFusedOps_Serial(y, SUNTRUE) != 0) throw std::runtime_error("N_VEnableFusedOps failed");
+    // Before CVodeInit, which clones its vectors from y.
+    if (optimized_ops) {
+      UseOptimizedSerialOps(y);
+      UseOptimizedSerialOps(y_step);
+    }
     if (CVodeInit(memory, rhs, 0.0, y) != CV_SUCCESS) throw std::runtime_error("CVodeInit failed");
     if (fixed_point) {
       nls = SUNNonlinSol_FixedPoint(y, 0, ctx);
@@ -115,6 +146,7 @@ struct Workspace {
     if (solver != nullptr) SUNLinSolFree(solver);
     if (matrix != nullptr) SUNMatDestroy(matrix);
     N_VDestroy(atol);
+    N_VDestroy(y_step);
     N_VDestroy(y);
   }
   Workspace(const Workspace&) = delete;
@@ -128,10 +160,12 @@ struct Pool {
   std::shared_ptr<Context> context;
   std::vector<std::unique_ptr<Workspace>> idle;  // most recently returned last
 
-  std::unique_ptr<Workspace> Take(int nz, bool bdf, bool fixed_point, CVRhsFn rhs, bool* reused) {
+  std::unique_ptr<Workspace> Take(int nz, bool bdf, bool fixed_point, bool optimized_ops,
+                                  CVRhsFn rhs, bool* reused) {
     for (std::size_t i = idle.size(); i-- > 0;) {
       Workspace& w = *idle[i];
-      if (w.nz == nz && w.bdf == bdf && w.fixed_point == fixed_point) {
+      if (w.nz == nz && w.bdf == bdf && w.fixed_point == fixed_point &&
+          w.optimized_ops == optimized_ops) {
         std::unique_ptr<Workspace> taken = std::move(idle[i]);
         idle.erase(idle.begin() + static_cast<std::ptrdiff_t>(i));
         *reused = true;
@@ -139,7 +173,8 @@ struct Pool {
       }
     }
     if (!context) context = std::make_shared<Context>();
-    auto created = std::make_unique<Workspace>(context, nz, bdf, fixed_point, rhs);
+    auto created =
+        std::make_unique<Workspace>(context, nz, bdf, fixed_point, optimized_ops, rhs);
     created->pool = this;
     *reused = false;
     return created;
@@ -178,11 +213,14 @@ std::unique_ptr<cvode_detail::Workspace, cvode_detail::WorkspaceReturn> TakeWork
     int nz, const IntegratorConfig& config, CVRhsFn rhs, bool* reused) {
   const bool bdf = config.lmm == CvodeLmm::kBdf;
   const bool fixed_point = config.tuning.fixed_point;
+  const bool optimized_ops = config.tuning.optimized_vector_ops;
   cvode_detail::Pool* pool = config.tuning.reuse_memory ? cvode_detail::ThisThreadsPool() : nullptr;
-  if (pool != nullptr) return {pool->Take(nz, bdf, fixed_point, rhs, reused).release(), {}};
+  if (pool != nullptr) {
+    return {pool->Take(nz, bdf, fixed_point, optimized_ops, rhs, reused).release(), {}};
+  }
   *reused = false;
   return {new cvode_detail::Workspace(std::make_shared<cvode_detail::Context>(), nz, bdf,
-                                      fixed_point, rhs),
+                                      fixed_point, optimized_ops, rhs),
           {}};
 }
 
@@ -223,10 +261,15 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
     Check(CVodeSetJacFn(mem, tuning_.jacobian ? Jacobian : nullptr), "CVodeSetJacFn");
   }
   Check(CVodeSetMaxNumSteps(mem, config.max_num_steps), "CVodeSetMaxNumSteps");
+  max_num_steps_ = config.max_num_steps;
   // Every integrator sets the order limit (a reused memory keeps the last one's).
   const int max_order = tuning_.max_order > 0 ? tuning_.max_order
                         : config.lmm == CvodeLmm::kBdf ? 5 : 12;
   Check(CVodeSetMaxOrd(mem, max_order), "CVodeSetMaxOrd");
+  Check(CVodeSetEtaFixedStepBounds(mem, 0.0, tuning_.eta_max_fixed_step),
+        "CVodeSetEtaFixedStepBounds");
+  hermite_max_step_s_ = HermiteMaxStep(A_z_, config.rtol);
+  ends_.assign(2 * kHermiteOrders * nz, 0.0);
   Reset(Eigen::VectorXd::Zero(m));
 }
 
@@ -378,6 +421,7 @@ void CvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   finished_ = {};
   need_reinit_ = false;
+  have_step_ = false;
 }
 
 void CvodeIntegrator::SetInput(const Eigen::VectorXd& drive_accel) {
@@ -405,6 +449,7 @@ void CvodeIntegrator::Reinit() {
   Check(CVodeReInit(mem, Time(), workspace_->y), "CVodeReInit");
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   need_reinit_ = false;
+  have_step_ = false;
 }
 
 // SUNDIALS 6.4.1 forgets the stop time once reached (CV_TSTOP_RETURN) and on reinit; until
@@ -416,7 +461,89 @@ void CvodeIntegrator::SetStopTime(double t_stop) {
   stop_s_ = t_stop;
 }
 
+// The state and its first three derivatives at `t` from the state y there: y' = A y + f,
+// and, the input held over a step, y^(k+1) = A y^(k).
+void CvodeIntegrator::SetEnd(int end, double t, const double* y) {
+  const int nz = num_states_ + num_inputs_;
+  double* d = ends_.data() + static_cast<std::size_t>(end) * kHermiteOrders * nz;
+  std::copy(y, y + nz, d);
+  a_sparse_.Multiply(d, d + nz);
+  for (int i = 0; i < nz; ++i) d[nz + i] += forcing_[i];
+  a_sparse_.Multiply(d + nz, d + 2 * nz);
+  a_sparse_.Multiply(d + 2 * nz, d + 3 * nz);
+  end_time_s_[end] = t;
+}
+
+// CV_ONE_STEP: CVODE's internal steps, each a Hermite interval for the substeps it covers.
+void CvodeIntegrator::AdvanceByHermite(double t_out) {
+  const int nz = num_states_ + num_inputs_;
+  const std::size_t stride = static_cast<std::size_t>(kHermiteOrders) * nz;
+  if (!have_step_) {
+    // After a (re)start: an empty interval at the current state.
+    SetEnd(1, Time(), N_VGetArrayPointer(workspace_->y));
+    have_step_ = true;
+  }
+  for (long steps = 0; end_time_s_[1] < t_out; ++steps) {
+    if (steps == max_num_steps_) {
+      // CV_NORMAL's limit per call (integrator.max_num_steps), kept per substep here.
+      last_message_ = "more than " + std::to_string(max_num_steps_) +
+                      " internal steps to reach the output substep at t = " + std::to_string(t_out);
+      Check(CV_TOO_MUCH_WORK, "CVode");
+    }
+    sunrealtype t_reached = 0.0;
+    // tout only sets the direction and the first step after a restart, as CV_NORMAL's did.
+    const int flag = CVode(memory(), t_out, workspace_->y_step, &t_reached, CV_ONE_STEP);
+    Check(flag, "CVode");
+    if (flag == CV_TSTOP_RETURN) stop_set_ = false;
+    std::copy(ends_.begin() + static_cast<std::ptrdiff_t>(stride), ends_.end(), ends_.begin());
+    end_time_s_[0] = end_time_s_[1];
+    SetEnd(1, t_reached, N_VGetArrayPointer(workspace_->y_step));
+  }
+  double* y = N_VGetArrayPointer(workspace_->y);
+  const double* left = ends_.data();
+  const double* right = ends_.data() + stride;
+  if (t_out == end_time_s_[1]) {
+    std::copy(right, right + nz, y);  // a step's end (a stop, a restart): CVODE's own state
+    return;
+  }
+  const double h = end_time_s_[1] - end_time_s_[0];
+  if (h > hermite_max_step_s_) {
+    Check(CVodeGetDky(memory(), t_out, 0, workspace_->y), "CVodeGetDky");
+    ++cvode_interpolated_;
+    return;
+  }
+  // The two-point Hermite basis of degree 7 in s = (t - t0) / h, u = 1 - s; derivative k
+  // weighted by h^k / k!, the right end's odd ones negative.
+  const double s = (t_out - end_time_s_[0]) / h;
+  const double u = 1.0 - s;
+  const double s4 = (s * s) * (s * s);
+  const double u4 = (u * u) * (u * u);
+  const double h2 = 0.5 * h * h;
+  const double h3 = h * h * h / 6.0;
+  const double w[2 * kHermiteOrders] = {
+      u4 * (1.0 + s * (4.0 + s * (10.0 + 20.0 * s))),
+      h * s * u4 * (1.0 + s * (4.0 + 10.0 * s)),
+      h2 * s * s * u4 * (1.0 + 4.0 * s),
+      h3 * s * s * s * u4,
+      s4 * (1.0 + u * (4.0 + u * (10.0 + 20.0 * u))),
+      -h * u * s4 * (1.0 + u * (4.0 + 10.0 * u)),
+      h2 * u * u * s4 * (1.0 + 4.0 * u),
+      -h3 * u * u * u * s4,
+  };
+  for (int i = 0; i < nz; ++i) {
+    double sum = 0.0;
+    for (int k = 0; k < kHermiteOrders; ++k) {
+      sum += w[k] * left[k * nz + i] + w[kHermiteOrders + k] * right[k * nz + i];
+    }
+    y[i] = sum;
+  }
+}
+
 void CvodeIntegrator::Advance(long count) {
+  if (tuning_.output == CvodeOutput::kHermite) {
+    AdvanceByHermite(TimeAt(count));
+    return;
+  }
   sunrealtype t_reached = 0.0;
   // CV_SUCCESS and CV_TSTOP_RETURN (tout == tstop) are both normal returns.
   const int flag = CVode(memory(), TimeAt(count), workspace_->y, &t_reached, CV_NORMAL);

@@ -3,7 +3,8 @@
 // the right-hand side stays smooth within a tick; CVODE is re-initialised only where the
 // held acceleration changes. Through AdvancePeriod (the co-simulation master's path) it
 // also integrates across the ticks where the acceleration stays the same
-// (CvodeInputMode::kContinuous), the output substeps then interpolated by CVODE.
+// (CvodeInputMode::kContinuous), the output substeps between its internal steps then
+// interpolated (CvodeOutput).
 //
 // CVODE's memory (context, vectors, dense matrix and solver, CVODE's own) is taken from a
 // pool of this thread and given back when the integrator is destroyed, so the runs of a
@@ -59,6 +60,9 @@ class CvodeIntegrator final : public PlantIntegrator {
 
   // Whether this integrator's CVODE memory came from the thread's pool (used before).
   bool reused_memory() const { return reused_; }
+  // Output substeps CvodeOutput::kHermite left to CVODE's interpolation (a step too long
+  // for the Hermite bound), since construction.
+  long cvode_interpolated_substeps() const { return cvode_interpolated_; }
 
  private:
   static int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data);
@@ -70,6 +74,8 @@ class CvodeIntegrator final : public PlantIntegrator {
   void Reinit();
   void SetStopTime(double t_stop);
   void Advance(long count);  // one output substep, to TimeAt(count)
+  void AdvanceByHermite(double t_out);
+  void SetEnd(int end, double t, const double* y);
   void Check(int flag, const char* call) const;
   void* memory() const;
   Eigen::VectorXd AbsoluteTolerances(const LinearPlant& plant, const IntegratorConfig& config,
@@ -106,6 +112,16 @@ class CvodeIntegrator final : public PlantIntegrator {
   IntegratorStats finished_;
   std::string last_message_;  // CVODE's own words for the last error
   bool reused_ = false;
+  // CvodeOutput::kHermite: CVODE's last internal step, [t0, t1], as the state and its first
+  // kHermiteOrders - 1 derivatives at either end (ends_: end-major, then derivative, then
+  // state); have_step_ false after a (re)start, before the first step.
+  static constexpr int kHermiteOrders = 4;
+  std::vector<double> ends_;
+  double end_time_s_[2] = {0.0, 0.0};
+  bool have_step_ = false;
+  double hermite_max_step_s_ = 0.0;  // longer steps: CVODE's interpolation
+  long max_num_steps_ = 0;           // IntegratorConfig::max_num_steps
+  long cvode_interpolated_ = 0;
   std::unique_ptr<cvode_detail::Workspace, cvode_detail::WorkspaceReturn> workspace_;
 };
 

@@ -165,6 +165,11 @@ void IntegratorConfig::validate() const {
     throw ValidationError("max_num_steps",
                           "must be >= 1" + Got(static_cast<double>(max_num_steps)));
   }
+  // CVODE reads a bound of 1 or less as "its default" (1.5): refused rather than surprising.
+  if (!(tuning.eta_max_fixed_step > 1.0) || !std::isfinite(tuning.eta_max_fixed_step)) {
+    throw ValidationError("tuning.eta_max_fixed_step",
+                          "must be finite and > 1" + Got(tuning.eta_max_fixed_step));
+  }
   if (output_substeps < 0 || output_substeps > 1000) {
     throw ValidationError("output_substeps",
                           "must be in [0, 1000] (0 = automatic)" + Got(output_substeps));

@@ -32,6 +32,17 @@ enum class CvodeInputMode {
   // Stop and restart (CVodeReInit) at every tick: a co-simulation slave that knows nothing.
   kRestartEveryTick,
 };
+
+// Where the output substeps between CVODE's internal steps come from.
+enum class CvodeOutput {
+  // A two-point Hermite polynomial of degree 7 over the step, from the state and its first
+  // three derivatives at both ends (a linear plant's derivatives are products with A), where
+  // its error bound is below rtol / 10 of the state's amplitude; CVODE's interpolation
+  // elsewhere (CvodeIntegrator::Advance).
+  kHermite,
+  // CVODE's own interpolation (CVode in CV_NORMAL mode, CVodeGetDky) at every substep.
+  kCvodeInterpolation,
+};
 struct CvodeTuning {
   CvodeInputMode input_mode = CvodeInputMode::kContinuous;
   bool jacobian = true;        // the plant's constant Jacobian; false: CVODE's difference quotients
@@ -39,6 +50,14 @@ struct CvodeTuning {
   bool reuse_memory = true;    // CVODE memory from this thread's pool; false: created per integrator
   bool fixed_point = false;    // fixed-point (functional) iteration instead of Newton's
   int max_order = 0;           // CVodeSetMaxOrd; 0: CVODE's (Adams 12, BDF 5)
+  CvodeOutput output = CvodeOutput::kHermite;
+  // The upper bound of the step-size ratios CVODE answers by keeping the step
+  // (CVodeSetEtaFixedStepBounds; CVODE's own is 1.5): at 1.1 Adams grows its steps and
+  // order on an oscillating structure instead of staying at order 5 (README "Performance").
+  double eta_max_fixed_step = 1.1;
+  // shapebench's kernels for the serial vector operations (model/serial_vector_ops.h);
+  // false: those of the libsundials package.
+  bool optimized_vector_ops = true;
 };
 
 struct IntegratorConfig {

@@ -124,19 +124,24 @@ INSTANTIATE_TEST_SUITE_P(
                     CvodeCase{"LumpedAdams", DampedLumpedMachine(), CvodeLmm::kAdams, 0.02, 1e-6}),
     [](const testing::TestParamInfo<CvodeCase>& info) { return info.param.name; });
 
-// Tests that running out of internal steps raises SolverError carrying CVODE's flag name.
+// Tests that running out of internal steps raises SolverError carrying CVODE's flag name,
+// with either output: CVODE's own limit per call (CV_NORMAL), or the same limit per output
+// substep that the Hermite output (CV_ONE_STEP, one step per call) keeps itself.
 TEST(CvodeIntegrator, TooMuchWorkIsReported) {
-  IntegratorConfig config;
-  config.rtol = 1e-13;
-  config.max_num_steps = 1;
-  auto cvode = MakeIntegrator(BuildPlant(ThreeModeMachine()), config, kPeriodS, kSubsteps, 1.0);
-  cvode->SetInput(Eigen::VectorXd::Constant(1, 1.0));
-  try {
-    for (int s = 0; s < kSubsteps; ++s) cvode->Step();
-    FAIL() << "no SolverError";
-  } catch (const SolverError& e) {
-    EXPECT_EQ(e.flag_name(), "CV_TOO_MUCH_WORK");
-    EXPECT_NE(std::string(e.what()).find("CVODE failed at t = "), std::string::npos) << e.what();
+  for (CvodeOutput output : {CvodeOutput::kCvodeInterpolation, CvodeOutput::kHermite}) {
+    IntegratorConfig config;
+    config.rtol = 1e-13;
+    config.max_num_steps = 1;
+    config.tuning.output = output;
+    auto cvode = MakeIntegrator(BuildPlant(ThreeModeMachine()), config, kPeriodS, kSubsteps, 1.0);
+    cvode->SetInput(Eigen::VectorXd::Constant(1, 1.0));
+    try {
+      for (int s = 0; s < kSubsteps; ++s) cvode->Step();
+      ADD_FAILURE() << "no SolverError";
+    } catch (const SolverError& e) {
+      EXPECT_EQ(e.flag_name(), "CV_TOO_MUCH_WORK");
+      EXPECT_NE(std::string(e.what()).find("CVODE failed at t = "), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -44,6 +44,8 @@ INSTANTIATE_TEST_SUITE_P(
         ConfigCase{"NanRtol", [](IntegratorConfig& c) { c.rtol = std::nan(""); }, "rtol"},
         ConfigCase{"ZeroAtolScale", [](IntegratorConfig& c) { c.atol_scale = 0.0; }, "atol_scale"},
         ConfigCase{"ZeroSteps", [](IntegratorConfig& c) { c.max_num_steps = 0; }, "max_num_steps"},
+        ConfigCase{"EtaFixedStepOfOne", [](IntegratorConfig& c) { c.tuning.eta_max_fixed_step = 1.0; },
+                   "tuning.eta_max_fixed_step"},
         ConfigCase{"NegativeSubsteps", [](IntegratorConfig& c) { c.output_substeps = -1; },
                    "output_substeps"},
         ConfigCase{"TooManySubsteps", [](IntegratorConfig& c) { c.output_substeps = 1001; },
