@@ -187,20 +187,6 @@ def main(argv):
                 note += "; metrics within %.1e of exact" % e
             add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
                 s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note)
-    for arg in (0, 1):
-        floor = find(bench, "BM_Case3_CvodeFloor/%d" % arg)
-        if not floor:
-            continue
-        per_point = seconds(floor) / floor.get("points", 1000)
-        note = ("CVODE alone (%s), each point's mode oscillating freely, its time and samples, "
-                "no restarts" % floor.get("label", ""))
-        c = cpu.get(("Cvode", 1))
-        if c:
-            note += "; shapebench's CVODE path takes %.2fx this" % (c / per_point)
-        note += "; at most %s runs/s on 2 free cores" % fmt_num(2.0 / per_point)
-        add("case 3, the floor: CVODE alone, 1 core", per_point, sweep.get(("Exact", 1)), floor, None,
-            note)
-
     for method, label, key, target in (("Exact", "exact", "case3_exact_runs_s", "20,000"),
                                        ("Cvode", "CVODE", "case3_cvode_runs_s", "1,500")):
         if (method, 2) in sweep:
@@ -212,13 +198,22 @@ def main(argv):
                 checks.append(("case 3 %s >= %s runs/s (2 jobs, from CPU per point)" % (label, target),
                                2.0 / c >= TARGETS[key], fmt_num(2.0 / c)))
 
-    tuning = sorted((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/"))
+    # In the benchmark's order (case, then variant), not the names' alphabetical one.
+    tuning = sorted(((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/")),
+                    key=lambda item: tuple(int(arg) for arg in item[0].split("/")[1:3]))
     for name, b in tuning:
         if b.get("error_occurred"):
             rows.append(("CVODE tuning, case %s, %s" % (name.split("/")[1], b.get("label", "")), None,
                          None, None, None, None, None, b.get("error_message", "")))
             continue
         which = name.split("/")[1]
+        if which == "3":
+            # The sweep's points one after another, one job: the time per point.
+            add("CVODE tuning, case 3, %s" % b.get("label", ""), seconds(b) / b.get("points", 1000),
+                sweep.get(("Exact", 1)), b, None,
+                "rtol %.1e, every point's metrics within %.1e of exact; one job, CPU time per point" %
+                (b.get("rtol", float("nan")), b.get("error_vs_exact", float("nan"))))
+            continue
         base = exact1 if which == "1" else exact2
         add("CVODE tuning, case %s, %s" % (which, b.get("label", "")), seconds(b), base, b,
             b.get("peak_ratio"), "rtol %.0e, metrics within %.1e of exact" %
