@@ -70,7 +70,7 @@ struct IntegratorConfig {
   // Adams: at the same rtol it tracks the exact solution ~20x closer than BDF on these
   // lightly damped, non-stiff plants (measured in tests/model/cvode_integrator_test.cc).
   CvodeLmm lmm = CvodeLmm::kAdams;
-  long max_num_steps = 100000;  // per call to CVode (one output substep)
+  long max_num_steps = 100000;  // CVODE internal steps to reach one output substep
   int output_substeps = 0;      // samples per interpolation period; 0 = automatic
   CvodeTuning tuning;           // not a scenario key: what the benchmarks compare
   void validate() const;        // throws ValidationError naming the field
