@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -116,9 +116,8 @@ struct Workspace {
     }
     N_VConst(0.0, y);
     // Fused vector operations (one pass for a linear combination instead of one call per
-    // term): CVODE clones its vectors from y, so they all get them. Interpolating the
-    // output substeps (CVodeGetDky, a combination of q + 1 history vectors) is most of a
-    // run's CVODE time.
+    // term): CVODE clones its vectors from y, so they all get them. Its interpolation
+    // (CVodeGetDky, a combination of q + 1 history vectors) and its history updates use them.
     if (N_VEnableFusedOps_Serial(y, SUNTRUE) != 0) throw std::runtime_error("N_VEnableFusedOps failed");
     // Before CVodeInit, which clones its vectors from y.
     if (optimized_ops) {
