@@ -439,16 +439,22 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       // `or` of comparisons, not a running sum, keeps the samples independent.
       bool not_finite = false;
       if (!after_motion) {
-        double tick_cruise = cruise;
-        for (int j = 0; j < substeps; ++j) {
+        // The tick's own maxima first, then one max into the run's: the run's maxima are no
+        // longer a chain of one dependent max per sample (the same values: max is exact, and
+        // a NaN sample throws below whatever it did to them).
+        double magnitude_max;
+        double square_max = sample(0, &magnitude_max);
+        not_finite |= !(square_max + magnitude_max <= std::numeric_limits<double>::max());
+        for (int j = 1; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
           not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
-          tick_contour = std::max(tick_contour, square);
-          tick_peak = std::max(tick_peak, magnitude);
-          if (cruising) tick_cruise = std::isnan(tick_cruise) ? magnitude : std::max(tick_cruise, magnitude);
+          square_max = std::max(square_max, square);
+          magnitude_max = std::max(magnitude_max, magnitude);
         }
-        cruise = tick_cruise;
+        tick_contour = std::max(tick_contour, square_max);
+        tick_peak = std::max(tick_peak, magnitude_max);
+        if (cruising) cruise = std::isnan(cruise) ? magnitude_max : std::max(cruise, magnitude_max);
       } else if (k > motion_ticks + residual_ticks && !cruising) {
         // The tail after the residual window: only the settling band is watched.
         int last_outside = -1;
