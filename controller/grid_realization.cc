@@ -54,17 +54,6 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       if (zeta == 0.0) return std::polar(1.0, w * dt);
       return std::exp(zeta * w * dt) * std::polar(1.0, w * std::sqrt(1.0 - zeta * zeta) * dt);
     };
-    // The phasor at each tick of the span, once (the same values the sums below would
-    // compute again and again).
-    std::vector<std::complex<double>> tick_phase((periods + 1) * frequencies);
-    for (std::size_t j = 0; j < frequencies; ++j) {
-      for (long p = 0; p <= periods; ++p) {
-        tick_phase[j * (periods + 1) + p] = phase(j, (first_tick + p) * period_s);
-      }
-    }
-    auto phase_at_tick = [&](std::size_t j, long tick) {
-      return tick_phase[j * (periods + 1) + (tick - first_tick)];
-    };
     std::vector<std::complex<double>> mismatch(frequencies, 0.0);  // ideal minus plain split
     // What rounding alone leaves in the mismatch: the phase of a time t is good to about
     // w eps |t| (and the sums to eps): a group whose steps lie on ticks leaves only that,
@@ -79,7 +68,7 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
     bool rounding_only = true;
     for (std::size_t j = 0; j < frequencies; ++j) {
       for (const Impulse& impulse : group) mismatch[j] += impulse.amplitude * phase(j, impulse.time_s);
-      for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase_at_tick(j, tick);
+      for (const auto& [tick, weight] : weights) mismatch[j] -= weight * phase(j, tick * period_s);
       const double w = 2.0 * 3.14159265358979323846 * design.frequencies_hz[j];
       const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (1.0 + w * latest_s);
       rounding_only = rounding_only && std::abs(mismatch[j]) <= rounding * scale;
@@ -92,6 +81,17 @@ std::vector<GridImpulse> RealizeOnGrid(const std::vector<Impulse>& group, double
       }
       return result;
     }
+    // The phasor at each tick of the span, once (the same values the least squares below
+    // would compute again and again); only here: a group on ticks needs a few of them.
+    std::vector<std::complex<double>> tick_phase((periods + 1) * frequencies);
+    for (std::size_t j = 0; j < frequencies; ++j) {
+      for (long p = 0; p <= periods; ++p) {
+        tick_phase[j * (periods + 1) + p] = phase(j, (first_tick + p) * period_s);
+      }
+    }
+    auto phase_at_tick = [&](std::size_t j, long tick) {
+      return tick_phase[j * (periods + 1) + (tick - first_tick)];
+    };
     // Correct the acceleration of periods of the span by e_p, as little as possible
     // (least squares, spread over the span rather than piled onto one period):
     // sum e_p = 0 keeps the velocity after the group, and
