@@ -43,6 +43,7 @@ enum class CvodeOutput {
   // CVODE's own interpolation (CVode in CV_NORMAL mode, CVodeGetDky) at every substep.
   kCvodeInterpolation,
 };
+
 struct CvodeTuning {
   CvodeInputMode input_mode = CvodeInputMode::kContinuous;
   bool jacobian = true;        // the plant's constant Jacobian; false: CVODE's difference quotients
