@@ -423,6 +423,9 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
       const double half_a = 0.5 * a(ax);
       const double* deflections = outputs.data() + deflection_at;
       const double* tool_errors = outputs.data() + tool_error_at;
+      // Set when a deflection or tool error was not finite (or a square overflowed): an
+      // `or` of comparisons, not a running sum, keeps the samples independent.
+      bool not_finite = false;
       // The samples' deflection magnitudes, and the contour error (squared) of each.
       auto sample = [&](int j, double* magnitude) {
         const double tau = taus[j];
@@ -431,24 +434,21 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         *magnitude = std::abs(deflections[j * width]);
         const double along = std::clamp((actual - single.start_m) * single.direction, 0.0, single.length_m);
         const double off = actual - (single.start_m + along * single.direction);
-        return off * off;
+        const double square = off * off;
+        not_finite |= !(square + *magnitude <= std::numeric_limits<double>::max());
+        return square;
       };
       double tick_peak = fast_peak;
       double tick_contour = contour_sq;
-      // Set when a deflection or tool error was not finite (or a square overflowed): an
-      // `or` of comparisons, not a running sum, keeps the samples independent.
-      bool not_finite = false;
       if (!after_motion) {
         // The tick's own maxima first, then one max into the run's: the run's maxima are no
         // longer a chain of one dependent max per sample (the same values: max is exact, and
         // a NaN sample throws below whatever it did to them).
         double magnitude_max;
         double square_max = sample(0, &magnitude_max);
-        not_finite |= !(square_max + magnitude_max <= std::numeric_limits<double>::max());
         for (int j = 1; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           square_max = std::max(square_max, square);
           magnitude_max = std::max(magnitude_max, magnitude);
         }
@@ -461,7 +461,6 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (magnitude >= band) last_outside = j;
@@ -474,7 +473,6 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
         for (int j = 0; j < substeps; ++j) {
           double magnitude;
           const double square = sample(j, &magnitude);
-          not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
           tick_contour = std::max(tick_contour, square);
           tick_peak = std::max(tick_peak, magnitude);
           if (cruising) cruise = std::isnan(cruise) ? magnitude : std::max(cruise, magnitude);
