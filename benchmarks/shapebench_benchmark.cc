@@ -241,13 +241,16 @@ constexpr double kCase3TargetError = 2e-5;
 // loosest rtol of the ladder at which the worst point meets kCase3TargetError.
 void Case3Tuning(benchmark::State& state, const Variant& variant) {
   const std::vector<Case3Point>& points = Case3Points();
+  auto configured = [&](const Case3Point& point, double rtol) {
+    Scenario scenario = point.scenario;
+    scenario.integrator.rtol = rtol;
+    variant.apply(scenario.integrator);
+    return scenario;
+  };
   auto worst_error = [&](double rtol, model::IntegratorStats* stats, double* simulated_s) {
     double error = 0.0;
     for (const Case3Point& point : points) {
-      Scenario scenario = point.scenario;
-      scenario.integrator.rtol = rtol;
-      variant.apply(scenario.integrator);
-      const RunResult run = RunScenario(scenario, RunOptions{false});
+      const RunResult run = RunScenario(configured(point, rtol), RunOptions{false});
       error = std::max(error, MetricError(run.metrics, point.exact));
       stats->steps += run.stats.steps;
       stats->rhs_evals += run.stats.rhs_evals;
@@ -274,10 +277,7 @@ void Case3Tuning(benchmark::State& state, const Variant& variant) {
   }
   for (auto _ : state) {
     for (const Case3Point& point : points) {
-      Scenario scenario = point.scenario;
-      scenario.integrator.rtol = rtol;
-      variant.apply(scenario.integrator);
-      benchmark::DoNotOptimize(RunScenario(scenario, RunOptions{false}).metrics.peak_ratio);
+      benchmark::DoNotOptimize(RunScenario(configured(point, rtol), RunOptions{false}).metrics.peak_ratio);
     }
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points.size()));
