@@ -28,10 +28,10 @@
 #include <string>
 #include <vector>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
-#include "bench/sweep.h"
-#include "bench/sweep_runner.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_runner.h"
 #include "model/multi_axis_machine.h"
 
 namespace {

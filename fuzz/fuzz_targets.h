@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "bench/config_error.h"
-#include "bench/override.h"
-#include "bench/scenario.h"
-#include "bench/scenario_loader.h"
-#include "bench/structure_numbers.h"
-#include "bench/sweep.h"
-#include "bench/sweep_runner.h"
+#include "bench/config/config_error.h"
+#include "bench/config/override.h"
+#include "bench/sim/scenario.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/config/structure_numbers.h"
+#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_runner.h"
 #include "common/validation_error.h"
 #include "controller/controller.h"
 #include "controller/gcode_parser.h"
@@ -75,7 +75,7 @@ inline void GcodeTarget(const std::string& text) {
   }
 }
 
-// Scenario loader (bench/scenario_loader.h): any bytes as a scenario file are a Scenario
+// Scenario loader (bench/config/scenario_loader.h): any bytes as a scenario file are a Scenario
 // or a ConfigError at FILE:LINE:COL; a loaded scenario's command is generated, or refused
 // with a ValidationError naming a scenario key.
 inline void ScenarioTarget(const std::string& bytes) {
@@ -97,7 +97,7 @@ inline void ScenarioTarget(const std::string& bytes) {
   }
 }
 
-// Sweep points' structure numbers (bench/structure_numbers.h), differentially: the
+// Sweep points' structure numbers (bench/config/structure_numbers.h), differentially: the
 // overrides that are structure numbers, set on the loaded base, must give what the loader
 // reads with them, bit for bit (or not be set at all: the loader then decides).
 inline void StructureNumbersAgree(const std::string& path, const std::vector<bench::Override>& overrides) {
@@ -124,7 +124,7 @@ inline void StructureNumbersAgree(const std::string& path, const std::vector<ben
   }
 }
 
-// --set parser (bench/override.h, ConfigDocument::ApplyOverride): the first byte picks a
+// --set parser (bench/config/override.h, ConfigDocument::ApplyOverride): the first byte picks a
 // shipped file, every following line is one --set KEY=VALUE; parsed, applied and loaded
 // (a machine file as `modes` reads it); the structure numbers among them, differentially
 // (StructureNumbersAgree).
@@ -167,7 +167,7 @@ inline void SetTarget(const std::string& bytes) {
   }
 }
 
-// Sweep loader (bench/sweep.h): any bytes as a sweep file (in sweeps/, beside copies of
+// Sweep loader (bench/sweep/sweep.h): any bytes as a sweep file (in sweeps/, beside copies of
 // the shipped scenarios) are a Sweep or a located ConfigError; a loaded sweep's columns,
 // hash and first, middle and last points are computed (points are not run).
 inline void SweepTarget(const std::string& bytes) {

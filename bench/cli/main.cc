@@ -15,17 +15,17 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bench/atomic_file.h"
-#include "bench/checks.h"
-#include "bench/cosim.h"
-#include "bench/interrupt.h"
-#include "bench/modes_report.h"
-#include "bench/pattern_report.h"
-#include "bench/report.h"
-#include "bench/scenario_loader.h"
-#include "bench/sweep.h"
-#include "bench/sweep_runner.h"
-#include "bench/sensitivity.h"
+#include "common/atomic_file.h"
+#include "bench/sim/checks.h"
+#include "bench/sim/cosim.h"
+#include "common/interrupt.h"
+#include "bench/report/modes_report.h"
+#include "bench/report/pattern_report.h"
+#include "bench/report/report.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_runner.h"
+#include "bench/sweep/sensitivity.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/machine.h"
@@ -239,7 +239,7 @@ struct SensitivityArgs {
   std::string out_dir;
 };
 
-// Residual vibration vs plant frequency / design frequency per shaper (bench/sensitivity.h).
+// Residual vibration vs plant frequency / design frequency per shaper (bench/sweep/sensitivity.h).
 int SensitivityCommand(const SensitivityArgs& args) {
   const SensitivitySpec spec = LoadSensitivity(args.file, ParseOverrides(args.sets));
   const SensitivityResult result = ComputeSensitivity(spec);
@@ -284,7 +284,7 @@ void ParseShard(const std::string& text, SweepRunOptions* options) {
   options->shard_count = std::stoul(count);
 }
 
-// A grid of runs (bench/sweep.h, bench/sweep_runner.h): results.csv, plots.
+// A grid of runs (bench/sweep/sweep.h, bench/sweep/sweep_runner.h): results.csv, plots.
 int SweepCommand(const SweepArgs& args) {
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   SweepRunOptions options;
@@ -316,7 +316,7 @@ struct MergeArgs {
   std::string out_dir;
 };
 
-// Joins shard outputs into the unsharded results.csv (bench/sweep_runner.h).
+// Joins shard outputs into the unsharded results.csv (bench/sweep/sweep_runner.h).
 int MergeCommand(const MergeArgs& args) {
   std::vector<std::string> shards = args.dirs;
   std::string out_dir = args.out_dir;
@@ -348,7 +348,7 @@ void AddSetOption(CLI::App* command, std::vector<std::string>* sets) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  InstallInterruptHandlers();  // SIGINT, SIGTERM: complete files only (bench/interrupt.h)
+  InstallInterruptHandlers();  // SIGINT, SIGTERM: complete files only (common/interrupt.h)
   CLI::App app{"shapebench: CNC vibration co-simulation testbench"};
   app.require_subcommand(1);
 

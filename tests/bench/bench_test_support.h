@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config_error.h"
+#include "bench/config/config_error.h"
 
 namespace shapebench::bench::testing {
 

@@ -1,5 +1,5 @@
 // Evaluating checks against metrics, and the console line of each.
-#include "bench/checks.h"
+#include "bench/sim/checks.h"
 
 #include <gtest/gtest.h>
 

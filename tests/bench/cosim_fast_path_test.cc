@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
 #include "tests/bench/sdof_fixture.h"
 
 namespace shapebench::bench {

@@ -1,4 +1,4 @@
-// The tail after the motion (bench/cosim.cc): the residual window of three lowest-mode
+// The tail after the motion (bench/sim/cosim.cc): the residual window of three lowest-mode
 // periods, then on until a whole period stays inside the 5% band (at most 30 periods); an
 // undamped structure under the kinematic drive stops at the window's end.
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

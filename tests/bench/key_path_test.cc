@@ -1,5 +1,5 @@
 // Key paths: the strict parser for --set and the lenient splitter for error fields.
-#include "bench/key_path.h"
+#include "bench/config/key_path.h"
 
 #include <gtest/gtest.h>
 

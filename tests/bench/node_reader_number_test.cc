@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config_document.h"
-#include "bench/config_error.h"
-#include "bench/node_reader.h"
+#include "bench/config/config_document.h"
+#include "bench/config/config_error.h"
+#include "bench/config/node_reader.h"
 
 namespace shapebench::bench {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/cosim.h"
-#include "bench/override.h"
-#include "bench/scenario_loader.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/override.h"
+#include "bench/config/scenario_loader.h"
 
 namespace shapebench::bench {
 namespace {

@@ -2,7 +2,7 @@
 // and every error a ConfigError "FILE:LINE:COL: key.path: message" at the offending
 // YAML value or G-code word. Positions are compared within 1e-12 m (the mm -> m
 // conversion rounds at 1e-16 m).
-#include "bench/program_reader.h"
+#include "bench/config/program_reader.h"
 
 #include <cmath>
 #include <filesystem>

@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/csv.h"
+#include "common/csv.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -8,13 +8,14 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/csv.h"
-#include "bench/gnuplot.h"
-#include "bench/interrupt.h"
-#include "bench/report.h"
-#include "bench/scenario_loader.h"
-#include "bench/sweep.h"
-#include "bench/sweep_runner.h"
+#include "common/ordered_pool.h"
+#include "common/csv.h"
+#include "bench/report/gnuplot.h"
+#include "common/interrupt.h"
+#include "bench/report/report.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_runner.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,5 +1,5 @@
 // The metrics table and JSON, the trace CSV, JUnit XML and atomic file writing.
-#include "bench/report.h"
+#include "bench/report/report.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/atomic_file.h"
+#include "common/atomic_file.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,7 +1,7 @@
 // A single undamped 25 Hz mode driven by the kinematic drive: the patent's analysis case.
 #pragma once
 
-#include "bench/scenario.h"
+#include "bench/sim/scenario.h"
 
 namespace shapebench::bench::testing {
 

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
-#include "bench/sensitivity.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sensitivity.h"
 #include "bench_test_support.h"
 #include "controller/input_shaper.h"
 #include "sdof_fixture.h"

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,7 +1,7 @@
-// bench/structure_numbers.h: a sweep point that changes only numbers of the structure is
+// bench/config/structure_numbers.h: a sweep point that changes only numbers of the structure is
 // set on a scenario loaded once. The oracle is the loader itself, reading the point from
 // its sources: the two must agree field for field and run for run, bit for bit.
-#include "bench/structure_numbers.h"
+#include "bench/config/structure_numbers.h"
 
 #include <cstring>
 #include <ostream>
@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
-#include "bench/sweep.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 #include "model/multi_axis_machine.h"
 

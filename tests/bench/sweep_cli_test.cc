@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/csv.h"
+#include "common/csv.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

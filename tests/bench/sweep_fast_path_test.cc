@@ -1,4 +1,4 @@
-// What issue 6 changed in running a sweep's points (bench/sweep.cc RunPoint): the base
+// What issue 6 changed in running a sweep's points (bench/sweep/sweep.cc RunPoint): the base
 // scenario parsed once per thread (ParseCacheScope) and one command shared by the points
 // whose swept keys the controller does not read. A point's metrics must stay, bit for bit,
 // those of loading and running it on its own.
@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/cosim.h"
-#include "bench/scenario_loader.h"
-#include "bench/sweep.h"
+#include "bench/sim/cosim.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,5 +1,5 @@
-// Sweep files (bench/sweep.h): grid expansion, point overrides, errors located at
-// FILE:LINE:COL, the CSV helpers and the ordered worker pool (bench/sweep_runner.h).
+// Sweep files (bench/sweep/sweep.h): grid expansion, point overrides, errors located at
+// FILE:LINE:COL, the CSV helpers and the ordered worker pool (bench/sweep/sweep_runner.h).
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -11,9 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/csv.h"
-#include "bench/sweep.h"
-#include "bench/sweep_runner.h"
+#include "common/ordered_pool.h"
+#include "common/csv.h"
+#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_runner.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,0 +1,257 @@
+#include "bench/config/config_document.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/config/key_path.h"
+
+namespace shapebench::bench {
+namespace {
+
+std::string Describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return "a scalar";
+    case YAML::NodeType::Sequence: return "a sequence";
+    case YAML::NodeType::Map: return "a mapping";
+    default: return "empty";
+  }
+}
+
+std::string ElementCount(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " element" : " elements");
+}
+
+}  // namespace
+
+bool ReadInputFile(const std::string& path, std::string* text, std::string* error) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) {
+    *error = std::string("cannot open file: ") +
+             (ec ? ec.message() : std::string(std::strerror(ENOENT)));
+    return false;
+  }
+  if (fs::is_directory(status)) {
+    *error = "cannot read file: it is a directory";
+    return false;
+  }
+  if (!fs::is_regular_file(status)) {
+    *error = "cannot read file: not a regular file (a device, FIFO or socket)";
+    return false;
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxInputFileBytes) {
+    *error = "cannot read file: " + std::to_string(size) + " bytes, more than the " +
+             std::to_string(kMaxInputFileBytes >> 20) + " MiB an input file may have";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = std::string("cannot open file: ") + std::strerror(errno);
+    return false;
+  }
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) {
+    *error = "cannot read file";
+    return false;
+  }
+  *text = bytes.str();
+  return true;
+}
+
+namespace {
+
+struct ParsedFile {
+  std::string path;
+  std::string text;
+  YAML::Node tree;  // a copy no one else holds
+};
+
+thread_local int parse_cache_scopes = 0;
+thread_local std::vector<ParsedFile> parse_cache;  // most recently used first
+
+}  // namespace
+
+ParseCacheScope::ParseCacheScope() { ++parse_cache_scopes; }
+ParseCacheScope::~ParseCacheScope() { --parse_cache_scopes; }
+
+YAML::Node ConfigDocument::ParseFile(const std::string& path) {
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  const bool cached = parse_cache_scopes > 0;
+  if (cached) {
+    for (std::size_t i = 0; i < parse_cache.size(); ++i) {
+      if (parse_cache[i].path == path && parse_cache[i].text == text) {
+        std::rotate(parse_cache.begin(), parse_cache.begin() + static_cast<std::ptrdiff_t>(i),
+                    parse_cache.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        return YAML::Clone(parse_cache.front().tree);
+      }
+    }
+  }
+  try {
+    YAML::Node tree = YAML::Load(text);
+    if (cached) {
+      constexpr std::size_t kKept = 8;
+      if (parse_cache.size() == kKept) parse_cache.pop_back();
+      parse_cache.insert(parse_cache.begin(), ParsedFile{path, std::move(text), YAML::Clone(tree)});
+    }
+    return tree;
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(path, e.mark.line + 1, e.mark.column + 1, "",
+                      "malformed YAML: " + e.msg);
+  }
+}
+
+ConfigDocument::ConfigDocument(YAML::Node root, std::string file) : root_(std::move(root)) {
+  origins_.push_back({"", Origin{std::move(file), 0}});
+}
+
+void ConfigDocument::SetOrigin(const std::string& path, Origin origin) {
+  // Whatever came from elsewhere below `path` has just been replaced.
+  std::vector<std::pair<std::string, Origin>> kept;
+  for (auto& entry : origins_) {
+    if (!entry.first.empty() && IsPathPrefix(path, entry.first)) continue;
+    kept.push_back(std::move(entry));
+  }
+  kept.push_back({path, std::move(origin)});
+  origins_ = std::move(kept);
+}
+
+void ConfigDocument::SpliceTopLevel(const std::string& key, const YAML::Node& content,
+                                    const std::string& file) {
+  root_[key] = content;
+  SetOrigin(key, Origin{file, 0});
+}
+
+void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
+  const std::string& key_path = override_value.key_path;
+  auto fail = [&](const std::string& message) {
+    return ConfigError(kOverrideSource, index, 1, key_path, message);
+  };
+  const auto elements = ParseKeyPath(key_path);
+  if (!elements) throw fail("not a key path");
+  YAML::Node value;
+  try {
+    value = YAML::Load(override_value.value_yaml);
+  } catch (const YAML::ParserException& e) {
+    throw fail("malformed YAML value '" + override_value.value_yaml + "': " + e.msg);
+  }
+
+  if (!root_.IsMap()) {
+    if (!root_.IsNull()) throw fail("the top level is " + Describe(root_) + ", not a mapping");
+    root_ = YAML::Node(YAML::NodeType::Map);
+  }
+  // Node handles alias the tree: reset() moves a handle, operator= would overwrite data.
+  YAML::Node current;
+  current.reset(root_);
+  std::string path;
+  bool created = false;  // `current` is a mapping this override just created
+  for (std::size_t i = 0; i < elements->size(); ++i) {
+    const PathElement& element = (*elements)[i];
+    const bool last = i + 1 == elements->size();
+    if (element.index) {
+      if (created) {
+        throw fail("cannot index '" + path + "': it does not exist; set the whole sequence, e.g. " +
+                   path + "=[...]");
+      }
+      if (!current.IsSequence()) {
+        throw fail("cannot index '" + path + "': it is " + Describe(current) +
+                   ", not a sequence");
+      }
+      if (*element.index >= current.size()) {
+        throw fail("index " + std::to_string(*element.index) + " is out of range: '" + path +
+                   "' has " + ElementCount(current.size()));
+      }
+      const int position = static_cast<int>(*element.index);
+      if (last) {
+        current[position] = value;
+        break;
+      }
+      YAML::Node child = current[position];
+      current.reset(child);
+      path = IndexPath(path, *element.index);
+      continue;
+    }
+    if (current.IsNull()) current = YAML::Node(YAML::NodeType::Map);  // "key:" left empty
+    if (!current.IsMap()) {
+      throw fail("cannot set key '" + element.key + "' in '" + path + "': it is " +
+                 Describe(current) + ", not a mapping");
+    }
+    if (last) {
+      current[element.key] = value;
+      break;
+    }
+    created = !current[element.key].IsDefined();
+    if (created) current[element.key] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node child = current[element.key];
+    current.reset(child);
+    path = ChildPath(path, element.key);
+  }
+  SetOrigin(key_path, Origin{"", index});
+}
+
+Origin ConfigDocument::OriginOf(const std::string& path) const {
+  const std::pair<std::string, Origin>* best = &origins_.front();
+  for (const auto& entry : origins_) {
+    if (IsPathPrefix(entry.first, path) && entry.first.size() >= best->first.size()) {
+      best = &entry;
+    }
+  }
+  return best->second;
+}
+
+ConfigError ConfigDocument::ErrorAt(const YAML::Node& node, const std::string& path,
+                                    const std::string& message) const {
+  const Origin origin = OriginOf(path);
+  if (origin.override_index > 0) {
+    return ConfigError(kOverrideSource, origin.override_index, 1, path, message);
+  }
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null() || mark.line < 0) return ConfigError(origin.file, 1, 1, path, message);
+  return ConfigError(origin.file, mark.line + 1, mark.column + 1, path, message);
+}
+
+ConfigError ConfigDocument::ErrorAtPath(const std::string& path,
+                                        const std::string& message) const {
+  YAML::Node node;
+  node.reset(root_);
+  std::string reached;
+  for (const PathElement& element : SplitKeyPath(path)) {
+    YAML::Node child;
+    bool found = false;
+    std::string child_path;
+    if (element.index) {
+      if (!node.IsSequence() || *element.index >= node.size()) break;
+      const YAML::Node& parent = node;
+      child.reset(parent[static_cast<int>(*element.index)]);
+      found = true;
+      child_path = IndexPath(reached, *element.index);
+    } else {
+      if (!node.IsMap()) break;
+      for (const auto& entry : node) {
+        if (entry.first.IsScalar() && entry.first.Scalar() == element.key) {
+          child.reset(entry.second);
+          found = true;
+          break;
+        }
+      }
+      child_path = ChildPath(reached, element.key);
+    }
+    if (!found) break;
+    node.reset(child);
+    reached = child_path;
+  }
+  // Locate at the node reached, but keep the full path in the message. The origin is
+  // the reached node's: a default that was never written sits in its parent's source.
+  ConfigError located = ErrorAt(node, reached, message);
+  return ConfigError(located.file(), located.line(), located.column(), path, message);
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,38 @@
+// The part program of a scenario: `program:` (a YAML list of blocks) or `program_file:`
+// (a G-code file). Both go through controller::ProgramBuilder, whose header documents the
+// words and the modal state; every error becomes a ConfigError.
+//
+// `program:` entries are mappings with the keys g x y z i j k r f p n, one per word:
+//   program:
+//     - {g: [90, 1], x: 100, y: 0, f: 6000}   # g: one integer or a list of integers
+//     - {g: 2, x: 150, y: 50, r: 50}
+//     - {g: 4, p: 500}
+// Values are plain numbers in the G-code units (mm, mm/min, P in ms); g and n are
+// integers. An empty entry `{}` does nothing. Errors: "FILE:LINE:COL: program[3].r: ..."
+// at the offending value (a g list element: program[3].g[1]), or at the entry
+// (program[3]) when the block as a whole is wrong. ProgramBlock::source_line is the
+// entry's 0-based index.
+//
+// `program_file:` is resolved relative to the scenario file's directory (absolute paths
+// are kept). Errors inside the file: "GCODE_FILE:LINE:COL: program_file: ...", located
+// in the G-code file; a missing or unreadable file is reported at the `program_file:`
+// value, naming the resolved path.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "bench/config/node_reader.h"
+#include "controller/program.h"
+
+namespace shapebench::bench {
+
+controller::Program ReadProgramList(const NodeReader& program,
+                                    const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+
+controller::Program ReadProgramFile(const NodeReader& program_file,
+                                    const std::string& scenario_dir,
+                                    const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+
+}  // namespace shapebench::bench

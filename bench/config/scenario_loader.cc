@@ -1,0 +1,455 @@
+#include "bench/config/scenario_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <optional>
+
+#include "bench/config/config_document.h"
+#include "bench/config/controller_reader.h"
+#include "bench/config/key_path.h"
+#include "bench/config/machine_reader.h"
+#include "bench/sim/metrics.h"
+#include "bench/config/node_reader.h"
+#include "bench/config/program_reader.h"
+#include "controller/controller.h"
+#include "controller/input_shaper.h"
+#include "controller/path_geometry.h"
+#include "controller/vibration_suppression_pattern.h"
+
+namespace shapebench::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kScenarioKeys = {
+    "name", "machine", "drive", "controller", "move", "program", "program_file", "output",
+    "integrator", "checks", "limits"};
+
+bool HasKey(const YAML::Node& map, const std::string& key) {
+  if (!map.IsMap()) return false;
+  for (const auto& entry : map) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == key) return true;
+  }
+  return false;
+}
+
+// Struct field names that are spelled differently in YAML.
+std::string YamlKeyPath(const std::string& field) {
+  static const std::vector<std::pair<std::string, std::string>> kRenamed = {
+      {"output_body", "output.body"}, {"output_relative_to", "output.relative_to"}};
+  for (const auto& [from, to] : kRenamed) {
+    const std::size_t at = field.rfind(from);
+    if (at != std::string::npos && at + from.size() == field.size() &&
+        (at == 0 || field[at - 1] == '.')) {
+      return field.substr(0, at) + to;
+    }
+  }
+  return field;
+}
+
+ConfigError Located(const ConfigDocument& document, const ValidationError& error) {
+  const std::string path = YamlKeyPath(error.field());
+  return document.ErrorAtPath(path, error.message());
+}
+
+// Runs a validate()-style check; its ValidationError is prefixed and located.
+template <typename Check>
+void Validated(const ConfigDocument& document, const std::string& prefix, Check&& check) {
+  try {
+    check();
+  } catch (const ValidationError& error) {
+    throw Located(document, error.Prefixed(prefix));
+  }
+}
+
+// `machine: path/to/machine.yaml` -> the file's content in place, its origin recorded.
+void ResolveMachineFile(ConfigDocument& document, const fs::path& base_dir) {
+  NodeReader top(document, document.root(), "");
+  const auto machine = top.Child("machine");
+  if (!machine || !machine->IsScalar()) return;
+  const std::string reference = machine->AsString();
+  const fs::path resolved =
+      fs::path(reference).is_absolute() ? fs::path(reference) : base_dir / reference;
+  const std::string file = resolved.lexically_normal().string();
+  YAML::Node content;
+  try {
+    content = ConfigDocument::ParseFile(file);
+  } catch (const ConfigError& error) {
+    if (error.line() > 0) throw;  // malformed YAML: located in the machine file itself
+    const std::string shown = file == reference ? "'" + reference + "'"
+                                                : "'" + reference + "' (" + file + ")";
+    throw machine->Error("machine file " + shown + ": " + error.message());
+  }
+  document.SpliceTopLevel("machine", content, file);
+}
+
+// The scenario file with its machine file spliced in and the overrides applied.
+ConfigDocument BuildScenarioDocument(const std::string& path,
+                                     const std::vector<Override>& overrides) {
+  ConfigDocument document(ConfigDocument::ParseFile(path), path);
+  if (!document.root().IsMap()) {
+    throw NodeReader(document, document.root(), "")
+        .Error("expected a mapping of scenario keys (" + JoinNames(kScenarioKeys, ", ") +
+               ")");
+  }
+  const fs::path base_dir = fs::path(path).parent_path();
+  ResolveMachineFile(document, base_dir);
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
+    ResolveMachineFile(document, base_dir);  // --set machine=other.yaml
+  }
+  return document;
+}
+
+const std::vector<std::string> kServoKeys = {"position_gain", "velocity_feedforward",
+                                             "velocity_loop_hz", "motor_mass_kg"};
+
+model::DriveConfig ReadDrive(const NodeReader& drive) {
+  std::vector<std::string> allowed = {"type"};
+  allowed.insert(allowed.end(), kServoKeys.begin(), kServoKeys.end());
+  drive.ExpectMap(allowed);
+  model::DriveConfig config;
+  drive.Read<model::DriveType>(
+      "type", {{"kinematic", model::DriveType::kKinematic}, {"servo", model::DriveType::kServo}},
+      &config.type);
+  if (config.type != model::DriveType::kServo) {
+    for (const auto& key : kServoKeys) {
+      if (auto child = drive.Child(key)) {
+        throw child->Error("'" + key +
+                           "' is a servo setting; it needs type: servo (the kinematic drive "
+                           "follows the command exactly)");
+      }
+    }
+    return config;
+  }
+  model::ServoConfig& servo = config.servo;
+  drive.Read("position_gain", &servo.position_gain_1_s);
+  drive.Read("velocity_feedforward", &servo.velocity_feedforward);
+  drive.Read("velocity_loop_hz", &servo.velocity_loop_hz);
+  drive.Read("motor_mass_kg", &servo.motor_mass_kg);
+  try {
+    config.validate();
+  } catch (const ValidationError& error) {
+    // Its field is the YAML key (a default is always valid, so the key is there).
+    const auto child = drive.Child(error.field());
+    throw (child ? *child : drive).Error(error.message());
+  }
+  return config;
+}
+
+model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
+  integrator.ExpectMap(
+      {"method", "rtol", "atol_scale", "lmm", "max_num_steps", "output_substeps"});
+  model::IntegratorConfig config;
+  integrator.Read<model::IntegratorMethod>(
+      "method",
+      {{"cvode", model::IntegratorMethod::kCvode},
+       {"exact", model::IntegratorMethod::kExact},
+       {"auto", model::IntegratorMethod::kAuto}},
+      &config.method);
+  integrator.Read("rtol", &config.rtol);
+  integrator.Read("atol_scale", &config.atol_scale);
+  integrator.Read<model::CvodeLmm>(
+      "lmm", {{"adams", model::CvodeLmm::kAdams}, {"bdf", model::CvodeLmm::kBdf}}, &config.lmm);
+  integrator.Read("max_num_steps", &config.max_num_steps);
+  integrator.Read("output_substeps", &config.output_substeps);
+  return config;
+}
+
+std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
+  std::vector<std::string> metric_names;
+  for (const auto& named : Metrics{}.Named()) metric_names.push_back(named.first);
+  checks.ExpectMap(metric_names);
+  std::vector<Check> result;
+  for (const auto& [metric, bounds] : checks.Entries()) {
+    bounds.ExpectMap({"min", "max"});
+    Check check;
+    check.metric = metric;
+    if (auto min = bounds.Child("min")) check.min = min->AsNumber();
+    if (auto max = bounds.Child("max")) check.max = max->AsNumber();
+    if (!check.min && !check.max) throw bounds.Error("expected min and/or max");
+    if (check.min && check.max && *check.min > *check.max) {
+      throw bounds.Error("min " + std::to_string(*check.min) + " is above max " +
+                         std::to_string(*check.max));
+    }
+    result.push_back(check);
+  }
+  return result;
+}
+
+RunLimits ReadLimits(const NodeReader& limits) {
+  limits.ExpectMap({"max_simulated_s", "max_ticks", "max_trace_rows"});
+  RunLimits config;
+  limits.Read("max_simulated_s", &config.max_simulated_s);
+  limits.Read("max_ticks", &config.max_ticks);
+  limits.Read("max_trace_rows", &config.max_trace_rows);
+  if (!(config.max_simulated_s > 0.0)) {
+    throw limits.Child("max_simulated_s")->Error("must be > 0 s");
+  }
+  if (config.max_ticks < 1) throw limits.Child("max_ticks")->Error("must be >= 1");
+  if (config.max_trace_rows < 2) throw limits.Child("max_trace_rows")->Error("must be >= 2");
+  return config;
+}
+
+std::string Seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g s", seconds);
+  return text;
+}
+
+void CheckPlantFinite(const Scenario& scenario) {
+  const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
+  if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
+      !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
+      !plant.static_gain.allFinite()) {
+    throw ValidationError("machine",
+                          "degenerate model: its state-space matrices or static gain are not "
+                          "finite (a frequency, stiffness, damping or gain too large, or a "
+                          "mass too small, for double precision)");
+  }
+}
+
+bool RunLengthWithinLimits(const Scenario& scenario, double seconds) {
+  return !(seconds > scenario.limits.max_simulated_s) &&
+         !(seconds / scenario.controller.period_s > static_cast<double>(scenario.limits.max_ticks));
+}
+
+// Guard rail: a run known to be longer than limits: allow is refused before any command
+// is generated (a giant move, a low design frequency, a long filter would otherwise take
+// the machine's memory and time).
+void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
+  std::string breakdown;
+  const double seconds = MinimumRunSeconds(scenario, &breakdown);
+  if (RunLengthWithinLimits(scenario, seconds)) return;
+  const double ticks = seconds / scenario.controller.period_s;
+  const RunLimits& limits = scenario.limits;
+  if (seconds > limits.max_simulated_s) {
+    // The suggested limit as text (a double: the bound may exceed any integer type).
+    char suggested[32];
+    std::snprintf(suggested, sizeof suggested, "%.3g", std::ceil(seconds * 2.0));
+    throw document.ErrorAtPath(
+        "limits.max_simulated_s",
+        "scenario '" + scenario.name + "' would simulate at least " + Seconds(seconds) + " (" +
+            breakdown + "), more than limits.max_simulated_s (" + Seconds(limits.max_simulated_s) +
+            (std::isfinite(seconds) ? "); raise it (e.g. --set limits.max_simulated_s=" +
+                                          std::string(suggested) + ") to run it anyway"
+                                    : "); its path is too long to simulate"));
+  }
+  if (ticks > static_cast<double>(limits.max_ticks)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.4g", ticks);
+    throw document.ErrorAtPath(
+        "limits.max_ticks",
+        "scenario '" + scenario.name + "' would take at least " + count +
+            " interpolation periods of " + Seconds(scenario.controller.period_s) + " (" +
+            breakdown + "), more than limits.max_ticks (" + std::to_string(limits.max_ticks) +
+            "); raise it or lengthen controller.period_s");
+  }
+}
+
+Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
+                      const LoadOptions& options) {
+  NodeReader top(document, document.root(), "");
+  top.ExpectMap(kScenarioKeys);
+
+  Scenario scenario;
+  scenario.source_file = path;
+  scenario.name = fs::path(path).stem().string();
+  top.Read("name", &scenario.name);
+  if (auto machine = top.Child("machine")) scenario.machine = ReadMachineAxesEntry(*machine);
+  if (auto drive = top.Child("drive")) scenario.drive = ReadDrive(*drive);
+  if (auto controller = top.Child("controller")) scenario.controller = ReadController(*controller);
+  // One of move (the one-block shorthand), program and program_file says what runs.
+  std::optional<NodeReader> what_runs;
+  for (const char* key : {"move", "program", "program_file"}) {
+    auto child = top.Child(key);
+    if (!child) continue;
+    if (what_runs) {
+      throw child->Error("give only one of move, program and program_file (" + what_runs->path() +
+                         " is given already)");
+    }
+    what_runs = child;
+  }
+  if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
+  if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
+  if (auto program_file = top.Child("program_file")) {
+    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string());
+  }
+  if (auto output = top.Child("output")) {
+    output->ExpectMap({"direction"});
+    output->Read<OutputDirection>("direction",
+                                  {{"auto", OutputDirection::kAuto},
+                                   {"magnitude", OutputDirection::kMagnitude},
+                                   {"x", OutputDirection::kX},
+                                   {"y", OutputDirection::kY},
+                                   {"z", OutputDirection::kZ}},
+                                  &scenario.output.direction);
+  }
+  if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
+  if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
+  if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
+
+  Validated(document, "machine", [&] { scenario.machine.validate(); });
+  Validated(document, "controller", [&] { scenario.controller.validate(); });
+  Validated(document, "move", [&] { scenario.move.validate(); });
+  Validated(document, "integrator", [&] { scenario.integrator.validate(); });
+  // A degenerate model (a frequency or stiffness so large that its matrices overflow)
+  // would make the integrators loop or return NaN: refused here, at the machine.
+  Validated(document, "", [&] { CheckPlantFinite(scenario); });
+  if (options.plan_move && !scenario.program) {
+    // Its fields are scenario-root paths already ("move.distance_mm").
+    Validated(document, "", [&] {
+      controller::CheckShapedMove(scenario.controller, std::abs(scenario.move.distance_mm) * 1e-3);
+    });
+  }
+  CheckRunLength(document, scenario);
+  return scenario;
+}
+
+}  // namespace
+
+double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
+  const controller::ControllerConfig& c = scenario.controller;
+  const controller::Program program = scenario.RunProgram();
+  const controller::PathGeometry path(program);
+  // The path at its programmed feeds (nothing runs faster; clamps only slow it down).
+  double feed_s = 0.0;
+  double length_m = 0.0;
+  for (const controller::PathElement& e : path.elements()) {
+    const auto block = static_cast<std::size_t>(e.block);
+    double feed = c.feed_m_s();
+    if (block < program.blocks.size()) {
+      const controller::ProgramBlock& b = program.blocks[block];
+      feed = b.kind == controller::MotionKind::kRapid ? c.rapid_feed_mm_min / 60000.0
+             : std::isnan(b.feed_m_s)                 ? c.feed_m_s()
+                                                      : b.feed_m_s;
+    }
+    if (feed > 0.0 && std::isfinite(e.length_m)) feed_s += e.length_m / feed;
+    if (std::isfinite(e.length_m)) length_m += e.length_m;
+  }
+  // From rest to rest with an acceleration of at most a (twice the acc/dec's, for a
+  // grid correction or a table's overshoot): 2 sqrt(L / a) at least.
+  const double accel = 2.0 * c.accel_m_s2();
+  const double accel_s = accel > 0.0 ? 2.0 * std::sqrt(length_m / accel) : 0.0;
+  double dwell_s = 0.0;
+  for (const controller::ProgramBlock& b : program.blocks) dwell_s += b.dwell_s;
+  // A shaped speed change lasts the shaper's duration at least.
+  double pattern_s = 0.0;
+  if (controller::MakeStepPattern(c.pattern).shapes()) {
+    const std::vector<controller::Impulse> impulses = controller::ShaperImpulses(c.pattern);
+    if (!impulses.empty()) pattern_s = impulses.back().time_s - impulses.front().time_s;
+  }
+  // Post-interpolation filters add their length (the exponential runs until 1e-12 m is
+  // left of the path).
+  double filter_s = 0.0;
+  const controller::PostInterpConfig& post = c.post_interp;
+  if (post.type == controller::PostInterpType::kExponential && length_m > 1e-12) {
+    filter_s = post.time_constant_s * std::log(length_m / 1e-12);
+  } else if (post.type == controller::PostInterpType::kProfileTable) {
+    filter_s = post.table.empty() ? post.moving_average_s
+                                  : static_cast<double>(post.table.size()) * c.period_s;
+  }
+  // The residual window: three periods of the lowest mode (0.1 s for a rigid machine).
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+    for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  const double tail_s = 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
+  const double motion_s = std::max(feed_s, accel_s) + dwell_s + pattern_s + filter_s;
+  if (breakdown != nullptr) {
+    *breakdown = "motion " + Seconds(motion_s) + ": the path at its feeds " + Seconds(feed_s) +
+                 " or acc/dec " + Seconds(accel_s) + ", dwells " + Seconds(dwell_s) +
+                 ", pattern " + Seconds(pattern_s) + ", post-interpolation " + Seconds(filter_s) +
+                 "; residual window " + Seconds(tail_s);
+  }
+  return motion_s + tail_s;
+}
+
+std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks); }
+
+YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides) {
+  return BuildScenarioDocument(path, overrides).root();
+}
+
+model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine) {
+  if (!machine.IsMap()) {
+    throw machine.Error(
+        "expected a mapping (modes:, bodies: or axes:) or the path of a machine file");
+  }
+  return ReadMachineAxes(machine);
+}
+
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
+                      const LoadOptions& options) {
+  const ConfigDocument document = BuildScenarioDocument(path, overrides);
+  return ReadScenario(document, path, options);
+}
+
+model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
+                                              const std::vector<Override>& overrides) {
+  YAML::Node root = ConfigDocument::ParseFile(path);
+  const bool machine_file =
+      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes");
+  if (!machine_file) {
+    const ConfigDocument document = BuildScenarioDocument(path, overrides);
+    NodeReader top(document, document.root(), "");
+    top.ExpectMap(kScenarioKeys);
+    model::MultiAxisMachineConfig machine;  // without `machine:`: the default machine
+    if (auto entry = top.Child("machine")) machine = ReadMachineAxesEntry(*entry);
+    Validated(document, "machine", [&] { machine.validate(); });
+    return machine;
+  }
+  // A machine file is read as the `machine:` of a scenario, so paths match scenarios'.
+  YAML::Node top(YAML::NodeType::Map);
+  top["machine"] = root;
+  ConfigDocument document(top, path);
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    Override scoped = overrides[i];
+    if (!IsPathPrefix("machine", scoped.key_path)) {
+      scoped.key_path = ChildPath("machine", scoped.key_path);
+    }
+    document.ApplyOverride(scoped, static_cast<int>(i) + 1);
+  }
+  NodeReader machine_node(document, document.root(), "");
+  machine_node.ExpectMap({"machine"});
+  model::MultiAxisMachineConfig machine = ReadMachineAxesEntry(*machine_node.Child("machine"));
+  Validated(document, "machine", [&] { machine.validate(); });
+  return machine;
+}
+
+model::MachineConfig LoadMachine(const std::string& path,
+                                 const std::vector<Override>& overrides) {
+  const model::MultiAxisMachineConfig machine = LoadMachineAxes(path, overrides);
+  const auto& driven = machine.axes[machine.driven_axis];
+  if (!driven) {
+    throw ConfigError(path, 0, 0, "machine",
+                      std::string("the driven axis ") + model::AxisName(machine.driven_axis) +
+                          " is rigid (no model); the single-axis view needs its model");
+  }
+  return *driven;
+}
+
+bool MachineChecksPass(const Scenario& scenario) {
+  try {
+    scenario.machine.validate();
+    CheckPlantFinite(scenario);
+    return RunLengthWithinLimits(scenario, MinimumRunSeconds(scenario));
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+ConfigError LocateValidationError(const std::string& path,
+                                  const std::vector<Override>& overrides,
+                                  const ValidationError& error) {
+  try {
+    return Located(BuildScenarioDocument(path, overrides), error);
+  } catch (const ConfigError& config_error) {
+    return config_error;
+  }
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,107 @@
+#include "bench/config/structure_numbers.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <variant>
+
+#include "bench/config/key_path.h"
+#include "bench/config/node_reader.h"
+#include "bench/config/scenario_loader.h"
+
+namespace shapebench::bench {
+namespace {
+
+// Where a structure number lives: the axis' form (-1: the single form's axis), the list,
+// the entry and the field.
+struct StructureKey {
+  int axis = -1;
+  std::string list;   // "modes", "bodies", "elements"
+  std::size_t index = 0;
+  std::string field;  // "frequency_hz", ...
+};
+
+bool IsField(const std::string& list, const std::string& field) {
+  if (list == "modes") return field == "frequency_hz" || field == "damping_ratio" || field == "gain";
+  if (list == "bodies") return field == "mass_kg";
+  if (list == "elements") return field == "stiffness_n_m" || field == "damping_n_s_m";
+  return false;
+}
+
+std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
+  const auto path = ParseKeyPath(key_path);
+  if (!path || path->empty() || (*path)[0].key != "machine" || (*path)[0].index) return std::nullopt;
+  StructureKey key;
+  std::size_t at = 1;
+  if (path->size() == 6 && (*path)[1].key == "axes" && !(*path)[1].index) {
+    const std::string& name = (*path)[2].key;
+    if ((*path)[2].index) return std::nullopt;
+    key.axis = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -2;
+    if (key.axis < 0) return std::nullopt;
+    at = 3;
+  } else if (path->size() != 4) {
+    return std::nullopt;
+  }
+  // LIST, then [i] (ParseKeyPath gives the index as its own element), then FIELD.
+  const PathElement& list = (*path)[at];
+  const PathElement& entry = (*path)[at + 1];
+  const PathElement& field = (*path)[at + 2];
+  if (list.index || !entry.index || !entry.key.empty() || field.index) return std::nullopt;
+  if (!IsField(list.key, field.key)) return std::nullopt;
+  key.list = list.key;
+  key.index = *entry.index;
+  key.field = field.key;
+  return key;
+}
+
+// The number as NodeReader::AsNumber reads it; nullopt where it would refuse it.
+std::optional<double> PlainNumber(const std::string& text) {
+  if (!IsNumberText(text)) return std::nullopt;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), nullptr);
+  if (errno == ERANGE && std::isinf(value)) return std::nullopt;
+  return value;
+}
+
+double* FieldOf(model::MachineConfig& form, const StructureKey& key) {
+  if (auto* modal = std::get_if<model::ModalMachineConfig>(&form.form)) {
+    if (key.list != "modes" || key.index >= modal->modes.size()) return nullptr;
+    model::ModalMode& mode = modal->modes[key.index];
+    if (key.field == "frequency_hz") return &mode.frequency_hz;
+    if (key.field == "damping_ratio") return &mode.damping_ratio;
+    return &mode.gain;
+  }
+  auto& lumped = std::get<model::LumpedMachineConfig>(form.form);
+  if (key.list == "bodies") {
+    return key.index < lumped.bodies.size() ? &lumped.bodies[key.index].mass_kg : nullptr;
+  }
+  if (key.list != "elements" || key.index >= lumped.elements.size()) return nullptr;
+  model::LumpedElement& element = lumped.elements[key.index];
+  return key.field == "stiffness_n_m" ? &element.stiffness_n_m : &element.damping_n_s_m;
+}
+
+}  // namespace
+
+bool IsStructureNumberKey(const std::string& key_path) {
+  return ParseStructureKey(key_path).has_value();
+}
+
+bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values) {
+  model::MultiAxisMachineConfig& machine = scenario->machine;
+  for (const Override& value : values) {
+    const std::optional<StructureKey> key = ParseStructureKey(value.key_path);
+    const std::optional<double> number = PlainNumber(value.value_yaml);
+    if (!key || !number) return false;
+    // The single form's keys have no axis; the axes form's name theirs.
+    if ((key->axis < 0) != machine.single_form) return false;
+    const int axis = key->axis < 0 ? machine.driven_axis : key->axis;
+    if (!machine.axes[axis]) return false;
+    double* field = FieldOf(*machine.axes[axis], *key);
+    if (field == nullptr) return false;
+    *field = *number;
+  }
+  return MachineChecksPass(*scenario);
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,127 @@
+// WriteJUnit and XmlEscape (bench/report/report.h): the JUnit XML that CI systems read.
+#include <cstdio>
+#include <string>
+
+#include "common/atomic_file.h"
+#include "bench/report/report.h"
+
+namespace shapebench::bench {
+namespace {
+
+// Length of the valid UTF-8 sequence at text[i], or 0.
+std::size_t Utf8Length(const std::string& text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  std::size_t length = 0;
+  if (lead >= 0xC2 && lead <= 0xDF) length = 2;
+  else if (lead >= 0xE0 && lead <= 0xEF) length = 3;
+  else if (lead >= 0xF0 && lead <= 0xF4) length = 4;
+  else return 0;
+  if (i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  }
+  return length;
+}
+
+std::string Seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", seconds);
+  return text;
+}
+
+}  // namespace
+
+std::string XmlEscape(const std::string& text) {
+  std::string escaped;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    switch (c) {
+      case '&': escaped += "&amp;"; continue;
+      case '<': escaped += "&lt;"; continue;
+      case '>': escaped += "&gt;"; continue;
+      case '"': escaped += "&quot;"; continue;
+      case '\'': escaped += "&apos;"; continue;
+      case '\t': escaped += "&#9;"; continue;
+      case '\n': escaped += "&#10;"; continue;
+      case '\r': escaped += "&#13;"; continue;
+      default: break;
+    }
+    if (c < 0x20) {
+      escaped += '?';  // not representable in XML 1.0
+    } else if (c < 0x80) {
+      escaped += static_cast<char>(c);
+    } else if (const std::size_t length = Utf8Length(text, i)) {
+      escaped += text.substr(i, length);
+      i += length - 1;
+    } else {
+      escaped += '?';  // a byte that is not UTF-8
+    }
+  }
+  return escaped;
+}
+
+void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports) {
+  int tests = 0;
+  int failures = 0;
+  int errors = 0;
+  double time_s = 0.0;
+  for (const auto& report : reports) {
+    tests += report.error.empty() ? static_cast<int>(report.results.size()) : 1;
+    errors += report.error.empty() ? 0 : 1;
+    tests += static_cast<int>(report.point_errors.size());
+    errors += static_cast<int>(report.point_errors.size());
+    for (const auto& result : report.results) failures += result.passed ? 0 : 1;
+    time_s += report.run_time_s;
+  }
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    out << "<testsuites name=\"shapebench check\" tests=\"" << tests << "\" failures=\""
+        << failures << "\" errors=\"" << errors << "\" time=\"" << Seconds(time_s) << "\">\n";
+    for (const auto& report : reports) {
+      int suite_failures = 0;
+      for (const auto& result : report.results) suite_failures += result.passed ? 0 : 1;
+      const int suite_tests = (report.error.empty() ? static_cast<int>(report.results.size()) : 1) +
+                              static_cast<int>(report.point_errors.size());
+      const int suite_errors =
+          (report.error.empty() ? 0 : 1) + static_cast<int>(report.point_errors.size());
+      const std::string classname = XmlEscape("shapebench." + report.name);
+      out << "  <testsuite name=\"" << XmlEscape(report.file) << "\" tests=\"" << suite_tests
+          << "\" failures=\"" << suite_failures << "\" errors=\"" << suite_errors
+          << "\" time=\"" << Seconds(report.run_time_s)
+          << "\">\n";
+      if (!report.error.empty()) {
+        out << "    <testcase classname=\"" << classname << "\" name=\"run\" time=\""
+            << Seconds(report.run_time_s) << "\">\n"
+            << "      <error type=\"RunError\" message=\"" << XmlEscape(report.error) << "\">"
+            << XmlEscape(report.error) << "</error>\n"
+            << "    </testcase>\n";
+      }
+      // A sweep's point whose run failed: "run @ key=value".
+      for (const auto& [point, message] : report.point_errors) {
+        out << "    <testcase classname=\"" << classname << "\" name=\""
+            << XmlEscape("run @ " + point) << "\" time=\"0.000\">\n"
+            << "      <error type=\"RunError\" message=\"" << XmlEscape(message) << "\">"
+            << XmlEscape(message) << "</error>\n"
+            << "    </testcase>\n";
+      }
+      for (const auto& result : report.results) {
+        const std::string name =
+            result.point.empty() ? result.metric : result.metric + " @ " + result.point;
+        out << "    <testcase classname=\"" << classname << "\" name=\""
+            << XmlEscape(name) << "\" time=\"0.000\"";
+        if (result.passed) {
+          out << "/>\n";
+          continue;
+        }
+        out << ">\n      <failure type=\"CheckFailed\" message=\"" << XmlEscape(result.message)
+            << "\">" << XmlEscape(FormatCheckLine(report.file, result)) << "</failure>\n"
+            << "    </testcase>\n";
+      }
+      out << "  </testsuite>\n";
+    }
+    out << "</testsuites>\n";
+  });
+}
+
+}  // namespace shapebench::bench

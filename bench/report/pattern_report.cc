@@ -1,0 +1,275 @@
+#include "bench/report/pattern_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "common/validation_error.h"
+#include "controller/input_shaper.h"
+#include "controller/profile_table.h"
+#include "controller/vibration_suppression_pattern.h"
+
+namespace shapebench::bench {
+namespace {
+
+using controller::PatternMethod;
+using controller::PatternMode;
+
+std::string Num(double value, const char* format = "%.6g") {
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string MethodText(const controller::PatternConfig& pattern) {
+  switch (pattern.method) {
+    case PatternMethod::kNone: return "none";
+    case PatternMethod::kMethod1: return "1 (a/2 for T/2, then a)";
+    case PatternMethod::kMethod2: return "2 (a for T/6, 0 for T/6, then a)";
+    case PatternMethod::kMethod3: return "3 (K1 a for t1, (1-K1) a for t1; k1 = " + Num(pattern.k1) + ")";
+    case PatternMethod::kMethod4: return "4 (a for t1, a2 for T/2 - 2 t1; t1 = " + Num(pattern.t1_s) + " s)";
+    case PatternMethod::kZv: return "zv (zero vibration: 2 impulses over T_d/2)";
+    case PatternMethod::kZvd: return "zvd (zero vibration and derivative: 3 impulses over T_d)";
+    case PatternMethod::kZvdd: return "zvdd (zero vibration, two derivatives: 4 impulses over 3 T_d/2)";
+    case PatternMethod::kMzv: return "mzv (modified zv: 3 impulses over 3 T_d/4)";
+    case PatternMethod::kEi:
+      return "ei (extra-insensitive: vibration_tolerance " + Num(pattern.vibration_tolerance) + ")";
+    case PatternMethod::kUmZv: return "um_zv (unity-magnitude zv, negative: 1, -1, 1 over T/3)";
+    case PatternMethod::kCustom: return "custom (" + std::to_string(pattern.impulses.size()) + " impulses)";
+  }
+  return "?";
+}
+
+std::string FrequencyList(const std::vector<double>& frequencies) {
+  std::string text;
+  for (const double f : frequencies) text += (text.empty() ? "" : ", ") + Num(f);
+  return text;
+}
+
+std::string ModeText(PatternMode mode) {
+  switch (mode) {
+    case PatternMode::kOff: return "0 (off)";
+    case PatternMode::kStart: return "1 (start of acc/dec only)";
+    case PatternMode::kEnd: return "2 (end of acc/dec only)";
+    case PatternMode::kBoth: return "3 (start and end of acc/dec)";
+  }
+  return "?";
+}
+
+void PrintStep(std::ostream& out, const char* name, const controller::AccelStep& step,
+               int index) {
+  out << "  ST" << index << " = " << Num(step.duration_s / 1e-4) << " (0.1 ms units) = "
+      << Num(step.duration_s, "%.9g") << " s   SR" << index << " = " << Num(step.ratio, "%.6f")
+      << "   (" << name << ")\n";
+}
+
+}  // namespace
+
+void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& controller) {
+  const controller::PatternConfig& config = controller.pattern;
+  const controller::StepPattern pattern = controller::MakeStepPattern(config);
+  const double steady_accel_m_s2 =
+      controller.accel_time_s > 0.0 ? controller.feed_m_s() / controller.accel_time_s : 0.0;
+
+  const std::vector<double> frequencies = config.DesignFrequencies();
+  const controller::GridDesign design = controller::ShaperGridDesign(config);
+  out << "pattern\n"
+      << "  method " << MethodText(config) << "\n";
+  if (frequencies.size() == 1) {
+    out << "  design frequency " << Num(frequencies.front()) << " Hz (T = "
+        << Num(1.0 / frequencies.front()) << " s)\n";
+  } else {
+    out << "  design frequencies " << FrequencyList(frequencies)
+        << " Hz (one shaper per frequency, convolved)\n";
+  }
+  if (design.damping_ratio > 0.0) {
+    out << "  design damping ratio " << Num(design.damping_ratio) << "\n";
+  }
+  out
+      << "  steady acceleration a = " << Num(steady_accel_m_s2) << " m/s^2 (feed "
+      << Num(controller.feed_mm_min) << " mm/min / accel_time_s " << Num(controller.accel_time_s)
+      << ")\n";
+  if (config.step_resolution_s > 0.0) {
+    out << "  step times rounded to " << Num(config.step_resolution_s) << " s\n";
+  }
+
+  if (pattern.general()) {
+    out << "\nshaper (" << (controller::IsPatentMethod(config.method) ? "the patent's method, convolved per mode"
+                                                                       : "library, controller/input_shaper.h")
+        << ")\n  mode = " << ModeText(config.mode) << "\n"
+        << "  the steady acceleration of each acc/dec phase is convolved with the impulses below\n";
+  } else {
+    out << "\npara. 49 parameters\n";
+    if (!pattern.shapes()) {
+      // Method none acts as mode 0 whatever pattern.mode says.
+      out << "  mode = " << ModeText(PatternMode::kOff)
+          << (config.method == PatternMethod::kNone ? " (pattern.method none)" : "") << "\n"
+          << "  no shaping: the acceleration steps straight to a\n";
+    } else {
+      out << "  mode = " << ModeText(config.mode) << "\n";
+      PrintStep(out, "step 1", pattern.step1, 1);
+      PrintStep(out, "step 2", pattern.step2, 2);
+      out << "  then the steady acceleration (ratio 1); at the end of a phase the steps run in "
+             "reverse order\n";
+    }
+  }
+
+  const std::vector<controller::Impulse> impulses =
+      pattern.shapes() ? controller::ShaperImpulses(config) : controller::PatternImpulses(pattern);
+  out << "\njerk impulses at the start of a phase (continuous time, per unit a)\n"
+      << "  t_s            amplitude\n";
+  for (const auto& impulse : impulses) {
+    char line[96];
+    std::snprintf(line, sizeof line, "  %-13.9g  %.9g\n", impulse.time_s, impulse.amplitude);
+    out << line;
+  }
+
+  // The profile_table realization: the same impulses as jerk coefficients on the period
+  // grid (paras. 52-61), exactly as the controller builds the table.
+  const std::vector<double> table =
+      pattern.shapes() ? controller::ProfileTableFromImpulses(impulses, controller.period_s, design)
+                       : std::vector<double>{1.0};
+  const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
+  out << "\nrealizations (in use: " << (table_in_use ? "profile_table" : "stepped") << ")\n"
+      << "  stepped: the steps above in the pre-interpolation linear acc/dec (paras. 36-50),\n"
+      << "    each shaped start and end put on the tick grid keeping its vibration phasor\n"
+      << "  profile_table: the impulses as jerk coefficients convolved with the move pulses\n"
+      << "    after interpolation (paras. 52-61); it shapes every start and end (mode both)\n"
+      << "\nprofile table on the " << Num(controller.period_s) << " s period grid "
+      << "(alpha_n at t = n * period_s; alpha_n not listed are 0; " << table.size()
+      << " coefficients, at most post_interp.max_table_length = " << controller.post_interp.max_table_length
+      << ")\n"
+      << "  n      t_s            alpha_n\n";
+  std::vector<controller::Impulse> table_impulses;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    const double time_s = static_cast<double>(n) * controller.period_s;
+    table_impulses.push_back({time_s, table[n]});
+    if (table[n] == 0.0) continue;
+    char line[96];
+    std::snprintf(line, sizeof line, "  %-5zu  %-13.9g  %.9g\n", n, time_s, table[n]);
+    out << line;
+  }
+
+  // Each impulse rounded to its nearest tick, without the correction: what the grid
+  // would leave without grid_realization.h.
+  std::vector<controller::Impulse> rounded;
+  for (const controller::Impulse& impulse : impulses) {
+    rounded.push_back({std::round(impulse.time_s / controller.period_s) * controller.period_s,
+                       impulse.amplitude});
+  }
+  for (const double f : frequencies) {
+    const double zeta = design.damping_ratio;
+    out << "\nresidual vibration at " << Num(f) << " Hz ("
+        << (zeta > 0.0 ? "damping ratio " + Num(zeta) : std::string("undamped"))
+        << "; fraction of an unshaped step's)\n"
+        << "  stepped (the step times as set)   "
+        << Num(controller::ResidualVibration(impulses, f, zeta), "%.3e")
+        << "\n  profile_table (on the grid)      "
+        << Num(controller::ResidualVibration(table_impulses, f, zeta), "%.3e") << "\n"
+        << "  rounded to the nearest tick      "
+        << Num(controller::ResidualVibration(rounded, f, zeta), "%.3e")
+        << "   (for comparison: no correction)\n";
+  }
+}
+
+namespace {
+
+// When commanded motion ends: the tick after the last non-zero velocity (RunScenario's
+// motion_time_s).
+double MotionEndS(const controller::MultiAxisCommand& command) {
+  std::size_t last_moving = 0;
+  for (std::size_t k = 0; k <= command.num_ticks(); ++k) {
+    if (command.velocity_m_s(k) != Eigen::Vector3d::Zero()) last_moving = k;
+  }
+  return static_cast<double>(std::min(last_moving + 1, command.num_ticks())) * command.period_s;
+}
+
+double MotionTimeS(const Scenario& scenario, const controller::ControllerConfig& controller) {
+  controller::ControllerConfig c = controller;
+  c.stroke_limits = scenario.machine.stroke_m;  // as RunScenario
+  if (!scenario.program) controller::CheckShapedMove(c, std::abs(scenario.move.distance_mm) * 1e-3);
+  return MotionEndS(controller::GenerateProgramCommand(c, scenario.RunProgram()));
+}
+
+}  // namespace
+
+void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
+  const controller::ControllerConfig& controller = scenario.controller;
+  PrintPatternReport(out, controller);
+  const controller::PatternConfig& config = controller.pattern;
+  const controller::StepPattern pattern = controller::MakeStepPattern(config);
+  out << "\ntime penalty (what the shaping costs the machine)\n";
+  if (!pattern.shapes()) {
+    out << "  none: no shaping\n";
+    return;
+  }
+  const std::vector<controller::Impulse> impulses = controller::ShaperImpulses(config);
+  const std::vector<double> table = controller::ProfileTableFromImpulses(
+      impulses, controller.period_s, controller::ShaperGridDesign(config));
+  const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
+  out << "  shaper duration             " << Num(controller::ShaperDuration(impulses))
+      << " s (continuous); " << Num(static_cast<double>(table.size() - 1) * controller.period_s)
+      << " s on the grid (the table's last coefficient)\n";
+  const std::string what = scenario.program ? "the scenario's program"
+                                            : "the scenario's move (" + Num(scenario.move.distance_mm) + " mm)";
+  try {
+    controller::ControllerConfig unshaped = controller;
+    unshaped.pattern.method = controller::PatternMethod::kNone;
+    unshaped.pattern.frequencies_hz.clear();
+    unshaped.pattern.impulses.clear();
+    unshaped.pattern.design_damping_ratio = 0.0;
+    const double shaped_s = MotionTimeS(scenario, controller);
+    const double unshaped_s = MotionTimeS(scenario, unshaped);
+    out << "  motion time added           " << Num(shaped_s - unshaped_s) << " s (" << what << ": "
+        << Num(shaped_s) << " s shaped, " << Num(unshaped_s) << " s unshaped; realization "
+        << (table_in_use ? "profile_table" : "stepped") << ", post_interp as set)\n";
+  } catch (const ValidationError& error) {
+    out << "  motion time added           n/a (" << error.field() << ": " << error.message() << ")\n";
+  }
+  // Contour error at the programmed feed. The table filters each axis' pulses: on an arc
+  // of radius r at speed v a filter of variance sigma^2 (of its coefficients as a
+  // distribution in time) shrinks the radius by sigma^2 v^2 / (2 r) (small v / r;
+  // 1 - |H(i v / r)|). Stepped shaping acts on the path speed before interpolation: the
+  // tool stays on the programmed path.
+  constexpr double kReferenceRadiusM = 0.010;
+  // The programmed feed: the highest F of the program's cutting blocks (a `move:` and
+  // blocks before the first F run at controller.feed_mm_min).
+  double v = 0.0;
+  for (const controller::ProgramBlock& block : scenario.RunProgram().blocks) {
+    if (block.kind == controller::MotionKind::kRapid || block.kind == controller::MotionKind::kDwell) continue;
+    v = std::max(v, std::isnan(block.feed_m_s) ? controller.feed_m_s() : block.feed_m_s);
+  }
+  if (v == 0.0) v = controller.feed_m_s();
+  const double variance = controller::ShaperVariance(controller::TableImpulses(table, controller.period_s));
+  const double radial_m = variance * v * v / (2.0 * kReferenceRadiusM);
+  // Not small v / r: the steady state of the table on the circle, r (1 - |H(e^{i W T})|),
+  // W = v / r (the chord's own sag left out).
+  std::complex<double> response = 0.0;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    response += table[n] * std::polar(1.0, -v / kReferenceRadiusM * static_cast<double>(n) * controller.period_s);
+  }
+  const double steady_m = kReferenceRadiusM * (1.0 - std::abs(response));
+  out << "  contour error at the feed   (the programmed feed " << Num(v * 60000.0)
+      << " mm/min, the highest of the program's, on an arc of reference radius 10 mm)\n";
+  const bool per_axis = controller.post_interp.distribution == controller::Distribution::kPerAxis;
+  auto row = [&](const std::string& name, bool in_use) {
+    char text[64];
+    std::snprintf(text, sizeof text, "    %-36s", (name + (in_use ? " (in use)" : "")).c_str());
+    return std::string(text);
+  };
+  out << row("stepped", !table_in_use)
+      << "0: the shaper acts on the path speed before interpolation; the tool stays on the path\n"
+      << row("profile_table, per_axis", table_in_use && per_axis) << Num(radial_m * 1e6)
+      << " um radial (inward) = sigma^2 v^2 / (2 r), sigma = " << Num(std::sqrt(variance))
+      << " s the table's standard deviation\n"
+      << row("", false) << "(steady state on that circle, r (1 - |H(v/r)|): " << Num(steady_m * 1e6)
+      << " um)\n"
+      << row("profile_table, tangential", table_in_use && !per_axis)
+      << "0 radial: seed 000's distribution keeps the tool on the interpolated path\n"
+      << "    (post_interp's own filter adds its error in either case)\n";
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,100 @@
+#include "bench/report/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+
+#include "common/atomic_file.h"
+
+namespace shapebench::bench {
+namespace {
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::string MetricUnit(const std::string& name) {
+  if (EndsWith(name, "_m")) return "m";
+  if (EndsWith(name, "_s")) return "s";
+  return "";
+}
+
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
+  const auto named = metrics.Named();
+  std::size_t width = 0;
+  for (const auto& entry : named) width = std::max(width, entry.first.size());
+  for (const auto& [name, value] : named) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%.6g", value);
+    out << std::left << std::setw(static_cast<int>(width) + 2) << name;
+    if (std::isnan(value)) {
+      out << "n/a\n";
+    } else if (name == "stroke_alarm") {
+      out << (value != 0.0 ? "true" : "false") << "\n";
+    } else {
+      const std::string unit = MetricUnit(name);
+      out << number << (unit.empty() ? "" : " " + unit) << "\n";
+    }
+  }
+}
+
+nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : metrics.Named()) {
+    if (name == "stroke_alarm" && std::isfinite(value)) {
+      json[name] = value != 0.0;  // SPEC section 4: a bool
+    } else if (std::isfinite(value)) {
+      json[name] = value;
+    } else {
+      json[name] = nullptr;
+    }
+  }
+  return json;
+}
+
+std::size_t TraceStride(std::size_t samples, long max_rows) {
+  const auto limit = static_cast<std::size_t>(std::max(max_rows, 2L));
+  if (samples <= limit) return 1;
+  return (samples - 1 + (limit - 1) - 1) / (limit - 1);
+}
+
+std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_rows) {
+  const std::size_t samples = trace.time_s.size();
+  const std::size_t stride = TraceStride(samples, max_rows);
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    if (stride > 1) {
+      out << "# decimated: 1 in " << stride << " of " << samples
+          << " samples kept (limits.max_trace_rows " << max_rows
+          << "); the metrics use every sample\n";
+    }
+    out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
+           "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
+           "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n";
+    char line[512];
+    const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
+                                       trace.command_velocity_m_s.size(),
+                                       trace.command_accel_m_s2.size(), trace.deflection_m.size(),
+                                       trace.command_m.size(), trace.actual_m.size(),
+                                       trace.deflection_axes_m.size(), trace.block.size(),
+                                       trace.planned_feed_mm_min.size()});
+    for (std::size_t i = 0; i < rows; i += stride) {
+      const Eigen::Vector3d& c = trace.command_m[i];
+      const Eigen::Vector3d& a = trace.actual_m[i];
+      const Eigen::Vector3d& d = trace.deflection_axes_m[i];
+      std::snprintf(line, sizeof line,
+                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                    "%.17g,%.17g,%d,%.17g\n",
+                    trace.time_s[i], trace.command_position_m[i], trace.command_velocity_m_s[i],
+                    trace.command_accel_m_s2[i], trace.deflection_m[i], c.x(), c.y(), c.z(), a.x(),
+                    a.y(), a.z(), d.x(), d.y(), d.z(), trace.block[i], trace.planned_feed_mm_min[i]);
+      out << line;
+    }
+  });
+  return stride;
+}
+
+}  // namespace shapebench::bench

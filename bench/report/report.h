@@ -1,0 +1,62 @@
+// What a run leaves behind: the metrics table, metrics JSON, the trace CSV, the
+// deflection plot, and JUnit XML for checks. Files are written atomically.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/sim/checks.h"
+#include "bench/sim/cosim.h"
+#include "bench/sim/metrics.h"
+#include "bench/sim/scenario.h"
+
+namespace shapebench::bench {
+
+// One aligned line per metric: name, value, unit ("n/a" for NaN).
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
+
+// The unit of a metric, from its name's suffix: "m", "s", or "" (ratios).
+std::string MetricUnit(const std::string& name);
+
+// {"static_displacement_m": ..., ...} in Metrics::Named() order (ordered_json keeps it);
+// NaN -> null.
+nlohmann::ordered_json MetricsJson(const Metrics& metrics);
+
+// t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
+// deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
+// block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.
+// A trace of more than `max_rows` samples is decimated (TraceStride): every stride-th
+// sample from the first, and a first line "# decimated: 1 in K of N samples kept ..." says
+// so. Returns the stride.
+std::size_t WriteTraceCsv(const std::string& path, const Trace& trace,
+                          long max_rows = RunLimits{}.max_trace_rows);
+
+// The stride that keeps at most `max_rows` (>= 2) of `samples` samples: 1 when they fit,
+// else ceil((samples - 1) / (max_rows - 1)): samples 0, stride, 2 stride, ..., which
+// reach to within one stride of the last sample.
+std::size_t TraceStride(std::size_t samples, long max_rows);
+
+// Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
+// +/- static_displacement dashed; pngcairo 1000x600 via gnuplot. Throws
+// std::runtime_error when gnuplot is missing or fails.
+void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
+                         const Scenario& scenario);
+
+// The XY path (programmed vs actual tool path), the deviation from the programmed path
+// magnified so it shows at the path's scale (the circle-test plot of ISO 230-4); mm.
+void WritePathPlot(const std::string& path_png, const RunResult& result,
+                   const Scenario& scenario);
+
+// JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
+// is one <testcase name="run"> with an <error>. A sweep: one <testcase> per point and
+// check, named "METRIC @ KEY=VALUE, ...", and "run @ KEY=VALUE, ..." with an <error> for
+// a point that failed to run.
+void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports);
+
+// Escapes text for XML attributes and content; drops what XML 1.0 cannot hold.
+std::string XmlEscape(const std::string& text);
+
+}  // namespace shapebench::bench

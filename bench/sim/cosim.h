@@ -1,0 +1,65 @@
+// The co-simulation master: t_k = k * period from the integer tick; at each tick the
+// drive input is set, the plant steps to the next communication point (in output
+// substeps), then the outputs are read.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bench/sim/metrics.h"
+#include "bench/sim/scenario.h"
+#include "controller/controller.h"
+#include "model/integrator.h"
+
+namespace shapebench::bench {
+
+// Sampled at every output substep, from t = 0 to the end of the simulated tail.
+struct Trace {
+  std::vector<double> time_s;
+  // The scalar view of the run (OutputDirection): along the view's axis, the command
+  // position, velocity and acceleration; for the magnitude view, the distance the
+  // command has travelled, its speed and |acceleration|. Deflection as the metrics see it.
+  std::vector<double> command_position_m;
+  std::vector<double> command_velocity_m_s;
+  std::vector<double> command_accel_m_s2;  // held over the period the sample ends
+  std::vector<double> deflection_m;
+  // Per axis: the commanded (drive reference) position, the actual tool position
+  // relative to the workpiece, and the structural deflection.
+  std::vector<Eigen::Vector3d> command_m;
+  std::vector<Eigen::Vector3d> actual_m;
+  std::vector<Eigen::Vector3d> deflection_axes_m;
+  // The block the interpolator is in (-1 after the program) and its planned feed.
+  std::vector<int> block;
+  std::vector<double> planned_feed_mm_min;
+};
+
+struct RunResult {
+  controller::Program program;
+  controller::MultiAxisCommand command;
+  Trace trace;
+  Metrics metrics;
+  model::IntegratorStats stats;
+  int substeps = 0;
+  double simulated_s = 0.0;  // the time of the last sample (motion and tail)
+};
+
+struct RunOptions {
+  // Record the Trace (every output substep: run --out's trace.csv and plots). Sweeps and
+  // checks need only the metrics, which are the same bit for bit either way.
+  bool record_trace = true;
+  // The command of this scenario's controller and program, generated before (a sweep's
+  // points that differ only in keys the controller does not read share it): used as it is,
+  // and RunResult::command is then left empty. Null: generated here.
+  const controller::MultiAxisCommand* command = nullptr;
+};
+
+// Throws ValidationError (bad scenario), model::SolverError (CVODE failure).
+RunResult RunScenario(const Scenario& scenario, const RunOptions& options = {});
+
+// Output substeps per period when integrator.output_substeps is 0: at least 200 samples
+// per period of the fastest mode (any axis) that carries >= 1% of its axis' static
+// deflection, at most 64; 1 for a rigid machine.
+int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s);
+
+}  // namespace shapebench::bench

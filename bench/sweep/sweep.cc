@@ -1,0 +1,723 @@
+#include "bench/sweep/sweep.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include <yaml-cpp/yaml.h>
+
+#include "bench/config/config_document.h"
+#include "bench/sim/cosim.h"
+#include "common/csv.h"
+#include "bench/config/key_path.h"
+#include "bench/config/node_reader.h"
+#include "bench/config/scenario_loader.h"
+#include "bench/config/structure_numbers.h"
+#include "common/validation_error.h"
+#include "model/integrator.h"
+
+namespace shapebench::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kSweepKeys = {"name",    "base",  "grid",
+                                             "metrics", "plots", "checks"};
+constexpr const char* kZip = "zip";
+constexpr std::uint64_t kMaxSeriesLines = 30;
+
+std::vector<std::string> MetricNames() {
+  std::vector<std::string> names;
+  for (const auto& named : Metrics{}.Named()) names.push_back(named.first);
+  return names;
+}
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  for (const auto& candidate : names) {
+    if (candidate == name) return true;
+  }
+  return false;
+}
+
+std::pair<int, int> PositionOf(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null() || mark.line < 0) return {1, 1};
+  return {mark.line + 1, mark.column + 1};
+}
+
+// A value in flow style ({gain: 2}, [1, 2]); a quoted scalar stays quoted.
+std::string FlowYaml(const YAML::Node& node) {
+  YAML::Emitter emitter;
+  emitter.SetMapFormat(YAML::Flow);
+  emitter.SetSeqFormat(YAML::Flow);
+  if (node.IsScalar() && node.Tag() == "!") {
+    emitter << YAML::DoubleQuoted << node.Scalar();
+  } else {
+    emitter << node;
+  }
+  return emitter.c_str();
+}
+
+std::string WithThousands(std::uint64_t n) {
+  std::string digits = std::to_string(n);
+  for (int at = static_cast<int>(digits.size()) - 3; at > 0; at -= 3) digits.insert(at, ",");
+  return digits;
+}
+
+SweepValues ReadRange(const NodeReader& node, const std::string& key) {
+  node.ExpectMap({"from", "to", "steps", "spacing"});
+  SweepValues values;
+  values.key = key;
+  values.kind = SweepValues::Kind::kLinear;
+  for (const char* required : {"from", "to", "steps"}) {
+    if (!node.Has(required)) {
+      throw node.Error(std::string("a range needs from, to and steps; '") + required +
+                       "' is missing (e.g. {from: 15, to: 35, steps: 201})");
+    }
+  }
+  values.from = node.Child("from")->AsNumber();
+  values.to = node.Child("to")->AsNumber();
+  const NodeReader steps = *node.Child("steps");
+  const long count = steps.AsInteger();
+  if (count < 1) throw steps.Error("must be at least 1, got " + std::to_string(count));
+  values.steps = static_cast<std::uint64_t>(count);
+  if (values.steps == 1 && values.from != values.to) {
+    throw steps.Error("steps 1 gives `from` only; make from and to equal, or steps >= 2");
+  }
+  node.Read<SweepValues::Kind>(
+      "spacing", {{"linear", SweepValues::Kind::kLinear}, {"log", SweepValues::Kind::kLog}},
+      &values.kind);
+  if (values.log()) {
+    for (const char* end : {"from", "to"}) {
+      const NodeReader child = *node.Child(end);
+      if (!(child.AsNumber() > 0.0)) {
+        throw child.Error("log spacing needs from > 0 and to > 0, got " + child.node().Scalar());
+      }
+    }
+  }
+  return values;
+}
+
+// A list [a, b, ...] or a range {from, to, steps[, spacing]} for `key`.
+SweepValues ReadValues(const NodeReader& node, const std::string& key) {
+  SweepValues values;
+  if (node.node().IsMap()) {
+    values = ReadRange(node, key);
+  } else if (node.node().IsSequence()) {
+    values.key = key;
+    values.kind = SweepValues::Kind::kList;
+    for (const NodeReader& element : node.Elements()) {
+      const YAML::Node& value = element.node();
+      const bool plain = value.IsScalar() && value.Tag() != "!";
+      values.texts.push_back(value.IsScalar() ? value.Scalar() : FlowYaml(value));
+      values.yamls.push_back(plain ? value.Scalar() : FlowYaml(value));
+      values.positions.push_back(PositionOf(value));
+    }
+    if (values.texts.empty()) throw node.Error("expected at least one value");
+  } else {
+    throw node.Error(
+        "expected a list of values [a, b, ...] or a range {from: A, to: B, steps: N}");
+  }
+  std::tie(values.line, values.column) = PositionOf(node.node());
+  return values;
+}
+
+// The (key node, value) entries of a mapping, in order; duplicate keys are errors.
+std::vector<std::pair<YAML::Node, NodeReader>> MapEntries(const ConfigDocument& document,
+                                                          const NodeReader& map) {
+  if (!map.IsMap()) throw map.Error("expected a mapping");
+  std::vector<std::pair<YAML::Node, NodeReader>> entries;
+  std::set<std::string> seen;
+  for (const auto& entry : map.node()) {
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : std::string();
+    const std::string path = ChildPath(map.path(), key);
+    if (!entry.first.IsScalar()) {
+      throw document.ErrorAt(entry.first, map.path(), "expected a plain key, got a complex key");
+    }
+    if (!seen.insert(key).second) throw document.ErrorAt(entry.first, path, "duplicate key '" + key + "'");
+    entries.emplace_back(entry.first, NodeReader(document, entry.second, path));
+  }
+  return entries;
+}
+
+SweepValues ReadKeyValues(const ConfigDocument& document, const YAML::Node& key_node,
+                          const NodeReader& value) {
+  const std::string key = key_node.Scalar();
+  if (!ParseKeyPath(key)) {
+    throw document.ErrorAt(key_node, value.path(),
+                           "not a key path; expected scenario keys joined by '.' with optional "
+                           "[INDEX], e.g. machine.modes[0].frequency_hz");
+  }
+  return ReadValues(value, key);
+}
+
+SweepAxis ReadZipGroup(const ConfigDocument& document, const NodeReader& group) {
+  SweepAxis axis;
+  for (const auto& [key_node, value] : MapEntries(document, group)) {
+    axis.keys.push_back(ReadKeyValues(document, key_node, value));
+    if (axis.keys.back().size() != axis.keys.front().size()) {
+      throw value.Error("zip keys move together and need as many values each: '" +
+                        axis.keys.front().key + "' has " +
+                        std::to_string(axis.keys.front().size()) + ", this one " +
+                        std::to_string(axis.keys.back().size()));
+    }
+  }
+  if (axis.keys.empty()) throw group.Error("expected at least one key in a zip group");
+  return axis;
+}
+
+std::vector<SweepAxis> ReadGrid(const ConfigDocument& document, const NodeReader& grid) {
+  std::vector<SweepAxis> axes;
+  for (const auto& [key_node, value] : MapEntries(document, grid)) {
+    if (key_node.Scalar() != kZip) {
+      axes.push_back(SweepAxis{{ReadKeyValues(document, key_node, value)}});
+      continue;
+    }
+    if (value.node().IsSequence()) {
+      for (const NodeReader& group : value.Elements()) axes.push_back(ReadZipGroup(document, group));
+      if (value.node().size() == 0) throw value.Error("expected at least one zip group");
+    } else if (value.IsMap()) {
+      axes.push_back(ReadZipGroup(document, value));
+    } else {
+      throw value.Error("expected a mapping of keys to lists or ranges of equal length (or a "
+                        "list of such mappings)");
+    }
+  }
+  if (axes.empty()) {
+    throw grid.Error("expected at least one key, e.g. machine.modes[0].frequency_hz: "
+                     "{from: 15, to: 35, steps: 201}");
+  }
+  // A key and a key inside it would overwrite each other.
+  std::vector<const SweepValues*> all;
+  for (const auto& axis : axes) {
+    for (const auto& values : axis.keys) all.push_back(&values);
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (IsPathPrefix(all[j]->key, all[i]->key) || IsPathPrefix(all[i]->key, all[j]->key)) {
+        throw ConfigError(document.OriginOf("").file, all[i]->line, all[i]->column,
+                          ChildPath("grid", all[i]->key),
+                          all[i]->key == all[j]->key
+                              ? "swept twice (also at line " + std::to_string(all[j]->line) + ")"
+                              : "overlaps '" + all[j]->key + "' (line " +
+                                    std::to_string(all[j]->line) +
+                                    "): a key and a key inside it cannot both be swept");
+      }
+    }
+  }
+  return axes;
+}
+
+std::uint64_t CountPoints(const std::vector<SweepAxis>& axes, const NodeReader& grid) {
+  std::uint64_t points = 1;
+  for (const auto& axis : axes) {
+    if (axis.size() > std::numeric_limits<std::uint64_t>::max() / points) {
+      throw grid.Error("the grid has more than 2^64 points");
+    }
+    points *= axis.size();
+  }
+  return points;
+}
+
+std::vector<std::string> ReadMetrics(const NodeReader& node) {
+  const std::vector<std::string> names = MetricNames();
+  std::vector<std::string> metrics;
+  for (const NodeReader& element : node.Elements()) {
+    const std::string name = element.AsString();
+    if (!Contains(names, name)) {
+      throw element.Error("unknown metric '" + name + "'; allowed: " + JoinNames(names, ", "));
+    }
+    if (Contains(metrics, name)) throw element.Error("metric '" + name + "' is listed twice");
+    metrics.push_back(name);
+  }
+  if (metrics.empty()) throw node.Error("expected at least one metric (or leave metrics: out for all)");
+  return metrics;
+}
+
+std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::string>& metrics,
+                                 const std::vector<SweepAxis>& axes) {
+  auto axis_of = [&](const NodeReader& key_node) {
+    const std::string key = key_node.AsString();
+    std::vector<std::string> keys;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      for (const auto& values : axes[a].keys) {
+        if (values.key == key) return std::make_pair(key, a);
+        keys.push_back(values.key);
+      }
+    }
+    throw key_node.Error("'" + key + "' is not a key of the grid; grid keys: " +
+                         JoinNames(keys, ", "));
+  };
+  std::vector<SweepPlot> plots;
+  for (const NodeReader& entry : node.Elements()) {
+    entry.ExpectMap({"metric", "x", "series", "heatmap"});
+    SweepPlot plot;
+    const auto metric = entry.Child("metric");
+    if (!metric) throw entry.Error("a plot needs metric: and x: (or heatmap: [X_KEY, Y_KEY])");
+    plot.metric = metric->AsString();
+    if (!Contains(metrics, plot.metric)) {
+      throw metric->Error(
+          Contains(MetricNames(), plot.metric)
+              ? "metric '" + plot.metric + "' is not kept; add it to metrics: (kept: " +
+                    JoinNames(metrics, ", ") + ")"
+              : "unknown metric '" + plot.metric + "'; kept metrics: " + JoinNames(metrics, ", "));
+    }
+    const auto x = entry.Child("x");
+    const auto heatmap = entry.Child("heatmap");
+    if (x && heatmap) throw heatmap->Error("give x: (a line plot) or heatmap: (a heat map), not both");
+    if (!x && !heatmap) throw entry.Error("a plot needs x: KEY (a line plot) or heatmap: [X_KEY, Y_KEY]");
+    if (x) {
+      std::size_t x_axis = 0;
+      std::tie(plot.x, x_axis) = axis_of(*x);
+      if (const auto series = entry.Child("series")) {
+        std::size_t series_axis = 0;
+        std::tie(plot.series, series_axis) = axis_of(*series);
+        if (series_axis == x_axis) {
+          throw series->Error("'" + plot.series + "' moves with '" + plot.x +
+                              "' (one axis of the grid); choose a key of another axis");
+        }
+        if (axes[series_axis].size() > kMaxSeriesLines) {
+          throw series->Error("'" + plot.series + "' has " +
+                              std::to_string(axes[series_axis].size()) +
+                              " values; a plot shows at most " + std::to_string(kMaxSeriesLines) +
+                              " lines (use heatmap: for two dense keys)");
+        }
+      }
+    } else {
+      if (const auto series = entry.Child("series")) {
+        throw series->Error("series: belongs to a line plot (x:), not to a heat map");
+      }
+      const std::vector<NodeReader> keys = heatmap->Elements();
+      if (keys.size() != 2) throw heatmap->Error("expected two keys: [X_KEY, Y_KEY]");
+      std::size_t axis_x = 0;
+      std::size_t axis_y = 0;
+      std::tie(plot.heatmap_x, axis_x) = axis_of(keys[0]);
+      std::tie(plot.heatmap_y, axis_y) = axis_of(keys[1]);
+      if (axis_x == axis_y) {
+        throw keys[1].Error("'" + plot.heatmap_y + "' moves with '" + plot.heatmap_x +
+                            "' (one axis of the grid); a heat map needs keys of two axes");
+      }
+    }
+    plots.push_back(plot);
+  }
+  return plots;
+}
+
+// Default plots: each kept ratio metric (all kept metrics when metrics: is given) against
+// the first key, one line per value of the second axis' first key when it is short.
+std::vector<SweepPlot> DefaultPlots(const std::vector<std::string>& metrics, bool metrics_given,
+                                    const std::vector<SweepAxis>& axes) {
+  std::vector<SweepPlot> plots;
+  for (const std::string& metric : metrics) {
+    if (!metrics_given && metric != "peak_ratio" && metric != "residual_ratio") continue;
+    SweepPlot plot;
+    plot.metric = metric;
+    plot.x = axes[0].keys[0].key;
+    if (axes.size() > 1 && axes[1].size() <= kMaxSeriesLines) plot.series = axes[1].keys[0].key;
+    plots.push_back(plot);
+  }
+  return plots;
+}
+
+// The position of the `index`-th grid override's value for this point.
+std::pair<int, int> OverridePosition(const Sweep& sweep, const SweepPoint& point, int index) {
+  const std::vector<std::uint64_t> digits = sweep.AxisIndices(point.index);
+  int k = 0;
+  for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
+    for (const auto& values : sweep.axes[a].keys) {
+      if (++k == index) return values.Position(digits[a]);
+    }
+  }
+  return {1, 1};
+}
+
+// A ConfigError from loading a point: the grid's overrides are located in the sweep file,
+// the command line's keep their own --set numbering.
+ConfigError Relocated(const Sweep& sweep, const SweepPoint& point, const ConfigError& error) {
+  if (error.file() != kOverrideSource) return error;
+  const int grid_overrides = static_cast<int>(point.keys.size());
+  if (error.line() >= 1 && error.line() <= grid_overrides) {
+    const auto [line, column] = OverridePosition(sweep, point, error.line());
+    return ConfigError(sweep.file, line, column, error.key_path(), error.message());
+  }
+  return ConfigError(kOverrideSource, error.line() - grid_overrides, 1, error.key_path(),
+                     error.message());
+}
+
+bool IsGridOverrideError(const SweepPoint& point, const ConfigError& error) {
+  return error.file() == kOverrideSource && error.line() >= 1 &&
+         error.line() <= static_cast<int>(point.keys.size());
+}
+
+// Point 0 against the base: a swept key must fit the scenario's tree and be a scenario
+// key. Values are the points' business (a bad one is that point's error row).
+void CheckGridAgainstBase(const Sweep& sweep, const std::vector<Override>& sets) {
+  const SweepPoint point = MakePoint(sweep, 0, sets);
+  try {
+    BuildScenarioTree(sweep.base, point.overrides);
+  } catch (const ConfigError& error) {
+    if (IsGridOverrideError(point, error)) {
+      const ConfigError located = Relocated(sweep, point, error);
+      throw ConfigError(located.file(), located.line(), located.column(), error.key_path(),
+                        error.message() + " (in the base scenario " + sweep.base + ")");
+    }
+    throw;
+  }
+  try {
+    LoadScenario(sweep.base, point.overrides);
+  } catch (const ConfigError& error) {
+    const std::string unknown = "unknown key";
+    if (IsGridOverrideError(point, error) &&
+        error.message().compare(0, unknown.size(), unknown) == 0 &&
+        error.key_path() == point.overrides[error.line() - 1].key_path) {
+      throw Relocated(sweep, point, error);
+    }
+  }
+}
+
+void CheckSetsAvoidGrid(const Sweep& sweep, const std::vector<Override>& sets) {
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    for (const auto& axis : sweep.axes) {
+      for (const auto& values : axis.keys) {
+        if (IsPathPrefix(values.key, sets[i].key_path) ||
+            IsPathPrefix(sets[i].key_path, values.key)) {
+          throw ConfigError(kOverrideSource, static_cast<int>(i) + 1, 1, sets[i].key_path,
+                            "'" + values.key + "' is swept by the grid (" + sweep.file + ":" +
+                                std::to_string(values.line) +
+                                "); change the grid, not the swept key");
+        }
+      }
+    }
+  }
+}
+
+std::string ResolveBase(const NodeReader& base, const std::string& sweep_path) {
+  const std::string reference = base.AsString();
+  const fs::path resolved = fs::path(reference).is_absolute()
+                                ? fs::path(reference)
+                                : fs::path(sweep_path).parent_path() / reference;
+  const std::string file = resolved.lexically_normal().string();
+  try {
+    const YAML::Node root = ConfigDocument::ParseFile(file);
+    if (root.IsMap() && root["base"] && root["grid"]) {
+      throw base.Error("'" + reference + "' is a sweep; base: names a scenario");
+    }
+  } catch (const ConfigError& error) {
+    if (error.line() > 0 || error.file() != file) throw;
+    const std::string shown = file == reference ? "'" + reference + "'" : "'" + reference + "' (" + file + ")";
+    throw base.Error("base scenario " + shown + ": " + error.message());
+  }
+  return file;
+}
+
+void HashText(std::uint64_t* hash, const std::string& text) {
+  for (const unsigned char c : text) {
+    *hash ^= c;
+    *hash *= 0x100000001b3ULL;
+  }
+  *hash ^= 0xff;  // a separator no text contains
+  *hash *= 0x100000001b3ULL;
+}
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::uint64_t SweepValues::size() const {
+  return kind == Kind::kList ? static_cast<std::uint64_t>(texts.size()) : steps;
+}
+
+std::string SweepValues::Text(std::uint64_t i) const {
+  if (kind == Kind::kList) return texts[i];
+  if (i == 0) return ShortestDouble(from);
+  if (i + 1 == steps) return ShortestDouble(to);
+  // Inner values in 15 significant digits: 15.3, not 15.300000000000001 (the value a
+  // point runs with is the text it shows).
+  const double last = static_cast<double>(steps - 1);
+  const double k = static_cast<double>(i);
+  const double value =
+      kind == Kind::kLinear
+          ? from + (to - from) * k / last
+          : std::exp(std::log(from) + (std::log(to) - std::log(from)) * k / last);
+  char text[40];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
+
+std::string SweepValues::Yaml(std::uint64_t i) const {
+  return kind == Kind::kList ? yamls[i] : Text(i);
+}
+
+std::pair<int, int> SweepValues::Position(std::uint64_t i) const {
+  return kind == Kind::kList ? positions[i] : std::make_pair(line, column);
+}
+
+std::vector<std::string> Sweep::Keys() const {
+  std::vector<std::string> keys;
+  for (const auto& axis : axes) {
+    for (const auto& values : axis.keys) keys.push_back(values.key);
+  }
+  return keys;
+}
+
+std::vector<std::uint64_t> Sweep::AxisIndices(std::uint64_t point) const {
+  std::vector<std::uint64_t> digits(axes.size(), 0);
+  for (std::size_t a = axes.size(); a-- > 0;) {
+    digits[a] = point % axes[a].size();
+    point /= axes[a].size();
+  }
+  return digits;
+}
+
+std::string SweepPoint::Label() const {
+  std::string label;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    label += (i == 0 ? "" : ", ") + keys[i] + "=" + texts[i];
+  }
+  return label;
+}
+
+SweepPoint MakePoint(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets) {
+  SweepPoint point;
+  point.index = index;
+  const std::vector<std::uint64_t> digits = sweep.AxisIndices(index);
+  for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
+    for (const auto& values : sweep.axes[a].keys) {
+      point.keys.push_back(values.key);
+      point.texts.push_back(values.Text(digits[a]));
+      point.overrides.push_back(Override{values.key, values.Yaml(digits[a])});
+    }
+  }
+  point.overrides.insert(point.overrides.end(), sets.begin(), sets.end());
+  return point;
+}
+
+bool IsSweepFile(const std::string& path) {
+  try {
+    const YAML::Node root = ConfigDocument::ParseFile(path);
+    return root.IsMap() && root["base"].IsDefined() && root["grid"].IsDefined();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+Sweep LoadSweep(const std::string& path, const std::vector<Override>& sets,
+                const SweepLoadOptions& options) {
+  const ConfigDocument document(ConfigDocument::ParseFile(path), path);
+  const NodeReader top(document, document.root(), "");
+  if (!top.IsMap()) throw top.Error("expected a mapping of sweep keys (" + JoinNames(kSweepKeys, ", ") + ")");
+  top.ExpectMap(kSweepKeys);
+  for (const char* required : {"base", "grid"}) {
+    if (!top.Has(required)) {
+      throw top.Error(std::string("a sweep needs base: (a scenario) and grid: (keys and their "
+                                  "values); '") + required + "' is missing");
+    }
+  }
+  Sweep sweep;
+  sweep.file = path;
+  sweep.name = fs::path(path).stem().string();
+  top.Read("name", &sweep.name);
+  const NodeReader base = *top.Child("base");
+  sweep.base = ResolveBase(base, path);
+  const NodeReader grid = *top.Child("grid");
+  if (!grid.IsMap()) {
+    throw grid.Error("expected a mapping of key paths to lists or ranges, e.g. "
+                     "machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 201}");
+  }
+  sweep.axes = ReadGrid(document, grid);
+  sweep.points = CountPoints(sweep.axes, grid);
+  if (sweep.points > options.max_points && !options.force) {
+    throw grid.Error("the grid has " + WithThousands(sweep.points) + " points, more than the " +
+                     WithThousands(options.max_points) +
+                     " a sweep runs without --force; pass --force to run it anyway");
+  }
+  const auto metrics = top.Child("metrics");
+  sweep.metrics = metrics ? ReadMetrics(*metrics) : MetricNames();
+  if (const auto plots = top.Child("plots")) {
+    sweep.plots = ReadPlots(*plots, sweep.metrics, sweep.axes);
+  } else {
+    sweep.plots = DefaultPlots(sweep.metrics, metrics.has_value(), sweep.axes);
+  }
+  if (const auto checks = top.Child("checks")) sweep.checks = ReadChecks(*checks);
+
+  static std::atomic<std::uint64_t> next_id{1};
+  sweep.id = next_id++;
+  CheckSetsAvoidGrid(sweep, sets);
+  LoadScenario(sweep.base, sets);  // the base itself must be a valid scenario
+  CheckGridAgainstBase(sweep, sets);
+  return sweep;
+}
+
+namespace {
+
+// Keys the command (controller::GenerateProgramCommand: controller, program, move, the
+// machine's stroke and driven axis) does not read: the structure, the drive, the
+// integrator, the output view, the checks.
+bool PlantOnlyKey(const std::string& key) {
+  for (const char* prefix : {"drive", "integrator", "output", "checks", "machine.modes",
+                             "machine.bodies", "machine.elements"}) {
+    if (IsPathPrefix(prefix, key)) return true;
+  }
+  for (const char* axis : {"x", "y", "z"}) {
+    for (const char* part : {"modes", "bodies", "elements"}) {
+      if (IsPathPrefix(std::string("machine.axes.") + axis + "." + part, key)) return true;
+    }
+  }
+  return false;
+}
+
+// The last command a point of a sweep generated on this thread, and what it depends on:
+// the sweep, the --set options and the point's values of keys the command reads.
+struct SharedCommand {
+  std::uint64_t sweep_id = 0;
+  std::string key;
+  std::shared_ptr<const controller::MultiAxisCommand> command;
+};
+
+std::string CommandKey(const SweepPoint& point) {
+  std::string key;
+  for (std::size_t i = 0; i < point.overrides.size(); ++i) {
+    const Override& o = point.overrides[i];
+    // The --set options (after the point's values) and the swept keys the controller reads.
+    if (i >= point.keys.size() || !PlantOnlyKey(o.key_path)) key += o.key_path + "=" + o.value_yaml + "\n";
+  }
+  return key;
+}
+
+// The scenario a point of a sweep loaded on this thread, with what it depends on besides
+// the point's own values: the sweep and the --set options.
+struct LoadedScenario {
+  std::uint64_t sweep_id = 0;
+  std::string sets_key;
+  Scenario scenario;
+};
+
+std::string SetsKey(const SweepPoint& point) {
+  std::string key;
+  for (std::size_t i = point.keys.size(); i < point.overrides.size(); ++i) {
+    key += point.overrides[i].key_path + "=" + point.overrides[i].value_yaml + "\n";
+  }
+  return key;
+}
+
+}  // namespace
+
+PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
+  PointOutcome outcome;
+  outcome.index = index;
+  SweepPoint point;
+  try {
+    point = MakePoint(sweep, index, sets);
+    // A point that changes only numbers of the structure takes the scenario the last
+    // point loaded on this thread and sets them (structure_numbers.h). Otherwise the base
+    // (and its machine file) is parsed once per thread (ParseCacheScope); a point whose
+    // scenario does not load is loaded again without, which locates its error.
+    thread_local LoadedScenario loaded;
+    const bool structure_only =
+        std::all_of(point.keys.begin(), point.keys.end(), IsStructureNumberKey);
+    const std::string sets_key = SetsKey(point);
+    Scenario scenario;
+    bool set = false;
+    if (structure_only && loaded.sweep_id == sweep.id && sweep.id != 0 && loaded.sets_key == sets_key) {
+      scenario = loaded.scenario;
+      const std::vector<Override> values(point.overrides.begin(),
+                                         point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
+      set = SetStructureNumbers(&scenario, values);
+    }
+    if (!set) {
+      try {
+        const ParseCacheScope parse_once;
+        scenario = LoadScenario(sweep.base, point.overrides);
+      } catch (const std::exception&) {
+        scenario = LoadScenario(sweep.base, point.overrides);
+      }
+      if (structure_only) loaded = {sweep.id, sets_key, scenario};
+    }
+    try {
+      // Points that differ only in keys the controller does not read (the natural-period
+      // sweep: the plant's frequency) share one command, generated by the first of them on
+      // this thread: the same inputs, the same command, so the same metrics bit for bit
+      // (tests/bench/sweep_test.cc checks the rows against independent runs).
+      thread_local SharedCommand shared;
+      const std::string key = CommandKey(point);
+      if (shared.command && shared.sweep_id == sweep.id && sweep.id != 0 && shared.key == key) {
+        outcome.metrics = RunScenario(scenario, RunOptions{false, shared.command.get()}).metrics;
+      } else {
+        RunResult result = RunScenario(scenario, RunOptions{false});  // no trace needed
+        outcome.metrics = result.metrics;
+        shared.sweep_id = sweep.id;
+        shared.key = key;
+        shared.command = std::make_shared<const controller::MultiAxisCommand>(std::move(result.command));
+      }
+    } catch (const ValidationError& error) {
+      throw LocateValidationError(sweep.base, point.overrides, error);
+    }
+  } catch (const ConfigError& error) {
+    outcome.status = PointOutcome::Status::kBadInput;
+    outcome.error = Relocated(sweep, point, error).what();
+  } catch (const model::SolverError& error) {
+    outcome.status = PointOutcome::Status::kSolverFailed;
+    outcome.error = "solver failed: " + error.flag_name() + ": " + error.what();
+  } catch (const std::exception& error) {
+    outcome.status = PointOutcome::Status::kFailed;
+    outcome.error = error.what();
+  }
+  if (!outcome.ok()) outcome.metrics = Metrics{};
+  return outcome;
+}
+
+std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  HashText(&hash, "shapebench sweep 1");
+  const YAML::Node base = BuildScenarioTree(sweep.base, {});
+  HashText(&hash, YAML::Dump(base));
+  if (base.IsMap() && base["program_file"] && base["program_file"].IsScalar()) {
+    const fs::path program = fs::path(sweep.base).parent_path() / base["program_file"].Scalar();
+    HashText(&hash, FileBytes(program.string()));
+  }
+  for (const Override& set : sets) HashText(&hash, set.key_path + "=" + set.value_yaml);
+  HashText(&hash, "grid");
+  for (const auto& axis : sweep.axes) {
+    HashText(&hash, "axis");
+    for (const auto& values : axis.keys) {
+      HashText(&hash, values.key);
+      for (std::uint64_t i = 0; i < values.size(); ++i) HashText(&hash, values.Yaml(i));
+    }
+  }
+  HashText(&hash, "metrics");
+  for (const auto& metric : sweep.metrics) HashText(&hash, metric);
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+std::string KeyUnit(const std::string& key) {
+  static const std::vector<std::pair<std::string, std::string>> kUnits = {
+      {"_mm_min", "mm/min"}, {"_m_s2", "m/s²"}, {"_m_s", "m/s"}, {"_hz", "Hz"},
+      {"_mm", "mm"},         {"_kg", "kg"},     {"_1_s", "1/s"}, {"_s", "s"},
+      {"_m", "m"}};
+  for (const auto& [suffix, unit] : kUnits) {
+    if (EndsWith(key, suffix)) return unit;
+  }
+  return "";
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,100 @@
+// CheckSweep (bench/sweep/sweep_runner.h): `check` on a sweep file.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "common/ordered_pool.h"
+#include "bench/sim/checks.h"
+#include "bench/sweep/sweep_runner.h"
+
+namespace shapebench::bench {
+namespace {
+
+constexpr int kExitCheckFailed = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitSolverFailed = 3;
+
+// How far a value is on the wrong side of its bounds (negative: inside).
+double Violation(const Check& check, double value) {
+  if (std::isnan(value)) return std::numeric_limits<double>::infinity();
+  double violation = -std::numeric_limits<double>::infinity();
+  if (check.max) violation = std::max(violation, value - *check.max);
+  if (check.min) violation = std::max(violation, *check.min - value);
+  return violation;
+}
+
+struct CheckTally {
+  std::uint64_t passed = 0;
+  std::uint64_t failed = 0;
+  double worst_violation = -std::numeric_limits<double>::infinity();
+  std::string worst_value;
+  std::string worst_point;
+  std::string bound;
+};
+
+}  // namespace
+
+int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
+               std::ostream& out, std::ostream& err, ScenarioCheckReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  int exit_code = 0;
+  auto raise = [&](int code) {
+    const int rank[] = {0, 1, 3, 2};  // bad input > solver failure > failed check
+    if (rank[code] > rank[exit_code]) exit_code = code;
+  };
+  report->file = sweep.file;
+  report->name = sweep.name;
+  std::vector<CheckTally> tallies(sweep.checks.size());
+  std::uint64_t failed_points = 0;
+  RunOrdered<PointOutcome>(
+      sweep.points, jobs,
+      [&](std::uint64_t point) { return RunPoint(sweep, sets, point); },
+      [&](std::uint64_t point, PointOutcome&& outcome) {
+        const std::string label = MakePoint(sweep, point, {}).Label();
+        if (!outcome.ok()) {
+          ++failed_points;
+          err << "error: " << outcome.error << " (" << sweep.file << " @ " << label << ")\n";
+          report->point_errors.emplace_back(label, outcome.error);
+          raise(outcome.status == PointOutcome::Status::kSolverFailed ? kExitSolverFailed
+                                                                     : kExitBadInput);
+          return;
+        }
+        std::vector<CheckResult> results = EvaluateChecks(sweep.checks, outcome.metrics);
+        for (std::size_t c = 0; c < results.size(); ++c) {
+          CheckResult& result = results[c];
+          result.point = label;
+          CheckTally& tally = tallies[c];
+          tally.bound = result.bound;
+          ++(result.passed ? tally.passed : tally.failed);
+          const double violation = Violation(sweep.checks[c], result.value);
+          if (violation > tally.worst_violation || tally.worst_point.empty()) {
+            tally.worst_violation = violation;
+            tally.worst_value = result.value_text;
+            tally.worst_point = label;
+          }
+          if (!result.passed) {
+            out << FormatCheckLine(sweep.file, result) << "\n";
+            raise(kExitCheckFailed);
+          }
+          report->results.push_back(std::move(result));
+        }
+      });
+  for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
+    const CheckTally& tally = tallies[c];
+    const std::uint64_t run = tally.passed + tally.failed;
+    out << (tally.failed == 0 && failed_points == 0 ? "PASS " : "FAIL ") << sweep.file << " "
+        << sweep.checks[c].metric << ": " << tally.passed << " of " << sweep.points
+        << " points pass";
+    if (!tally.bound.empty()) out << " (" << tally.bound << ")";
+    if (failed_points > 0) out << ", " << failed_points << " failed to run";
+    if (run > 0) out << "; worst " << tally.worst_value << " @ " << tally.worst_point;
+    out << "\n";
+  }
+  out.flush();
+  report->run_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return exit_code;
+}
+
+}  // namespace shapebench::bench

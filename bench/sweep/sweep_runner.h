@@ -1,0 +1,81 @@
+// Running a sweep (SPEC section 2, issue 5): points on worker threads, results.csv
+// streamed in point order, shards, resume after a kill, merging shards, and `check` on a
+// sweep.
+//
+// The output directory holds:
+//   manifest.json        what the rows belong to: the sweep's hash (base scenario as read,
+//                        expanded grid, --set options, kept metrics), the shard, the
+//                        columns and what the plots need. Written before any row.
+//   results.csv.partial  the rows so far, appended and flushed one by one, in point order;
+//   results.csv          the finished file: the partial file renamed when the last row is
+//                        written (so a results.csv is always complete);
+//   *.png                the plots (not for a shard; `merge` draws them).
+// results.csv: `point` (0-based index in the whole grid; the last key varies fastest),
+// the swept keys as written in the grid, the kept metrics (%.17g, empty when undefined
+// or the point failed), `status` (ok|error) and `error` (the message); RFC 4180 quoting.
+// Started again with the same --out, a sweep keeps the partial file's complete rows (a
+// torn last row is cut off), runs the points after them and ends with the same bytes as
+// an uninterrupted run. A directory holding another sweep (or another shard) is refused.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench/config/override.h"
+#include "bench/sim/checks.h"
+#include "bench/sweep/sweep.h"
+
+namespace shapebench::bench {
+
+struct SweepRunOptions {
+  std::string out_dir;
+  int jobs = 1;
+  // --shard I/N: the points p with p % N == I (I in 0..N-1).
+  std::uint64_t shard_index = 0;
+  std::uint64_t shard_count = 1;
+  bool progress = false;  // a progress bar on stderr (the CLI sets it when stderr is a tty)
+};
+
+struct SweepRunSummary {
+  std::uint64_t points = 0;   // this shard's points
+  std::uint64_t resumed = 0;  // found done in the output directory
+  std::uint64_t ok = 0;
+  std::uint64_t errors = 0;
+  std::string results;  // results.csv
+  std::vector<std::string> plots;
+  double seconds = 0.0;
+};
+
+// The header of results.csv.
+std::vector<std::string> ResultColumns(const Sweep& sweep);
+
+// Runs the sweep (this shard of it) into options.out_dir (created), resuming what a
+// previous run with the same directory left. Throws std::runtime_error (exit 2) for a
+// directory that holds something else or cannot be written; plot failures come after
+// results.csv is complete.
+SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
+                         const SweepRunOptions& options);
+
+struct MergeSummary {
+  std::uint64_t points = 0;
+  std::uint64_t shards = 0;
+  std::string results;
+  std::vector<std::string> plots;
+};
+
+// Joins the finished shards 0..N-1 of one sweep into out_dir: results.csv (byte for byte
+// the unsharded run's), manifest.json (the unsharded one's) and the plots. Refuses shards
+// of different sweeps, missing, repeated or unfinished shards (std::runtime_error).
+MergeSummary MergeShards(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
+
+// `check` on a sweep: runs every point on `jobs` threads and evaluates the sweep's checks
+// on it. Prints a FAIL line per failing point-check and one summary line per check to
+// `out`, a line per failed point to `err`; `report` receives every point-check (JUnit).
+// Returns 0, 1 (a check failed), 2 (a point's bad input) or 3 (a point's solver failure):
+// the most severe as `check` ranks them (2, 3, 1, 0).
+int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
+               std::ostream& out, std::ostream& err, ScenarioCheckReport* report);
+
+}  // namespace shapebench::bench

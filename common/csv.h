@@ -1,0 +1,43 @@
+// CSV as RFC 4180 has it: fields with a comma, a quote, CR or LF are quoted, quotes
+// doubled; records end with "\n". The reader is the writer's inverse and tells a
+// complete record from a torn one (a file cut short while it was being written).
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <string>
+#include <vector>
+
+namespace shapebench {
+
+// One field, quoted when it has to be.
+std::string CsvField(const std::string& text);
+// Fields joined by ',' and ended by '\n'.
+std::string CsvRecord(const std::vector<std::string>& fields);
+
+// Reads records one by one from a stream.
+class CsvReader {
+ public:
+  explicit CsvReader(std::istream& in) : in_(&in) {}
+
+  // The next record into *fields. False at the end of the stream, or when the stream
+  // ends inside a record (no final '\n' outside quotes): `torn()` then says so and the
+  // partial record is not returned.
+  bool Next(std::vector<std::string>* fields);
+  bool torn() const { return torn_; }
+  // Bytes consumed by the complete records read so far.
+  std::uint64_t offset() const { return offset_; }
+
+ private:
+  std::istream* in_;
+  bool torn_ = false;
+  std::uint64_t offset_ = 0;
+};
+
+// Formats a double so that strtod gives it back exactly, in as few digits as possible
+// ("15.1", not "15.099999999999999"); NaN -> "", infinities -> "inf"/"-inf".
+std::string ShortestDouble(double value);
+// %.17g (exact, and the same text on every run and thread count); NaN -> "".
+std::string ExactDouble(double value);
+
+}  // namespace shapebench

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Tests that every include goes downwards in the house: a room may include itself and the
+# rooms listed before it, never one after it (controller/ and model/ never each other).
+#   common < model, controller < bench/sim < bench/config < bench/report < bench/sweep < bench/cli
+set -u
+cd "$(dirname "$0")/.."
+allowed() {  # the include prefixes a file in room $1 may use
+  case $1 in
+    common) echo "common/" ;;
+    model) echo "common/ model/" ;;
+    controller) echo "common/ controller/" ;;
+    bench/sim) echo "common/ model/ controller/ bench/sim/" ;;
+    bench/config) echo "common/ model/ controller/ bench/sim/ bench/config/" ;;
+    bench/report) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/" ;;
+    bench/sweep) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/ bench/sweep/" ;;
+    bench/cli) echo "common/ model/ controller/ bench/" ;;
+  esac
+}
+bad=0
+checked=0
+for room in common model controller bench/sim bench/config bench/report bench/sweep bench/cli; do
+  for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
+    checked=$((checked + 1))
+    while IFS= read -r inc; do
+      ok=0
+      for prefix in $(allowed "$room"); do
+        case $inc in "$prefix"*) ok=1 ;; esac
+      done
+      if [ $ok -eq 0 ]; then
+        echo "$file includes \"$inc\": room $room may include only: $(allowed "$room")"
+        bad=1
+      fi
+    done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$file")
+  done
+done
+stray=$(find bench -maxdepth 1 -name '*.cc' -o -maxdepth 1 -name '*.h')
+[ -z "$stray" ] || { echo "files outside bench's rooms: $stray"; bad=1; }
+echo "layering: $checked files checked"
+exit $bad
