@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
-LinearPlant BuildModalPlant(const ModalMachineConfig& config) {
+LinearPlant BuildFormPlant(const ModalMachineConfig& config) {
   const int num_modes = static_cast<int>(config.modes.size());
   const int n = 2 * num_modes;
   LinearPlant plant;
@@ -44,7 +44,7 @@ Eigen::VectorXd UndampedEigenvalues(const LumpedMatrices& m) {
   return solver.eigenvalues();
 }
 
-LinearPlant BuildLumpedPlant(const LumpedMachineConfig& config) {
+LinearPlant BuildFormPlant(const LumpedMachineConfig& config) {
   const LumpedMatrices m = AssembleLumped(config);
   const int nb = static_cast<int>(m.mass_kg.size());
   const int n = 2 * nb;
@@ -66,7 +66,7 @@ LinearPlant BuildLumpedPlant(const LumpedMachineConfig& config) {
   return plant;
 }
 
-ModalAnalysis AnalyzeModal(const ModalMachineConfig& config) {
+ModalAnalysis AnalyzeForm(const ModalMachineConfig& config) {
   ModalAnalysis analysis;
   double signed_static = 0.0;
   for (const ModalMode& mode : config.modes) {
@@ -85,7 +85,7 @@ ModalAnalysis AnalyzeModal(const ModalMachineConfig& config) {
   return analysis;
 }
 
-ModalAnalysis AnalyzeLumped(const LumpedMachineConfig& config) {
+ModalAnalysis AnalyzeForm(const LumpedMachineConfig& config) {
   const LumpedMatrices m = AssembleLumped(config);
   const Eigen::MatrixXd M = m.mass_kg.asDiagonal();
   // Ascending eigenvalues; eigenvectors mass-normalised (phi^T M phi = I).
@@ -107,34 +107,37 @@ ModalAnalysis AnalyzeLumped(const LumpedMachineConfig& config) {
   return analysis;
 }
 
+// No damping anywhere: every mode's energy is conserved once the base stops.
+bool FormConservesEnergy(const ModalMachineConfig& config) {
+  for (const ModalMode& mode : config.modes) {
+    if (mode.damping_ratio != 0.0) return false;
+  }
+  return true;
+}
+
+bool FormConservesEnergy(const LumpedMachineConfig& config) {
+  for (const LumpedElement& element : config.elements) {
+    if (element.damping_n_s_m != 0.0) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
+// Each form answers through its own overloads: std::visit over a generic lambda that
+// calls them does not compile for a form that lacks one (no silent fallback).
 LinearPlant BuildPlant(const MachineConfig& machine) {
   machine.validate();
-  return std::visit(
-      [](const auto& config) {
-        using Form = std::decay_t<decltype(config)>;
-        if constexpr (std::is_same_v<Form, ModalMachineConfig>) {
-          return BuildModalPlant(config);
-        } else {
-          return BuildLumpedPlant(config);
-        }
-      },
-      machine.form);
+  return std::visit([](const auto& form) { return BuildFormPlant(form); }, machine.form);
 }
 
 ModalAnalysis AnalyzeModes(const MachineConfig& machine) {
   machine.validate();
-  return std::visit(
-      [](const auto& config) {
-        using Form = std::decay_t<decltype(config)>;
-        if constexpr (std::is_same_v<Form, ModalMachineConfig>) {
-          return AnalyzeModal(config);
-        } else {
-          return AnalyzeLumped(config);
-        }
-      },
-      machine.form);
+  return std::visit([](const auto& form) { return AnalyzeForm(form); }, machine.form);
+}
+
+bool ConservesEnergy(const MachineConfig& machine) {
+  return std::visit([](const auto& form) { return FormConservesEnergy(form); }, machine.form);
 }
 
 }  // namespace shapebench::model

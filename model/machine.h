@@ -73,4 +73,8 @@ struct ModalAnalysis {
 
 ModalAnalysis AnalyzeModes(const MachineConfig& machine);
 
+// True when the structure has no damping at all (every modal damping_ratio, every lumped
+// element's damping_n_s_m exactly 0): the vibration a motion leaves in it stays for ever.
+bool ConservesEnergy(const MachineConfig& machine);
+
 }  // namespace shapebench::model

@@ -6,6 +6,7 @@
 #include "common/format.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -143,20 +144,46 @@ std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine
   return result;
 }
 
-bool IsUndamped(const MultiAxisMachineConfig& machine) {
+bool ConservesEnergy(const MultiAxisMachineConfig& machine) {
   for (const auto& axis : machine.axes) {
-    if (!axis) continue;
-    if (const auto* modal = std::get_if<ModalMachineConfig>(&axis->form)) {
-      for (const ModalMode& mode : modal->modes) {
-        if (mode.damping_ratio != 0.0) return false;
-      }
-    } else if (const auto* lumped = std::get_if<LumpedMachineConfig>(&axis->form)) {
-      for (const LumpedElement& element : lumped->elements) {
-        if (element.damping_n_s_m != 0.0) return false;
-      }
-    }
+    if (axis && !ConservesEnergy(*axis)) return false;
   }
   return true;
+}
+
+MachineDynamics AnalyzeMachine(const MultiAxisMachineConfig& machine) {
+  MachineDynamics dynamics;
+  dynamics.axes = AnalyzeMachineModes(machine);
+  dynamics.conserves_energy = ConservesEnergy(machine);
+  return dynamics;
+}
+
+double MachineDynamics::LowestHz() const {
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const AxisModes& axis : axes) {
+    for (const ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  return lowest_hz;
+}
+
+double MachineDynamics::LowestParticipatingHz(int axis, double min_share) const {
+  for (const AxisModes& modes : axes) {
+    if (modes.axis != axis) continue;
+    for (const ModeInfo& mode : modes.analysis.modes) {  // ascending frequency
+      if (std::abs(mode.participation) >= min_share) return mode.frequency_hz;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double MachineDynamics::FastestParticipatingHz(double min_share) const {
+  double fastest_hz = 0.0;
+  for (const AxisModes& axis : axes) {
+    for (const ModeInfo& mode : axis.analysis.modes) {
+      if (std::abs(mode.participation) >= min_share) fastest_hz = std::max(fastest_hz, mode.frequency_hz);
+    }
+  }
+  return fastest_hz;
 }
 
 }  // namespace shapebench::model

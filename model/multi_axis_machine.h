@@ -40,7 +40,9 @@ struct MultiAxisMachineConfig {
   std::string AxisPrefix(int axis) const;
 };
 
-// Output rows of MachinePlant::plant.C.
+// The output layout of MachinePlant::plant.C: kNumOutputRows rows, per axis a deflection
+// row (kDeflectionRow + axis) and a tool-error row (kToolErrorRow + axis).
+constexpr int kNumOutputRows = 6;
 constexpr int kDeflectionRow = 0;  // rows 0..2: structural deflection x, y, z (tool
                                    // relative to the workpiece, less the motion of the
                                    // driven point)
@@ -70,9 +72,27 @@ struct AxisModes {
 // The modes of every modelled axis, in axis order.
 std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine);
 
-// True when no modelled axis has any damping (every modal damping_ratio and every lumped
-// element's damping_n_s_m exactly 0): under the kinematic drive such a structure keeps
-// the vibration the motion leaves in it for ever (each mode's energy is conserved).
-bool IsUndamped(const MultiAxisMachineConfig& machine);
+// True when no modelled axis has any damping: under the kinematic drive such a structure
+// keeps the vibration the motion leaves in it for ever (each mode's energy is conserved).
+bool ConservesEnergy(const MultiAxisMachineConfig& machine);
+
+// What the co-simulation and the reports ask of a machine, answered by the machine:
+// its modes per axis and the frequencies that bound the run's window and sampling.
+struct MachineDynamics {
+  std::vector<AxisModes> axes;  // every modelled axis, in axis order
+  bool conserves_energy = true;
+
+  // The lowest natural frequency of any mode of any axis; +infinity for a rigid machine.
+  double LowestHz() const;
+  // The lowest frequency among `axis`' modes that carry at least `min_share` of its
+  // static deflection (ModeInfo::participation); NaN when none (a rigid axis).
+  double LowestParticipatingHz(int axis, double min_share = kParticipatingShare) const;
+  // The highest such frequency over every axis; 0 when none.
+  double FastestParticipatingHz(double min_share = kParticipatingShare) const;
+
+  // A mode participates when it carries at least 1% of its axis' static deflection.
+  static constexpr double kParticipatingShare = 0.01;
+};
+MachineDynamics AnalyzeMachine(const MultiAxisMachineConfig& machine);
 
 }  // namespace shapebench::model

@@ -24,36 +24,42 @@ struct StructureCoupling {
   double tool_per_driven = 1.0;  // c^T g
 };
 
+// A modal structure has no drive reaction or load model: the coupling's defaults.
+void CoupleForm(const ModalMachineConfig&, bool, StructureCoupling*) {}
+
+void CoupleForm(const LumpedMachineConfig& lumped, bool needs_free_following,
+                StructureCoupling* coupling) {
+  const LumpedMatrices m = AssembleLumped(lumped);
+  const int nb = static_cast<int>(m.mass_kg.size());
+  if (needs_free_following) {
+    for (int i = 0; i < m.rigid_stretch.size(); ++i) {
+      // g entries are O(1) (rigid motion per unit driven motion), so is the stretch.
+      if (std::abs(m.rigid_stretch(i)) > 1e-9) {
+        const LumpedElement& e = lumped.elements[i];
+        throw ValidationError(
+            "elements[" + std::to_string(i) + "]",
+            "element \"" + e.name + "\" (" + e.from + " - " + e.to + ") stretches by " +
+                FormatNumber(m.rigid_stretch(i)) +
+                " per unit of driven motion when the structure follows the driven point "
+                "rigidly; a servo drive with a velocity loop (velocity_loop_hz > 0) needs a "
+                "structure that follows the driven point freely (no spring or damper from "
+                "the moving bodies to what stays put), or use velocity_loop_hz: 0 (ideal "
+                "inner loops)");
+      }
+    }
+  }
+  coupling->reaction.head(nb) = m.K_u.transpose();
+  coupling->reaction.segment(nb, nb) = m.C_u.transpose();
+  coupling->load_mass_kg = m.g.dot(m.mass_kg.cwiseProduct(m.g));
+  coupling->tool_per_driven = m.output.dot(m.g);
+}
+
 StructureCoupling Couple(const MachineConfig& structure, bool needs_free_following) {
   StructureCoupling coupling;
   coupling.plant = BuildPlant(structure);  // validates
-  const int n = coupling.plant.num_states();
-  coupling.reaction = Eigen::RowVectorXd::Zero(n);
-  if (const auto* lumped = std::get_if<LumpedMachineConfig>(&structure.form)) {
-    const LumpedMatrices m = AssembleLumped(*lumped);
-    const int nb = static_cast<int>(m.mass_kg.size());
-    if (needs_free_following) {
-      for (int i = 0; i < m.rigid_stretch.size(); ++i) {
-        // g entries are O(1) (rigid motion per unit driven motion), so is the stretch.
-        if (std::abs(m.rigid_stretch(i)) > 1e-9) {
-          const LumpedElement& e = lumped->elements[i];
-          throw ValidationError(
-              "elements[" + std::to_string(i) + "]",
-              "element \"" + e.name + "\" (" + e.from + " - " + e.to + ") stretches by " +
-                  FormatNumber(m.rigid_stretch(i)) +
-                  " per unit of driven motion when the structure follows the driven point "
-                  "rigidly; a servo drive with a velocity loop (velocity_loop_hz > 0) needs a "
-                  "structure that follows the driven point freely (no spring or damper from "
-                  "the moving bodies to what stays put), or use velocity_loop_hz: 0 (ideal "
-                  "inner loops)");
-        }
-      }
-    }
-    coupling.reaction.head(nb) = m.K_u.transpose();
-    coupling.reaction.segment(nb, nb) = m.C_u.transpose();
-    coupling.load_mass_kg = m.g.dot(m.mass_kg.cwiseProduct(m.g));
-    coupling.tool_per_driven = m.output.dot(m.g);
-  }
+  coupling.reaction = Eigen::RowVectorXd::Zero(coupling.plant.num_states());
+  std::visit([&](const auto& form) { CoupleForm(form, needs_free_following, &coupling); },
+             structure.form);
   return coupling;
 }
 

@@ -160,9 +160,7 @@ model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
 }
 
 std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
-  std::vector<std::string> metric_names;
-  for (const auto& named : Metrics{}.Named()) metric_names.push_back(named.first);
-  checks.ExpectMap(metric_names);
+  checks.ExpectMap(MetricNames());
   std::vector<Check> result;
   for (const auto& [metric, bounds] : checks.Entries()) {
     bounds.ExpectMap({"min", "max"});

@@ -8,45 +8,37 @@
 #include "common/atomic_file.h"
 
 namespace shapebench::bench {
-namespace {
-
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-}  // namespace
-
 std::string MetricUnit(const std::string& name) {
-  if (EndsWith(name, "_m")) return "m";
-  if (EndsWith(name, "_s")) return "s";
-  return "";
+  const MetricInfo* info = FindMetric(name);
+  return info != nullptr ? std::string(info->shown_unit()) : "";
 }
 
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
-  const auto named = metrics.Named();
   std::size_t width = 0;
-  for (const auto& entry : named) width = std::max(width, entry.first.size());
-  for (const auto& [name, value] : named) {
+  for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+  for (const MetricInfo& info : MetricTable()) {
+    const double value = metrics.*info.field;
     char number[32];
     std::snprintf(number, sizeof number, "%.6g", value);
-    out << std::left << std::setw(static_cast<int>(width) + 2) << name;
+    out << std::left << std::setw(static_cast<int>(width) + 2) << info.name;
     if (std::isnan(value)) {
       out << "n/a\n";
-    } else if (name == "stroke_alarm") {
+    } else if (info.is_bool()) {
       out << (value != 0.0 ? "true" : "false") << "\n";
     } else {
-      const std::string unit = MetricUnit(name);
-      out << number << (unit.empty() ? "" : " " + unit) << "\n";
+      const std::string_view unit = info.shown_unit();
+      out << number << (unit.empty() ? "" : " ") << unit << "\n";
     }
   }
 }
 
 nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
-  for (const auto& [name, value] : metrics.Named()) {
-    if (name == "stroke_alarm" && std::isfinite(value)) {
-      json[name] = value != 0.0;  // SPEC section 4: a bool
+  for (const MetricInfo& info : MetricTable()) {
+    const std::string name(info.name);
+    const double value = metrics.*info.field;
+    if (info.is_bool() && std::isfinite(value)) {
+      json[name] = value != 0.0;
     } else if (std::isfinite(value)) {
       json[name] = value;
     } else {

@@ -18,11 +18,11 @@ namespace shapebench::bench {
 // One aligned line per metric: name, value, unit ("n/a" for NaN).
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
 
-// The unit of a metric, from its name's suffix: "m", "s", or "" (ratios).
+// The unit a table shows for a metric (MetricInfo::shown_unit): "m", "s", or "".
 std::string MetricUnit(const std::string& name);
 
-// {"static_displacement_m": ..., ...} in Metrics::Named() order (ordered_json keeps it);
-// NaN -> null.
+// {"static_displacement_m": ..., ...} in MetricTable() order (ordered_json keeps it);
+// NaN -> null, bool metrics as false/true.
 nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,

@@ -15,14 +15,11 @@ std::string FormatValue(double value, int digits) {
 
 std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks,
                                         const Metrics& metrics) {
-  const auto named = metrics.Named();
   std::vector<CheckResult> results;
   for (const Check& check : checks) {
     CheckResult result;
     result.metric = check.metric;
-    for (const auto& [name, value] : named) {
-      if (name == check.metric) result.value = value;
-    }
+    if (const MetricInfo* info = FindMetric(check.metric)) result.value = metrics.*info->field;
     if (check.min) result.bound = "min " + FormatValue(*check.min);
     if (check.max) result.bound += (result.bound.empty() ? "" : ", ") + ("max " + FormatValue(*check.max));
 

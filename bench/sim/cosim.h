@@ -1,6 +1,8 @@
 // The co-simulation master: t_k = k * period from the integer tick; at each tick the
 // drive input is set, the plant steps to the next communication point (in output
-// substeps), then the outputs are read.
+// substeps), then the outputs are read. RunScenario is a short list of named stages
+// (cosim.cc): the command, its samples, the run window, the plant, the tick loop, the
+// metrics.
 #pragma once
 
 #include <vector>
@@ -56,10 +58,5 @@ struct RunOptions {
 
 // Throws ValidationError (bad scenario), model::SolverError (CVODE failure).
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options = {});
-
-// Output substeps per period when integrator.output_substeps is 0: at least 200 samples
-// per period of the fastest mode (any axis) that carries >= 1% of its axis' static
-// deflection, at most 64; 1 for a rigid machine.
-int AutoSubsteps(const model::MultiAxisMachineConfig& machine, double period_s);
 
 }  // namespace shapebench::bench

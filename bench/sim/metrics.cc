@@ -2,23 +2,78 @@
 
 namespace shapebench::bench {
 
+const std::array<MetricInfo, kNumMetrics>& MetricTable() {
+  using M = Metrics;
+  static const std::array<MetricInfo, kNumMetrics> table = {{
+      {"static_displacement_m", "m", Better::kLower,
+       "the deflection under the run's largest commanded acceleration held constant (a static "
+       "solve of the model): the reference of every ratio",
+       &M::static_displacement_m},
+      {"peak_deflection_m", "m", Better::kLower,
+       "the largest |deflection| over the run (motion and tail)", &M::peak_deflection_m},
+      {"peak_ratio", "1", Better::kLower,
+       "peak_deflection_m / static_displacement_m (the patent's aim: 1; an unshaped step: 2)",
+       &M::peak_ratio},
+      {"residual_amplitude_m", "m", Better::kLower,
+       "the largest |deflection| from the end of commanded motion to three periods of the "
+       "lowest mode later",
+       &M::residual_amplitude_m},
+      {"residual_ratio", "1", Better::kLower, "residual_amplitude_m / static_displacement_m",
+       &M::residual_ratio},
+      {"cruise_residual_ratio", "1", Better::kLower,
+       "the largest |deflection| while the commanded feed is constant and non-zero for at least "
+       "one lowest-mode period, / static_displacement_m",
+       &M::cruise_residual_ratio},
+      {"motion_time_s", "s", Better::kLower, "when commanded motion ends", &M::motion_time_s},
+      {"settling_time_s", "s", Better::kLower,
+       "from the end of motion until |deflection| stays below 5% of static_displacement_m",
+       &M::settling_time_s},
+      {"max_contour_error_m", "m", Better::kLower,
+       "the largest distance of the actual tool path from the programmed path",
+       &M::max_contour_error_m},
+      {"radial_error_m", "m", Better::kLower,
+       "programmed radius minus the mean actual radius over the middle half of each arc, the "
+       "worst arc (signed; smaller magnitude is better)",
+       &M::radial_error_m},
+      {"peak_deflection_x_m", "m", Better::kLower, "the largest |deflection| along X",
+       &M::peak_deflection_x_m},
+      {"peak_deflection_y_m", "m", Better::kLower, "the largest |deflection| along Y",
+       &M::peak_deflection_y_m},
+      {"peak_deflection_z_m", "m", Better::kLower, "the largest |deflection| along Z",
+       &M::peak_deflection_z_m},
+      {"short_block_clamps", "count", Better::kLower,
+       "blocks whose feed the short-block clamp lowered (CN104175175, seed 002)",
+       &M::short_block_clamps},
+      {"stroke_overshoot_m", "m", Better::kLower,
+       "the largest travel beyond a stroke end, 0 if none (EP0646852, seed 001)",
+       &M::stroke_overshoot_m},
+      {"stroke_alarm", "bool", Better::kLower,
+       "true when the stroke check stopped the tool before the program's end",
+       &M::stroke_alarm},
+  }};
+  return table;
+}
+
+const MetricInfo* FindMetric(std::string_view name) {
+  for (const MetricInfo& info : MetricTable()) {
+    if (info.name == name) return &info;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> MetricNames() {
+  std::vector<std::string> names;
+  for (const MetricInfo& info : MetricTable()) names.emplace_back(info.name);
+  return names;
+}
+
+std::string_view BetterName(Better better) { return better == Better::kLower ? "lower" : "higher"; }
+
 std::vector<std::pair<std::string, double>> Metrics::Named() const {
-  return {{"static_displacement_m", static_displacement_m},
-          {"peak_deflection_m", peak_deflection_m},
-          {"peak_ratio", peak_ratio},
-          {"residual_amplitude_m", residual_amplitude_m},
-          {"residual_ratio", residual_ratio},
-          {"cruise_residual_ratio", cruise_residual_ratio},
-          {"motion_time_s", motion_time_s},
-          {"settling_time_s", settling_time_s},
-          {"max_contour_error_m", max_contour_error_m},
-          {"radial_error_m", radial_error_m},
-          {"peak_deflection_x_m", peak_deflection_x_m},
-          {"peak_deflection_y_m", peak_deflection_y_m},
-          {"peak_deflection_z_m", peak_deflection_z_m},
-          {"short_block_clamps", short_block_clamps},
-          {"stroke_overshoot_m", stroke_overshoot_m},
-          {"stroke_alarm", stroke_alarm}};
+  std::vector<std::pair<std::string, double>> named;
+  named.reserve(kNumMetrics);
+  for (const MetricInfo& info : MetricTable()) named.emplace_back(std::string(info.name), this->*info.field);
+  return named;
 }
 
 }  // namespace shapebench::bench

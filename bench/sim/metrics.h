@@ -1,9 +1,13 @@
-// The metrics of one run (SPEC section 4), SI units. NaN means "not defined for this run"
-// (no cruise phase; never settled within the simulated time) and is written as null.
+// The metrics of one run, SI units, and the one table that names them. NaN means "not
+// defined for this run" (no cruise phase; never settled within the simulated time) and is
+// written as null. JSON, the metrics table, results.csv's columns, checks and
+// docs/metrics.md all read MetricTable(): a metric is defined in exactly one place.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -18,20 +22,47 @@ struct Metrics {
   double cruise_residual_ratio = NAN;
   double motion_time_s = NAN;
   double settling_time_s = NAN;
-  // Pipeline metrics (SPEC section 4).
-  double max_contour_error_m = NAN;  // distance of the tool path from the programmed path
-  double radial_error_m = NAN;       // programmed minus mean actual radius, worst arc
-  // Peak |deflection| per axis component.
+  double max_contour_error_m = NAN;
+  double radial_error_m = NAN;
   double peak_deflection_x_m = NAN;
   double peak_deflection_y_m = NAN;
   double peak_deflection_z_m = NAN;
-  // Feed-rate safeguards (seeds 002, 001).
-  double short_block_clamps = NAN;  // blocks whose feed the clamp lowered (a count)
-  double stroke_overshoot_m = NAN;  // largest travel beyond a stroke end, 0 if none
-  double stroke_alarm = NAN;        // 1 when the stroke check stopped the tool, else 0 (JSON: bool)
+  double short_block_clamps = NAN;
+  double stroke_overshoot_m = NAN;
+  double stroke_alarm = NAN;  // 1 or 0; written as a bool
 
-  // (name, value) in the SPEC's order: the one list the table, JSON, CSV and checks use.
+  // (name, value) in MetricTable() order.
   std::vector<std::pair<std::string, double>> Named() const;
 };
+
+// Which way a metric gets better (compare, gates, the glossary).
+enum class Better { kLower, kHigher };
+
+// One row of the metric table.
+struct MetricInfo {
+  std::string_view name;
+  // "m", "s", "1" (a ratio), "count" or "bool" (a 0/1 value written as false/true).
+  std::string_view unit;
+  Better better;
+  std::string_view description;
+  double Metrics::*field;
+
+  bool is_bool() const { return unit == "bool"; }
+  // The unit a table prints after the number: "m" or "s", else nothing.
+  std::string_view shown_unit() const { return unit == "m" || unit == "s" ? unit : ""; }
+};
+
+inline constexpr std::size_t kNumMetrics = 16;
+
+// Every metric, in the order JSON, tables and results.csv list them.
+const std::array<MetricInfo, kNumMetrics>& MetricTable();
+
+// The row of `name`; nullptr when there is none.
+const MetricInfo* FindMetric(std::string_view name);
+
+// The metric names in table order.
+std::vector<std::string> MetricNames();
+
+std::string_view BetterName(Better better);  // "lower" | "higher"
 
 }  // namespace shapebench::bench

@@ -34,12 +34,6 @@ const std::vector<std::string> kSweepKeys = {"name",    "base",  "grid",
 constexpr const char* kZip = "zip";
 constexpr std::uint64_t kMaxSeriesLines = 30;
 
-std::vector<std::string> MetricNames() {
-  std::vector<std::string> names;
-  for (const auto& named : Metrics{}.Named()) names.push_back(named.first);
-  return names;
-}
-
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   for (const auto& candidate : names) {
     if (candidate == name) return true;

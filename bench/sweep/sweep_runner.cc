@@ -193,29 +193,25 @@ struct Row {
   bool ok = false;
 };
 
-// The metric values of results.csv's columns, in `metrics` order.
-std::vector<std::size_t> MetricPositions(const std::vector<std::string>& metrics) {
-  const auto named = Metrics{}.Named();
-  std::vector<std::size_t> positions;
+// The metric table rows of results.csv's columns, in `metrics` order.
+std::vector<const MetricInfo*> MetricColumns(const std::vector<std::string>& metrics) {
+  std::vector<const MetricInfo*> columns;
   for (const auto& metric : metrics) {
-    for (std::size_t i = 0; i < named.size(); ++i) {
-      if (named[i].first == metric) positions.push_back(i);
-    }
+    if (const MetricInfo* info = FindMetric(metric)) columns.push_back(info);
   }
-  return positions;
+  return columns;
 }
 
 Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
-              const std::vector<std::size_t>& metric_positions, std::uint64_t point_index) {
+              const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
   const SweepPoint point = MakePoint(sweep, point_index, sets);
   const PointOutcome outcome = RunPoint(sweep, sets, point_index);
   std::vector<std::string> fields;
-  fields.reserve(3 + point.texts.size() + metric_positions.size());
+  fields.reserve(3 + point.texts.size() + metric_columns.size());
   fields.push_back(std::to_string(point_index));
   fields.insert(fields.end(), point.texts.begin(), point.texts.end());
-  const auto named = outcome.metrics.Named();
-  for (const std::size_t position : metric_positions) {
-    fields.push_back(outcome.ok() ? ExactDouble(named[position].second) : std::string());
+  for (const MetricInfo* info : metric_columns) {
+    fields.push_back(outcome.ok() ? ExactDouble(outcome.metrics.*info->field) : std::string());
   }
   fields.push_back(outcome.ok() ? "ok" : "error");
   fields.push_back(outcome.error);
@@ -286,14 +282,14 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     if (file == nullptr) {
       throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
     }
-    const std::vector<std::size_t> positions = MetricPositions(sweep.metrics);
+    const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
     try {
       RunOrdered<Row>(
           shard.Size() - summary.resumed, options.jobs,
           [&](std::uint64_t k) {
-            return FormatRow(sweep, sets, positions, shard.Point(summary.resumed + k));
+            return FormatRow(sweep, sets, columns, shard.Point(summary.resumed + k));
           },
           [&](std::uint64_t, Row&& row) {
             WriteAll(file, row.text, partial.string());

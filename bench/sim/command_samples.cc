@@ -1,0 +1,62 @@
+#include "bench/sim/command_samples.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shapebench::bench {
+namespace {
+
+// One axis' column of the samples, as MultiAxisCommand's velocity_m_s, accel_m_s2 and
+// Positions compute them.
+void SampleAxis(const controller::MultiAxisCommand& command, int axis, CommandSamples* s) {
+  const controller::CommandTrajectory& trajectory = command.axes[axis];
+  const std::vector<double>& v = trajectory.velocity_m_s;
+  s->velocity[0](axis) = v[0];
+  double position = command.start_m(axis);
+  if (std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); })) {
+    // An axis that does not move: the same sums, of zeros (the first turns -0 into +0).
+    position += 0.0;
+    for (std::size_t k = 1; k <= s->n; ++k) {
+      s->velocity[k](axis) = 0.0;
+      s->positions[k](axis) = position;
+    }
+    return;
+  }
+  for (std::size_t k = 1; k <= s->n; ++k) {
+    s->velocity[k](axis) = v[k];
+    s->accel[k](axis) = trajectory.accel_m_s2(k);
+    position += trajectory.increment_m(k);
+    s->positions[k](axis) = position;
+  }
+}
+
+}  // namespace
+
+CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
+  CommandSamples s;
+  s.n = command.num_ticks();
+  s.velocity.resize(s.n + 1);
+  s.accel.assign(s.n + 1, Eigen::Vector3d::Zero());
+  s.positions.assign(s.n + 1, command.start_m);
+  for (int axis = 0; axis < controller::kNumAxes; ++axis) SampleAxis(command, axis, &s);
+  // Largest squared norms, their roots below: the root of the largest square is the
+  // largest norm (norm() is the root of squaredNorm(), the root is monotone).
+  for (std::size_t k = 1; k <= s.n; ++k) {
+    s.max_accel_m_s2 = std::max(s.max_accel_m_s2, s.accel[k].squaredNorm());
+    s.max_speed_m_s = std::max(s.max_speed_m_s, s.velocity[k].squaredNorm());
+  }
+  s.max_accel_m_s2 = std::sqrt(s.max_accel_m_s2);
+  s.max_speed_m_s = std::sqrt(s.max_speed_m_s);
+  std::size_t last_moving = 0;
+  for (std::size_t k = s.n + 1; k-- > 0;) {
+    const Eigen::Vector3d& v = s.velocity[k];
+    if (v(0) != 0.0 || v(1) != 0.0 || v(2) != 0.0) {
+      last_moving = k;
+      break;
+    }
+  }
+  s.motion_ticks = std::min(last_moving + 1, s.n);
+  return s;
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,55 @@
+#include "bench/sim/run_window.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/validation_error.h"
+
+namespace shapebench::bench {
+namespace {
+
+std::vector<char> CruiseTicks(const CommandSamples& s, std::size_t period_ticks) {
+  std::vector<char> cruise_tick(s.n + 1, 0);
+  for (std::size_t k = 1, run_start = 1; k <= s.n + 1; ++k) {
+    const bool steady =
+        k <= s.n && (s.velocity[k](0) != 0.0 || s.velocity[k](1) != 0.0 || s.velocity[k](2) != 0.0) &&
+        (s.accel[k].squaredNorm() == 0.0 || s.accel[k].norm() <= 1e-9 * s.max_accel_m_s2);
+    if (steady) continue;
+    if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
+    run_start = k + 1;
+  }
+  return cruise_tick;
+}
+
+}  // namespace
+
+RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
+                        const model::MachineDynamics& dynamics, double period_s) {
+  const double lowest_hz = dynamics.LowestHz();
+  const double lowest_period_s = std::isfinite(lowest_hz) ? 1.0 / lowest_hz : RunWindow::kRigidTailPeriodS;
+  RunWindow w;
+  w.motion_ticks = samples.motion_ticks;
+  w.residual_ticks = static_cast<std::size_t>(std::ceil(3.0 * lowest_period_s / period_s));
+  w.period_ticks = static_cast<std::size_t>(std::ceil(lowest_period_s / period_s));
+  const double limit_ticks = std::min(scenario.limits.max_simulated_s / period_s,
+                                      static_cast<double>(scenario.limits.max_ticks));
+  if (static_cast<double>(w.window_end()) > limit_ticks) {
+    throw ValidationError("limits.max_simulated_s",
+                          "the command and its residual window take " + std::to_string(w.window_end()) +
+                              " periods, more than limits allow (max_simulated_s, max_ticks)");
+  }
+  w.max_ticks = static_cast<std::size_t>(std::min(
+      static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));
+  w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy;
+  w.cruise_tick = CruiseTicks(samples, w.period_ticks);
+  return w;
+}
+
+int AutoSubsteps(const model::MachineDynamics& dynamics, double period_s) {
+  const double fastest_hz = dynamics.FastestParticipatingHz();
+  const int substeps = static_cast<int>(std::ceil(period_s * fastest_hz * 200.0));
+  return std::clamp(substeps, 1, 64);
+}
+
+}  // namespace shapebench::bench
