@@ -1,0 +1,87 @@
+// The metric table (bench/sim/metrics.h): one row per metric, read by JSON, tables, CSV
+// columns, checks, and the glossary in docs/metrics.md.
+#include "bench/sim/metrics.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/report/report.h"
+
+namespace shapebench::bench {
+namespace {
+
+// The glossary rows of docs/metrics.md as the table writes them.
+std::string GlossaryRow(const MetricInfo& info) {
+  std::ostringstream row;
+  row << "| `" << info.name << "` | " << info.unit << " | " << BetterName(info.better) << " | "
+      << info.description << " |";
+  return row.str();
+}
+
+// Tests that every metric has a unique name, a known unit, a description and a field of
+// its own, and that the unit matches the name's suffix (_m metres, _s seconds).
+TEST(MetricTable, RowsAreComplete) {
+  std::set<std::string_view> names;
+  std::vector<double Metrics::*> fields;
+  for (const MetricInfo& info : MetricTable()) {
+    EXPECT_TRUE(names.insert(info.name).second) << info.name;
+    for (auto field : fields) EXPECT_NE(field, info.field) << info.name;
+    fields.push_back(info.field);
+    EXPECT_FALSE(info.description.empty()) << info.name;
+    const std::set<std::string_view> units = {"m", "s", "1", "count", "bool"};
+    EXPECT_EQ(units.count(info.unit), 1u) << info.name;
+    const std::string name(info.name);
+    if (name.size() > 2 && name.substr(name.size() - 2) == "_m") EXPECT_EQ(info.unit, "m") << name;
+    if (name.size() > 2 && name.substr(name.size() - 2) == "_s") EXPECT_EQ(info.unit, "s") << name;
+  }
+  EXPECT_EQ(names.size(), kNumMetrics);
+}
+
+// Tests that JSON, the table and Named() list exactly the table's metrics, in its order.
+TEST(MetricTable, EveryOutputReadsIt) {
+  Metrics metrics;
+  double value = 1.0;
+  for (const MetricInfo& info : MetricTable()) metrics.*info.field = (value += 1.0);
+  const auto json = MetricsJson(metrics);
+  std::size_t i = 0;
+  for (const auto& [name, entry] : json.items()) {
+    ASSERT_LT(i, kNumMetrics);
+    EXPECT_EQ(name, MetricTable()[i].name);
+    EXPECT_EQ(entry.is_boolean(), MetricTable()[i].is_bool()) << name;
+    ++i;
+  }
+  EXPECT_EQ(i, kNumMetrics);
+  const auto named = metrics.Named();
+  ASSERT_EQ(named.size(), kNumMetrics);
+  for (std::size_t k = 0; k < kNumMetrics; ++k) {
+    EXPECT_EQ(named[k].first, MetricTable()[k].name);
+    EXPECT_EQ(named[k].second, metrics.*MetricTable()[k].field);
+  }
+  EXPECT_EQ(MetricNames().size(), kNumMetrics);
+  EXPECT_EQ(FindMetric("no_such_metric"), nullptr);
+  EXPECT_EQ(FindMetric("peak_ratio")->field, &Metrics::peak_ratio);
+}
+
+// Tests that the glossary in docs/metrics.md is the metric table, row for row.
+TEST(MetricTable, GlossaryInTheDocsIsTheTable) {
+  std::ifstream in(std::string(SHAPEBENCH_SOURCE_DIR) + "/docs/metrics.md");
+  ASSERT_TRUE(in) << "docs/metrics.md is missing";
+  std::vector<std::string> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("| `", 0) == 0) rows.push_back(line);
+  }
+  std::string expected;
+  for (const MetricInfo& info : MetricTable()) expected += GlossaryRow(info) + "\n";
+  std::string actual;
+  for (const std::string& row : rows) actual += row + "\n";
+  EXPECT_EQ(actual, expected) << "docs/metrics.md's glossary should read:\n" << expected;
+}
+
+}  // namespace
+}  // namespace shapebench::bench
