@@ -2,6 +2,7 @@
 // both turned into a LinearPlant; modal analysis of either.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <variant>
 #include <vector>
@@ -15,10 +16,26 @@ struct ModalMode {
   double frequency_hz = 25.0;
   double damping_ratio = 0.0;
   double gain = 1.0;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("frequency_hz", &frequency_hz);
+    a->Visit("damping_ratio", &damping_ratio);
+    a->Visit("gain", &gain);
+  }
 };
+
+// A model's entries per axis are bounded: the modal analysis and the exact integrator's
+// matrix exponential grow with the cube of the states (400 bodies: 17 s a run).
+constexpr std::size_t kMaxModelEntries = 100;
 
 struct ModalMachineConfig {
   std::vector<ModalMode> modes{ModalMode{}};
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("modes", &modes, kMaxModelEntries);
+  }
   // Throws ValidationError naming e.g. "modes[0].frequency_hz".
   void validate() const;
 };
@@ -26,6 +43,12 @@ struct ModalMachineConfig {
 struct LumpedBody {
   std::string name;
   double mass_kg = 0.0;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("name", &name);
+    a->Visit("mass_kg", &mass_kg);
+  }
 };
 
 // A spring and/or a parallel viscous damper between two endpoints. An endpoint is a body
@@ -36,6 +59,15 @@ struct LumpedElement {
   std::string to;
   double stiffness_n_m = 0.0;
   double damping_n_s_m = 0.0;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("name", &name);
+    a->Visit("from", &from);
+    a->Visit("to", &to);
+    a->Visit("stiffness_n_m", &stiffness_n_m);
+    a->Visit("damping_n_s_m", &damping_n_s_m);
+  }
 };
 
 struct LumpedMachineConfig {
@@ -49,6 +81,14 @@ struct LumpedMachineConfig {
   std::string output_body;
   std::string output_relative_to = "ground";
   void validate() const;
+
+  // `output: {body, relative_to}` is a nested mapping the machine reader reads itself.
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("bodies", &bodies, kMaxModelEntries);
+    a->Visit("elements", &elements, 2 * kMaxModelEntries);
+    a->Visit("driven_relative_to", &driven_relative_to);
+  }
 };
 
 struct MachineConfig {

@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "common/field_list.h"
 #include "common/format.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
@@ -16,9 +17,19 @@ namespace {
 
 std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
 
-std::string Indexed(const char* list, size_t i, const char* field) {
-  return std::string(list) + "[" + std::to_string(i) + "]" + (*field ? "." : "") + field;
+// "LIST[i].FIELD" as the field lists name them (common/field_list.h), "LIST[i]" for the
+// whole entry.
+template <typename Form, typename Entry>
+std::string Indexed(std::vector<Entry> Form::*list, size_t i) {
+  return FieldName(list) + "[" + std::to_string(i) + "]";
 }
+template <typename Form, typename Entry, typename T>
+std::string Indexed(std::vector<Entry> Form::*list, size_t i, T Entry::*field) {
+  return Indexed(list, i) + "." + FieldName(field);
+}
+constexpr auto kBodies = &LumpedMachineConfig::bodies;
+constexpr auto kElements = &LumpedMachineConfig::elements;
+constexpr auto kModes = &ModalMachineConfig::modes;
 
 bool IsReserved(const std::string& name) { return name == "ground" || name == "driven"; }
 
@@ -66,20 +77,20 @@ void ValidateBodies(const LumpedMachineConfig& config,
   for (size_t i = 0; i < config.bodies.size(); ++i) {
     const LumpedBody& body = config.bodies[i];
     if (body.name.empty()) {
-      throw ValidationError(Indexed("bodies", i, "name"), "must not be empty");
+      throw ValidationError(Indexed(kBodies, i, &LumpedBody::name), "must not be empty");
     }
     if (IsReserved(body.name)) {
-      throw ValidationError(Indexed("bodies", i, "name"),
+      throw ValidationError(Indexed(kBodies, i, &LumpedBody::name),
                             "\"" + body.name +
                                 "\" is reserved for an element endpoint; "
                                 "choose another body name");
     }
     if (!index.emplace(body.name, static_cast<int>(i)).second) {
-      throw ValidationError(Indexed("bodies", i, "name"),
+      throw ValidationError(Indexed(kBodies, i, &LumpedBody::name),
                             "duplicate body name \"" + body.name + "\"");
     }
     if (!(body.mass_kg > 0.0) || !std::isfinite(body.mass_kg)) {
-      throw ValidationError(Indexed("bodies", i, "mass_kg"),
+      throw ValidationError(Indexed(kBodies, i, &LumpedBody::mass_kg),
                             "must be finite and > 0" + Got(body.mass_kg));
     }
   }
@@ -87,31 +98,33 @@ void ValidateBodies(const LumpedMachineConfig& config,
 
 void ValidateElements(const LumpedMachineConfig& config,
                       const std::unordered_map<std::string, int>& index) {
-  auto check_endpoint = [&](size_t i, const char* field, const std::string& name) {
+  auto check_endpoint = [&](size_t i, std::string LumpedElement::*field) {
+    const std::string& name = config.elements[i].*field;
     if (name != "ground" && name != "driven" && index.count(name) == 0) {
       throw ValidationError(
-          Indexed("elements", i, field),
+          Indexed(kElements, i, field),
           "unknown endpoint \"" + name + "\"; allowed: a body name, \"ground\" or \"driven\"");
     }
   };
-  auto check_coefficient = [&](size_t i, const char* field, double value) {
+  auto check_coefficient = [&](size_t i, double LumpedElement::*field) {
+    const double value = config.elements[i].*field;
     if (!(value >= 0.0) || !std::isfinite(value)) {
-      throw ValidationError(Indexed("elements", i, field), "must be finite and >= 0" + Got(value));
+      throw ValidationError(Indexed(kElements, i, field), "must be finite and >= 0" + Got(value));
     }
   };
   bool touches_driven = false;
   for (size_t i = 0; i < config.elements.size(); ++i) {
     const LumpedElement& e = config.elements[i];
-    check_endpoint(i, "from", e.from);
-    check_endpoint(i, "to", e.to);
+    check_endpoint(i, &LumpedElement::from);
+    check_endpoint(i, &LumpedElement::to);
     if (e.from == e.to) {
-      throw ValidationError(Indexed("elements", i, "to"),
+      throw ValidationError(Indexed(kElements, i, &LumpedElement::to),
                             "must differ from \"from\" (both are \"" + e.to + "\")");
     }
-    check_coefficient(i, "stiffness_n_m", e.stiffness_n_m);
-    check_coefficient(i, "damping_n_s_m", e.damping_n_s_m);
+    check_coefficient(i, &LumpedElement::stiffness_n_m);
+    check_coefficient(i, &LumpedElement::damping_n_s_m);
     if (e.stiffness_n_m == 0.0 && e.damping_n_s_m == 0.0) {
-      throw ValidationError(Indexed("elements", i, ""),
+      throw ValidationError(Indexed(kElements, i),
                             "stiffness_n_m and damping_n_s_m are both 0; give at least one "
                             "a positive value");
     }
@@ -151,15 +164,15 @@ void ModalMachineConfig::validate() const {
   for (size_t i = 0; i < modes.size(); ++i) {
     const ModalMode& mode = modes[i];
     if (!(mode.frequency_hz > 0.0) || !std::isfinite(mode.frequency_hz)) {
-      throw ValidationError(Indexed("modes", i, "frequency_hz"),
+      throw ValidationError(Indexed(kModes, i, &ModalMode::frequency_hz),
                             "must be finite and > 0" + Got(mode.frequency_hz));
     }
     if (!(mode.damping_ratio >= 0.0 && mode.damping_ratio < 1.0)) {
-      throw ValidationError(Indexed("modes", i, "damping_ratio"),
+      throw ValidationError(Indexed(kModes, i, &ModalMode::damping_ratio),
                             "must be in [0, 1) (underdamped)" + Got(mode.damping_ratio));
     }
     if (!std::isfinite(mode.gain)) {
-      throw ValidationError(Indexed("modes", i, "gain"), "must be finite" + Got(mode.gain));
+      throw ValidationError(Indexed(kModes, i, &ModalMode::gain), "must be finite" + Got(mode.gain));
     }
   }
 }
@@ -172,7 +185,7 @@ void LumpedMachineConfig::validate() const {
   const std::vector<bool> restrained = RestrainedBodies(*this, index);
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!restrained[i]) {
-      throw ValidationError(Indexed("bodies", i, "name"),
+      throw ValidationError(Indexed(kBodies, i, &LumpedBody::name),
                             "body \"" + bodies[i].name +
                                 "\" is not restrained: no chain of springs (stiffness_n_m > 0) "
                                 "ties it to \"ground\" or \"driven\", so it has no rest position");

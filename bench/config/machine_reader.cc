@@ -1,5 +1,7 @@
 #include "bench/config/machine_reader.h"
 
+#include "bench/config/field_reader.h"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -7,66 +9,29 @@
 namespace shapebench::bench {
 namespace {
 
-const std::vector<std::string> kLumpedKeys = {"bodies", "elements", "driven_relative_to",
-                                              "output"};
-
-const std::vector<std::pair<std::string, int>>& AxisChoices() {
-  static const std::vector<std::pair<std::string, int>> kChoices = {{"x", 0}, {"y", 1}, {"z", 2}};
-  return kChoices;
+// The lumped form's keys: its field list and the nested `output` mapping.
+std::vector<std::string> LumpedKeys() {
+  std::vector<std::string> keys = FieldNames<model::LumpedMachineConfig>();
+  keys.push_back("output");
+  return keys;
 }
 
-// Guard rail (issue 7): a model's states per axis. The modal analysis and the exact
-// integrator's matrix exponential grow with their cube (400 bodies: 17 s a run).
-constexpr std::size_t kMaxModelEntries = 100;
-
-void CheckModelSize(const NodeReader& list, const char* what, std::size_t max = kMaxModelEntries) {
-  if (list.node().IsSequence() && list.node().size() > max) {
-    throw list.Error("at most " + std::to_string(max) + " " + what + " per axis (got " +
-                     std::to_string(list.node().size()) + ")");
-  }
+const Choices<int>& AxisChoices() {
+  static const Choices<int> kChoices = {{"x", 0}, {"y", 1}, {"z", 2}};
+  return kChoices;
 }
 
 model::ModalMachineConfig ReadModal(const NodeReader& machine) {
   model::ModalMachineConfig modal;
-  modal.modes.clear();
-  CheckModelSize(*machine.Child("modes"), "modes");
-  for (const NodeReader& entry : machine.Child("modes")->Elements()) {
-    entry.ExpectMap({"frequency_hz", "damping_ratio", "gain"});
-    model::ModalMode mode;
-    entry.Read("frequency_hz", &mode.frequency_hz);
-    entry.Read("damping_ratio", &mode.damping_ratio);
-    entry.Read("gain", &mode.gain);
-    modal.modes.push_back(mode);
-  }
+  FieldReader reader(machine);
+  modal.Serialize(&reader);
   return modal;
 }
 
 model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
   model::LumpedMachineConfig lumped;
-  if (auto bodies = machine.Child("bodies")) {
-    CheckModelSize(*bodies, "bodies");
-    for (const NodeReader& entry : bodies->Elements()) {
-      entry.ExpectMap({"name", "mass_kg"});
-      model::LumpedBody body;
-      entry.Read("name", &body.name);
-      entry.Read("mass_kg", &body.mass_kg);
-      lumped.bodies.push_back(body);
-    }
-  }
-  if (auto elements = machine.Child("elements")) {
-    CheckModelSize(*elements, "elements", 2 * kMaxModelEntries);
-    for (const NodeReader& entry : elements->Elements()) {
-      entry.ExpectMap({"name", "from", "to", "stiffness_n_m", "damping_n_s_m"});
-      model::LumpedElement element;
-      entry.Read("name", &element.name);
-      entry.Read("from", &element.from);
-      entry.Read("to", &element.to);
-      entry.Read("stiffness_n_m", &element.stiffness_n_m);
-      entry.Read("damping_n_s_m", &element.damping_n_s_m);
-      lumped.elements.push_back(element);
-    }
-  }
-  machine.Read("driven_relative_to", &lumped.driven_relative_to);
+  FieldReader reader(machine);
+  lumped.Serialize(&reader);
   if (auto output = machine.Child("output")) {
     output->ExpectMap({"body", "relative_to"});
     output->Read("body", &lumped.output_body);
@@ -79,14 +44,15 @@ model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
 // them and read by the caller.
 model::MachineConfig ReadForm(const NodeReader& machine,
                               const std::vector<std::string>& extra_keys) {
-  std::vector<std::string> allowed = {"modes"};
-  allowed.insert(allowed.end(), kLumpedKeys.begin(), kLumpedKeys.end());
+  const std::vector<std::string> lumped_keys = LumpedKeys();
+  std::vector<std::string> allowed = FieldNames<model::ModalMachineConfig>();
+  allowed.insert(allowed.end(), lumped_keys.begin(), lumped_keys.end());
   allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
   machine.ExpectMap(allowed);
 
   model::MachineConfig config;
   if (machine.Has("modes")) {
-    for (const auto& key : kLumpedKeys) {
+    for (const auto& key : lumped_keys) {
       if (auto child = machine.Child(key)) {
         throw child->Error("'" + key +
                            "' belongs to the lumped form (bodies, elements, ...); this "
@@ -122,7 +88,8 @@ void ReadStroke(const NodeReader& machine, model::MultiAxisMachineConfig* config
 
 model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   std::vector<std::string> single_keys = {"modes", "axis"};
-  single_keys.insert(single_keys.end(), kLumpedKeys.begin(), kLumpedKeys.end());
+  const std::vector<std::string> lumped_keys = LumpedKeys();
+  single_keys.insert(single_keys.end(), lumped_keys.begin(), lumped_keys.end());
   for (const auto& key : single_keys) {
     if (auto child = machine.Child(key)) {
       throw child->Error("'" + key +

@@ -6,6 +6,8 @@
 #include <optional>
 #include <variant>
 
+#include "common/field_list.h"
+
 #include "bench/config/key_path.h"
 #include "bench/config/node_reader.h"
 #include "bench/config/scenario_loader.h"
@@ -23,10 +25,9 @@ struct StructureKey {
 };
 
 bool IsField(const std::string& list, const std::string& field) {
-  if (list == "modes") return field == "frequency_hz" || field == "damping_ratio" || field == "gain";
-  if (list == "bodies") return field == "mass_kg";
-  if (list == "elements") return field == "stiffness_n_m" || field == "damping_n_s_m";
-  return false;
+  // A number field of an entry of one of the forms' lists (their field lists say which).
+  return ListHasNumberField<model::ModalMachineConfig>(list, field) ||
+         ListHasNumberField<model::LumpedMachineConfig>(list, field);
 }
 
 std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
@@ -64,21 +65,10 @@ std::optional<double> PlainNumber(const std::string& text) {
   return value;
 }
 
-double* FieldOf(model::MachineConfig& form, const StructureKey& key) {
-  if (auto* modal = std::get_if<model::ModalMachineConfig>(&form.form)) {
-    if (key.list != "modes" || key.index >= modal->modes.size()) return nullptr;
-    model::ModalMode& mode = modal->modes[key.index];
-    if (key.field == "frequency_hz") return &mode.frequency_hz;
-    if (key.field == "damping_ratio") return &mode.damping_ratio;
-    return &mode.gain;
-  }
-  auto& lumped = std::get<model::LumpedMachineConfig>(form.form);
-  if (key.list == "bodies") {
-    return key.index < lumped.bodies.size() ? &lumped.bodies[key.index].mass_kg : nullptr;
-  }
-  if (key.list != "elements" || key.index >= lumped.elements.size()) return nullptr;
-  model::LumpedElement& element = lumped.elements[key.index];
-  return key.field == "stiffness_n_m" ? &element.stiffness_n_m : &element.damping_n_s_m;
+// The field, whichever form the axis has; nullptr when the key does not fit it.
+double* FieldOf(model::MachineConfig& machine, const StructureKey& key) {
+  return std::visit([&](auto& form) { return ListNumberField(&form, key.list, key.index, key.field); },
+                    machine.form);
 }
 
 }  // namespace

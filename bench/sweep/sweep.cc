@@ -1,5 +1,7 @@
 #include "bench/sweep/sweep.h"
 
+#include "common/field_list.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -563,16 +565,18 @@ Sweep LoadSweep(const std::string& path, const std::vector<Override>& sets,
 namespace {
 
 // Keys the command (controller::GenerateProgramCommand: controller, program, move, the
-// machine's stroke and driven axis) does not read: the structure, the drive, the
-// integrator, the output view, the checks.
+// machine's stroke and driven axis) does not read: the structure (the machine forms' lists,
+// as their field lists name them), the drive, the integrator, the output view, the checks.
 bool PlantOnlyKey(const std::string& key) {
-  for (const char* prefix : {"drive", "integrator", "output", "checks", "machine.modes",
-                             "machine.bodies", "machine.elements"}) {
+  for (const char* prefix : {"drive", "integrator", "output", "checks"}) {
     if (IsPathPrefix(prefix, key)) return true;
   }
-  for (const char* axis : {"x", "y", "z"}) {
-    for (const char* part : {"modes", "bodies", "elements"}) {
-      if (IsPathPrefix(std::string("machine.axes.") + axis + "." + part, key)) return true;
+  std::vector<std::string> lists = ListNames<model::ModalMachineConfig>();
+  for (const std::string& list : ListNames<model::LumpedMachineConfig>()) lists.push_back(list);
+  for (const std::string& list : lists) {
+    if (IsPathPrefix("machine." + list, key)) return true;
+    for (const char* axis : {"x", "y", "z"}) {
+      if (IsPathPrefix(std::string("machine.axes.") + axis + "." + list, key)) return true;
     }
   }
   return false;
