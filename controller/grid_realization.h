@@ -1,6 +1,6 @@
 // Putting acceleration steps that fall between ticks onto the tick grid without losing
-// the pattern's zero of vibration (the patent's para. 61 faces the same problem: method
-// 2's jerks at 6.67 and 13.33 ms in a 1 ms profile table).
+// the pattern's zero of vibration (JP2551868B2 (seed 004) para. 61 faces the same problem:
+// method 2's jerks at 6.67 and 13.33 ms in a 1 ms profile table).
 #pragma once
 
 #include <utility>
@@ -12,7 +12,7 @@ namespace shapebench::controller {
 
 // The design point(s) whose vibration the grid realization keeps: one or several
 // natural frequencies of modes with one damping ratio. A single frequency converts
-// implicitly (the patent's case: one undamped mode).
+// implicitly (seed 004's case: one undamped mode).
 struct GridDesign {
   GridDesign() = default;
   GridDesign(double frequency_hz) : frequencies_hz{frequency_hz} {}  // NOLINT: implicit

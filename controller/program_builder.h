@@ -59,13 +59,14 @@ struct Block {
   int source_line = 0;  // copied to ProgramBlock::source_line and ProgramError::line
 };
 
-// A part-program error: what is wrong and what is allowed, at a line and column.
 // The highest feed a program or a controller setting may ask for, mm/min (1 km/min,
 // several times the fastest machine tools): the planner's arithmetic (the cruise as the
-// distance less v^2/a) loses the move's length to rounding far above it (issue 7's fuzzing:
-// F1e20 ran a 10 mm move 264 mm off its path, F1e30 asked for terabytes).
+// distance less v^2/a) loses the move's length to rounding far above it (F1e20 ran a 10 mm
+// move 264 mm off its path, F1e30 asked for terabytes:
+// fuzz/regressions/gcode/feed_1e30_planner_allocates_terabytes.nc).
 inline constexpr double kMaxFeedMmMin = 1.0e6;
 
+// A part-program error: what is wrong and what is allowed, at a line and column.
 class ProgramError : public std::runtime_error {
  public:
   // word_index: the offending word's index in Block::words, -1 when the error concerns

@@ -86,21 +86,16 @@ std::shared_ptr<const ExactDiscretization> DiscretizeExactly(const LinearPlant& 
   return result;
 }
 
-ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int substeps)
-    : num_states_(plant.num_states()),
-      num_inputs_(plant.num_inputs()),
-      num_outputs_(plant.num_outputs()),
-      period_s_(period_s),
-      substeps_(substeps),
-      discretization_(DiscretizeExactly(plant, period_s / substeps)) {
-  const Eigen::MatrixXd& phi = discretization_->phi;
-  const Eigen::MatrixXd& gamma = discretization_->gamma;
-  const int nz = num_states_ + num_inputs_;
-  // The states that reach an output: read by C, or (transitively) by such a state through
-  // phi. Exact zeros only (block structure: other axes, an unused drive velocity), so the
-  // outputs are those of the full recursion.
+namespace {
+
+// The augmented states that reach an output: read by C, or (transitively) by such a state
+// through phi. Exact zeros only (block structure: other axes, an unused drive velocity),
+// so the outputs are those of the full recursion.
+std::vector<int> StatesReachingOutputs(const Eigen::MatrixXd& c, const Eigen::MatrixXd& phi,
+                                       int num_states) {
+  const int nz = static_cast<int>(phi.rows());
   std::vector<bool> needed(nz, false);
-  for (int j = 0; j < num_states_; ++j) needed[j] = plant.C.col(j).cwiseAbs().maxCoeff() > 0.0;
+  for (int j = 0; j < num_states; ++j) needed[j] = c.col(j).cwiseAbs().maxCoeff() > 0.0;
   for (bool grew = true; grew;) {
     grew = false;
     for (int i = 0; i < nz; ++i) {
@@ -110,13 +105,44 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
       }
     }
   }
+  std::vector<int> kept;
   for (int j = 0; j < nz; ++j) {
-    if (needed[j]) kept_index_.push_back(j);
+    if (needed[j]) kept.push_back(j);
   }
+  return kept;
+}
+
+}  // namespace
+
+ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int substeps)
+    : num_states_(plant.num_states()),
+      num_inputs_(plant.num_inputs()),
+      num_outputs_(plant.num_outputs()),
+      period_s_(period_s),
+      substeps_(substeps),
+      discretization_(DiscretizeExactly(plant, period_s / substeps)) {
+  kept_index_ = StatesReachingOutputs(plant.C, discretization_->phi, num_states_);
   kept_ = static_cast<int>(kept_index_.size());
+  KeepPhiAndGamma();
+  KeepC(plant.C);
+  if (kept_ <= kMaxBlock && num_outputs_ <= kMaxRows) {  // AdvanceBlock: a period at once
+    FindDistinctOutputRows();
+    PrecomputePeriodProducts();
+    block_kernel_ = true;
+  }
+  z_.assign(kept_, 0.0);
+  g_.assign(kept_, 0.0);
+  next_.assign(kept_, 0.0);
+  accel_.assign(num_inputs_, 0.0);
+  Reset(Eigen::VectorXd::Zero(num_inputs_));
+}
+
+// phi and gamma over the kept states, dense and row-major; phi also without its zeros.
+void ExactIntegrator::KeepPhiAndGamma() {
+  const Eigen::MatrixXd& phi = discretization_->phi;
+  const Eigen::MatrixXd& gamma = discretization_->gamma;
   phi_.resize(static_cast<std::size_t>(kept_) * kept_);
   gamma_.resize(static_cast<std::size_t>(kept_) * num_inputs_);
-  c_.assign(static_cast<std::size_t>(num_outputs_) * kept_, 0.0);
   row_start_.push_back(0);
   for (int r = 0; r < kept_; ++r) {
     for (int c = 0; c < kept_; ++c) {
@@ -132,10 +158,16 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
       gamma_[static_cast<std::size_t>(r) * num_inputs_ + c] = gamma(kept_index_[r], c);
     }
   }
+}
+
+// C over the kept states (the drive velocities have no column in C: 0), dense and
+// without its zeros.
+void ExactIntegrator::KeepC(const Eigen::MatrixXd& c_full) {
+  c_.assign(static_cast<std::size_t>(num_outputs_) * kept_, 0.0);
   for (int o = 0; o < num_outputs_; ++o) {
     for (int c = 0; c < kept_; ++c) {
       if (kept_index_[c] < num_states_) {
-        c_[static_cast<std::size_t>(o) * kept_ + c] = plant.C(o, kept_index_[c]);
+        c_[static_cast<std::size_t>(o) * kept_ + c] = c_full(o, kept_index_[c]);
       }
     }
   }
@@ -150,64 +182,64 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
     }
     c_row_start_.push_back(static_cast<int>(c_col_.size()));
   }
-  if (kept_ <= kMaxBlock && num_outputs_ <= kMaxRows) {
-    // The distinct non-zero rows of C (a kinematic axis has the same row for deflection
-    // and tool error), then the period's products.
-    block_row_of_.assign(num_outputs_, -1);
-    for (int o = 0; o < num_outputs_; ++o) {
-      if (c_row_start_[o] == c_row_start_[o + 1]) continue;
-      for (std::size_t d = 0; d < block_rows_.size() && block_row_of_[o] < 0; ++d) {
-        const int first = block_rows_[d];
-        if (std::equal(c_.begin() + static_cast<std::ptrdiff_t>(o) * kept_,
-                       c_.begin() + static_cast<std::ptrdiff_t>(o + 1) * kept_,
-                       c_.begin() + static_cast<std::ptrdiff_t>(first) * kept_)) {
-          block_row_of_[o] = static_cast<int>(d);
-        }
-      }
-      if (block_row_of_[o] < 0) {
-        block_row_of_[o] = static_cast<int>(block_rows_.size());
-        block_rows_.push_back(o);
+}
+
+// The distinct non-zero rows of C (a kinematic axis has the same row for deflection and
+// tool error): the block kernel computes each once per substep.
+void ExactIntegrator::FindDistinctOutputRows() {
+  block_row_of_.assign(num_outputs_, -1);
+  for (int o = 0; o < num_outputs_; ++o) {
+    if (c_row_start_[o] == c_row_start_[o + 1]) continue;
+    for (std::size_t d = 0; d < block_rows_.size() && block_row_of_[o] < 0; ++d) {
+      const int first = block_rows_[d];
+      if (std::equal(c_.begin() + static_cast<std::ptrdiff_t>(o) * kept_,
+                     c_.begin() + static_cast<std::ptrdiff_t>(o + 1) * kept_,
+                     c_.begin() + static_cast<std::ptrdiff_t>(first) * kept_)) {
+        block_row_of_[o] = static_cast<int>(d);
       }
     }
-    const Eigen::Index k = kept_;
-    const Eigen::Index m = num_inputs_;
-    const Eigen::Index rows = static_cast<Eigen::Index>(block_rows_.size());
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    const RowMajor phi_k = Eigen::Map<const RowMajor>(phi_.data(), k, k);
-    const RowMajor gamma_k = Eigen::Map<const RowMajor>(gamma_.data(), k, m);
-    RowMajor c_k(rows, k);
-    for (Eigen::Index d = 0; d < rows; ++d) {
-      c_k.row(d) = Eigen::Map<const RowMajor>(c_.data() + block_rows_[d] * kept_, 1, k);
+    if (block_row_of_[o] < 0) {
+      block_row_of_[o] = static_cast<int>(block_rows_.size());
+      block_rows_.push_back(o);
     }
-    RowMajor power = phi_k;    // phi^j
-    RowMajor forced = gamma_k;  // gamma_j
-    for (int j = 0; j < substeps_; ++j) {
-      if (j > 0) {
-        forced = (phi_k * forced + gamma_k).eval();
-        power = (phi_k * power).eval();
-      }
-      const RowMajor c_power = c_k * power;
-      const RowMajor c_forced = c_k * forced;
-      block_c_phi_.insert(block_c_phi_.end(), c_power.data(), c_power.data() + rows * k);
-      block_c_gamma_.insert(block_c_gamma_.end(), c_forced.data(), c_forced.data() + rows * m);
-    }
-    block_phi_.assign(power.data(), power.data() + k * k);
-    block_gamma_.assign(forced.data(), forced.data() + k * m);
-    block_forced_.assign(static_cast<std::size_t>(substeps_) * rows, 0.0);
-    block_g_.assign(kept_, 0.0);
-    block_accel_.assign(num_inputs_, 0.0);
-    block_value_of_ = block_row_of_;
-    for (int& d : block_value_of_) {
-      if (d < 0) d = static_cast<int>(block_rows_.size());  // the 0 after the rows
-    }
-    block_selected_value_of_ = block_value_of_;
-    block_kernel_ = true;
   }
-  z_.assign(kept_, 0.0);
-  g_.assign(kept_, 0.0);
-  next_.assign(kept_, 0.0);
-  accel_.assign(num_inputs_, 0.0);
-  Reset(Eigen::VectorXd::Zero(num_inputs_));
+  block_value_of_ = block_row_of_;
+  for (int& d : block_value_of_) {
+    if (d < 0) d = static_cast<int>(block_rows_.size());  // the 0 after the rows
+  }
+  block_selected_value_of_ = block_value_of_;
+}
+
+// The period's products for AdvanceBlock: C phi^(j+1) and C gamma_(j+1) per substep j
+// over the distinct rows, phi^S and gamma_S; and its scratch.
+void ExactIntegrator::PrecomputePeriodProducts() {
+  const Eigen::Index k = kept_;
+  const Eigen::Index m = num_inputs_;
+  const Eigen::Index rows = static_cast<Eigen::Index>(block_rows_.size());
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajor phi_k = Eigen::Map<const RowMajor>(phi_.data(), k, k);
+  const RowMajor gamma_k = Eigen::Map<const RowMajor>(gamma_.data(), k, m);
+  RowMajor c_k(rows, k);
+  for (Eigen::Index d = 0; d < rows; ++d) {
+    c_k.row(d) = Eigen::Map<const RowMajor>(c_.data() + block_rows_[d] * kept_, 1, k);
+  }
+  RowMajor power = phi_k;    // phi^j
+  RowMajor forced = gamma_k;  // gamma_j
+  for (int j = 0; j < substeps_; ++j) {
+    if (j > 0) {
+      forced = (phi_k * forced + gamma_k).eval();
+      power = (phi_k * power).eval();
+    }
+    const RowMajor c_power = c_k * power;
+    const RowMajor c_forced = c_k * forced;
+    block_c_phi_.insert(block_c_phi_.end(), c_power.data(), c_power.data() + rows * k);
+    block_c_gamma_.insert(block_c_gamma_.end(), c_forced.data(), c_forced.data() + rows * m);
+  }
+  block_phi_.assign(power.data(), power.data() + k * k);
+  block_gamma_.assign(forced.data(), forced.data() + k * m);
+  block_forced_.assign(static_cast<std::size_t>(substeps_) * rows, 0.0);
+  block_g_.assign(kept_, 0.0);
+  block_accel_.assign(num_inputs_, 0.0);
 }
 
 void ExactIntegrator::TakeFullInputs(std::vector<int> used, int full_inputs) {

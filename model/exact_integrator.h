@@ -53,6 +53,12 @@ class ExactIntegrator final : public PlantIntegrator {
   int num_stepped_states() const { return kept_; }
 
  private:
+  // Construction, in this order.
+  void KeepPhiAndGamma();
+  void KeepC(const Eigen::MatrixXd& c_full);
+  void FindDistinctOutputRows();    // a small plant only
+  void PrecomputePeriodProducts();  // a small plant only
+
   void SetAccel(const double* drive_accel);
   const double* Picked(const double* drive_accel);  // the plant's inputs of a full vector
   void StepState();

@@ -305,6 +305,27 @@ TEST(ProgramBuilderTest, DwellByPAndX) {
   EXPECT_DOUBLE_EQ(program.blocks[4].dwell_s, 0.0);
 }
 
+// Tests that a G4 block takes the modal words it shares (F, G18, N) before it dwells: the
+// dwell carries them and sits at the position (start, end and centre); they stay in force.
+TEST(ProgramBuilderTest, DwellTakesTheModalWordsOfItsBlock) {
+  ProgramBuilder builder(Eigen::Vector3d(0.001, 0.0, 0.0));
+  builder.Apply(B({{'X', 5}, {'Y', 2}}));
+  builder.Apply(B({{'F', 1200}, {'G', 4}, {'G', 18}, {'P', 250}, {'N', 7}}, 3));
+  ASSERT_EQ(builder.program().blocks.size(), 2u);
+  const ProgramBlock& dwell = builder.program().blocks[1];
+  EXPECT_EQ(dwell.kind, MotionKind::kDwell);
+  EXPECT_DOUBLE_EQ(dwell.dwell_s, 0.25);
+  EXPECT_EQ(dwell.plane, Plane::kZX);
+  EXPECT_DOUBLE_EQ(dwell.feed_m_s, 0.02);
+  EXPECT_EQ(dwell.source_line, 3);
+  ExpectMm(dwell.start_m, 5, 2, 0);
+  ExpectMm(dwell.end_m, 5, 2, 0);
+  ExpectMm(dwell.center_m, 5, 2, 0);
+  EXPECT_EQ(builder.plane(), Plane::kZX);
+  EXPECT_DOUBLE_EQ(builder.feed_m_s(), 0.02);
+  EXPECT_EQ(builder.motion(), MotionKind::kLinear);
+}
+
 // Tests that the radius check accepts 1e-3 mm of difference and refuses more, and that
 // above 1 m of radius the bound is 1e-6 of the radius.
 TEST(ProgramBuilderTest, ArcRadiusTolerance) {
