@@ -8,12 +8,12 @@
 #include "common/format.h"
 #include "common/validation_error.h"
 #include "controller/block_planner.h"
-#include "controller/input_shaper.h"
 #include "controller/interpolator.h"
 #include "controller/linear_acc_dec.h"
 #include "controller/path_geometry.h"
 #include "controller/profile_table.h"
 #include "controller/pulse_filter.h"
+#include "controller/shaper_registry.h"
 #include "controller/tangential_distribution.h"
 
 namespace shapebench::controller {
@@ -25,7 +25,7 @@ bool Finite(double v) { return std::isfinite(v); }
 
 bool TableRealization(const ControllerConfig& c) {
   return c.pattern.realization == PatternRealization::kProfileTable &&
-         c.pattern.method != PatternMethod::kNone && c.pattern.mode != PatternMode::kOff;
+         FindShaper(c.pattern.method).kind != ShaperKind::kNone && c.pattern.mode != PatternMode::kOff;
 }
 
 StepPattern PreInterpolationPattern(const ControllerConfig& c) {

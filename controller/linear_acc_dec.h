@@ -3,7 +3,7 @@
 // of each phase by a StepPattern; para. 50's shortening when the feed is low or the move
 // short. The ideal profile is continuous-time; it is then realised on the tick grid.
 //
-// Library shapers (input_shaper.h) in the stepped realization. A StepPattern with a
+// Library shapers (shaper_registry.h) in the stepped realization. A StepPattern with a
 // general impulse list (StepPattern::impulses) shapes a phase by convolution: the
 // unshaped phase (the steady acceleration a for v / a) convolved with the shaper, i.e.
 // the jerk groups {a A_j at t_j} at the phase start and {-a A_j at t_e + t_j} at its end,

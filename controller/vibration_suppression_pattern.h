@@ -2,58 +2,19 @@
 // T that keep the peak deflection at the static one and leave no vibration. Every method
 // is expressed as the patent's parameters (para. 49): step 1 (ST1, SR1), step 2 (ST2,
 // SR2), then the steady acceleration; at the end of a phase the steps run reversed.
-// The shaper library beyond the patent (zv, zvd, zvdd, mzv, ei, um_zv, custom; several
-// modes convolved) is controller/input_shaper.h; a StepPattern then carries the general
-// impulse sequence instead of two steps.
+// Methods 1-4 are entries of the shaper registry (controller/shapers/patent_methods.cc,
+// kind kPatentStep); a config becomes a StepPattern by MakeStepPattern
+// (controller/shaper_registry.h). The shaper library beyond the patent is
+// controller/shapers/; a StepPattern then carries the general impulse sequence instead
+// of two steps.
 #pragma once
 
-#include <complex>
 #include <vector>
 
+#include "controller/impulse.h"
+#include "controller/pattern_config.h"
+
 namespace shapebench::controller {
-
-// kMethod1..4: the patent's (this file); the others: the shaper library (input_shaper.h).
-enum class PatternMethod {
-  kNone, kMethod1, kMethod2, kMethod3, kMethod4,
-  kZv, kZvd, kZvdd, kMzv, kEi, kUmZv, kCustom
-};
-bool IsPatentMethod(PatternMethod method);
-// Para. 49 mode 0..3: off, start of acc/dec only, end only, both.
-enum class PatternMode { kOff, kStart, kEnd, kBoth };
-// How the pattern reaches the command (seed 004): `stepped`, acceleration steps of the
-// pre-interpolation linear acc/dec (paras. 36-50); `profile_table`, the pattern's jerk
-// impulses as a post-interpolation profile table convolved with the move pulses
-// (paras. 52-61). A table shapes every speed change at both ends (mode both).
-enum class PatternRealization { kStepped, kProfileTable };
-
-// One impulse of a shaper: `amplitude` (a fraction of the step it shapes) at `time_s`.
-struct Impulse {
-  double time_s = 0.0;
-  double amplitude = 0.0;
-};
-
-struct PatternConfig {
-  PatternMethod method = PatternMethod::kNone;
-  PatternMode mode = PatternMode::kBoth;
-  double frequency_hz = 25.0;  // the natural frequency the pattern is designed for
-  // Several modes at once: one shaper per frequency, convolved (input_shaper.h). Empty:
-  // the single mode `frequency_hz`.
-  std::vector<double> frequencies_hz;
-  // Library shapers: the damping ratio of the mode(s) they are designed for, in [0, 1).
-  double design_damping_ratio = 0.0;
-  double vibration_tolerance = 0.05;  // ei: the residual allowed at the design frequency
-  std::vector<Impulse> impulses;      // custom: amplitudes summing to 1, times ascending
-  double k1 = 0.675;           // method 3: 0.5 <= k1 <= 1
-  double t1_s = 0.004;         // method 4: 0 <= t1 <= T/6
-  // Resolution of the step times. The patent's ST parameters are set in 0.1 ms units
-  // (0.0001 here); 0 keeps the exact design times. Default exact: rounding method 2's
-  // T/6 = 6.667 ms to 6.7 ms already leaves about 1% residual vibration per step pair.
-  double step_resolution_s = 0.0;
-  PatternRealization realization = PatternRealization::kStepped;
-  void validate() const;  // throws ValidationError naming the field
-  // The frequencies the pattern is designed for: frequencies_hz, else {frequency_hz}.
-  std::vector<double> DesignFrequencies() const;
-};
 
 // One step of a pattern: the acceleration ratio SR held for ST seconds.
 struct AccelStep {
@@ -79,24 +40,30 @@ struct StepPattern {
   }
 };
 
-// The patent's two steps for methods 1-4 at one frequency; otherwise the general impulse
-// sequence of ShaperImpulses (input_shaper.h).
-StepPattern MakeStepPattern(const PatternConfig& config);
+// The two steps of each method for one mode of period T, at the exact design times
+// (at_start and at_end unset).
+StepPattern Method1Steps(double period_s);             // para. 38: a/2 for T/2, then a
+StepPattern Method2Steps(double period_s);             // para. 40: a for T/6, 0 for T/6
+StepPattern Method3Steps(double k1, double period_s);  // paras. 43-44: K1 a, (1 - K1) a for t1
+StepPattern Method4Steps(double t1_s, double period_s);  // para. 45: a for t1, a2 for T/2 - 2 t1
+
+// ST1 and ST2 rounded to multiples of `resolution_s` (the patent sets them in 0.1 ms
+// units); 0 keeps them exact.
+StepPattern WithStepResolution(StepPattern pattern, double resolution_s);
 
 // Method 3 (para. 44): t1 from cos(2 pi t1 / T) = 1 - 1 / (2 K1).
 double Method3StepTime(double k1, double period_s);
 // Method 4 (para. 45): a2 / a = 1 - 1 / (2 cos(2 pi t1 / T)).
 double Method4SecondRatio(double t1_s, double period_s);
 
+// The keys methods 3 and 4 read, checked against paras. 44 and 45; throw ValidationError
+// naming "k1" or "t1_s".
+void ValidateMethod3(const PatternConfig& config);
+void ValidateMethod4(const PatternConfig& config);
+
 // The jerk impulses of the shaped start of a phase (para. 61): amplitudes (summing to 1)
 // at times 0, ST1, ST1 + ST2 — the continuous profile table of the pattern; for a
 // library shaper, its impulse sequence (StepPattern::impulses).
 std::vector<Impulse> PatternImpulses(const StepPattern& pattern);
-
-// Residual vibration of an impulse sequence at frequency f and damping ratio zeta, as a
-// fraction of the vibration an unshaped step leaves: |sum A_j e^{(zeta w + i w_d) t_j}|
-// normalised by the last impulse's decay (the standard shaper formula).
-double ResidualVibration(const std::vector<Impulse>& impulses, double frequency_hz,
-                         double damping_ratio = 0.0);
 
 }  // namespace shapebench::controller

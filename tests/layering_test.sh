@@ -8,7 +8,7 @@ allowed() {  # the include prefixes a file in room $1 may use
   case $1 in
     common) echo "common/" ;;
     model) echo "common/ model/" ;;
-    controller) echo "common/ controller/" ;;
+    controller|controller/shapers) echo "common/ controller/" ;;
     bench/sim) echo "common/ model/ controller/ bench/sim/" ;;
     bench/config) echo "common/ model/ controller/ bench/sim/ bench/config/" ;;
     bench/report) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/" ;;
@@ -18,7 +18,7 @@ allowed() {  # the include prefixes a file in room $1 may use
 }
 bad=0
 checked=0
-for room in common model controller bench/sim bench/config bench/report bench/sweep bench/cli; do
+for room in common model controller controller/shapers bench/sim bench/config bench/report bench/sweep bench/cli; do
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
     while IFS= read -r inc; do

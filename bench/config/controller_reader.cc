@@ -1,11 +1,15 @@
 #include "bench/config/controller_reader.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "controller/program_builder.h"
+#include "controller/shaper_registry.h"
 
 namespace shapebench::bench {
 namespace {
 
-using controller::PatternMethod;
 using controller::PatternMode;
 using controller::PostInterpType;
 
@@ -20,20 +24,10 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern,
   pattern.ExpectMap(allowed);
   controller::PatternConfig config;
   // Written as YAML ints (1) or strings ("1"): both read as the scalar's text.
-  pattern.Read<PatternMethod>("method",
-                              {{"none", PatternMethod::kNone},
-                               {"1", PatternMethod::kMethod1},
-                               {"2", PatternMethod::kMethod2},
-                               {"3", PatternMethod::kMethod3},
-                               {"4", PatternMethod::kMethod4},
-                               {"zv", PatternMethod::kZv},
-                               {"zvd", PatternMethod::kZvd},
-                               {"zvdd", PatternMethod::kZvdd},
-                               {"mzv", PatternMethod::kMzv},
-                               {"ei", PatternMethod::kEi},
-                               {"um_zv", PatternMethod::kUmZv},
-                               {"custom", PatternMethod::kCustom}},
-                              &config.method);
+  // Any key of the shaper registry, in its order (e.g. "expected one of none|1|2|...").
+  std::vector<std::pair<std::string, std::string>> methods;
+  for (const std::string& key : controller::ShaperKeys()) methods.emplace_back(key, key);
+  pattern.Read<std::string>("method", methods, &config.method);
   pattern.Read<PatternMode>("mode",
                             {{"off", PatternMode::kOff},
                              {"start", PatternMode::kStart},

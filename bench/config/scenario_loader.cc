@@ -15,8 +15,8 @@
 #include "bench/config/node_reader.h"
 #include "bench/config/program_reader.h"
 #include "controller/controller.h"
-#include "controller/input_shaper.h"
 #include "controller/path_geometry.h"
+#include "controller/shaper_registry.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::bench {

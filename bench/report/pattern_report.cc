@@ -8,14 +8,13 @@
 #include <vector>
 
 #include "common/validation_error.h"
-#include "controller/input_shaper.h"
 #include "controller/profile_table.h"
+#include "controller/shaper_registry.h"
 #include "controller/vibration_suppression_pattern.h"
 
 namespace shapebench::bench {
 namespace {
 
-using controller::PatternMethod;
 using controller::PatternMode;
 
 std::string Num(double value, const char* format = "%.6g") {
@@ -24,23 +23,12 @@ std::string Num(double value, const char* format = "%.6g") {
   return text;
 }
 
+// The key, then what the registry entry says of it (ShaperEntry::summary), e.g.
+// "3 (K1 a for t1, (1-K1) a for t1; k1 = 0.675)".
 std::string MethodText(const controller::PatternConfig& pattern) {
-  switch (pattern.method) {
-    case PatternMethod::kNone: return "none";
-    case PatternMethod::kMethod1: return "1 (a/2 for T/2, then a)";
-    case PatternMethod::kMethod2: return "2 (a for T/6, 0 for T/6, then a)";
-    case PatternMethod::kMethod3: return "3 (K1 a for t1, (1-K1) a for t1; k1 = " + Num(pattern.k1) + ")";
-    case PatternMethod::kMethod4: return "4 (a for t1, a2 for T/2 - 2 t1; t1 = " + Num(pattern.t1_s) + " s)";
-    case PatternMethod::kZv: return "zv (zero vibration: 2 impulses over T_d/2)";
-    case PatternMethod::kZvd: return "zvd (zero vibration and derivative: 3 impulses over T_d)";
-    case PatternMethod::kZvdd: return "zvdd (zero vibration, two derivatives: 4 impulses over 3 T_d/2)";
-    case PatternMethod::kMzv: return "mzv (modified zv: 3 impulses over 3 T_d/4)";
-    case PatternMethod::kEi:
-      return "ei (extra-insensitive: vibration_tolerance " + Num(pattern.vibration_tolerance) + ")";
-    case PatternMethod::kUmZv: return "um_zv (unity-magnitude zv, negative: 1, -1, 1 over T/3)";
-    case PatternMethod::kCustom: return "custom (" + std::to_string(pattern.impulses.size()) + " impulses)";
-  }
-  return "?";
+  const controller::ShaperEntry& entry = controller::FindShaper(pattern.method);
+  const std::string summary = entry.summary ? entry.summary(pattern) : entry.description;
+  return summary.empty() ? entry.key : entry.key + " (" + summary + ")";
 }
 
 std::string FrequencyList(const std::vector<double>& frequencies) {
@@ -97,8 +85,9 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
   }
 
   if (pattern.general()) {
-    out << "\nshaper (" << (controller::IsPatentMethod(config.method) ? "the patent's method, convolved per mode"
-                                                                       : "library, controller/input_shaper.h")
+    const bool patent = controller::FindShaper(config.method).kind == controller::ShaperKind::kPatentStep;
+    out << "\nshaper ("
+        << (patent ? "the patent's method, convolved per mode" : "library, controller/shaper_registry.h")
         << ")\n  mode = " << ModeText(config.mode) << "\n"
         << "  the steady acceleration of each acc/dec phase is convolved with the impulses below\n";
   } else {
@@ -106,7 +95,9 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
     if (!pattern.shapes()) {
       // Method none acts as mode 0 whatever pattern.mode says.
       out << "  mode = " << ModeText(PatternMode::kOff)
-          << (config.method == PatternMethod::kNone ? " (pattern.method none)" : "") << "\n"
+          << (controller::FindShaper(config.method).kind == controller::ShaperKind::kNone
+                  ? " (pattern.method " + config.method + ")"
+                  : std::string()) << "\n"
           << "  no shaping: the acceleration steps straight to a\n";
     } else {
       out << "  mode = " << ModeText(config.mode) << "\n";
@@ -217,7 +208,7 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
                                             : "the scenario's move (" + Num(scenario.move.distance_mm) + " mm)";
   try {
     controller::ControllerConfig unshaped = controller;
-    unshaped.pattern.method = controller::PatternMethod::kNone;
+    unshaped.pattern.method = controller::kNoShaping;
     unshaped.pattern.frequencies_hz.clear();
     unshaped.pattern.impulses.clear();
     unshaped.pattern.design_damping_ratio = 0.0;

@@ -13,8 +13,8 @@
 #include "bench/config/node_reader.h"
 #include "common/format.h"
 #include "common/validation_error.h"
-#include "controller/input_shaper.h"
 #include "controller/profile_table.h"
+#include "controller/shaper_registry.h"
 
 namespace shapebench::bench {
 namespace {
@@ -26,16 +26,23 @@ std::string Num(double v) { return FormatNumber(v); }
 // Values this close above the level count as inside (EI touches V at r = 1).
 bool Inside(double value, double level) { return value <= level * (1.0 + 1e-9); }
 
+// How a label shows a PatternConfig key a shaper reads (ShaperEntry::parameters); keys
+// not listed (custom's impulses) are left out.
+std::string ParameterText(const std::string& key, const controller::PatternConfig& p) {
+  if (key == "vibration_tolerance") return " V=" + Num(p.vibration_tolerance);
+  if (key == "k1") return " k1=" + Num(p.k1);
+  if (key == "t1_s") return " t1=" + Num(p.t1_s);
+  return "";
+}
+
 std::string AutoLabel(const controller::PatternConfig& p) {
-  std::string label = controller::MethodName(p.method);
-  if (controller::IsPatentMethod(p.method)) label = "method " + label;
+  const controller::ShaperEntry& entry = controller::FindShaper(p.method);
+  std::string label = entry.kind == controller::ShaperKind::kPatentStep ? "method " + p.method : p.method;
   std::string frequencies;
   for (const double f : p.DesignFrequencies()) frequencies += (frequencies.empty() ? "" : "+") + Num(f);
   label += " " + frequencies + " Hz";
   if (p.design_damping_ratio > 0.0) label += " zeta_d=" + Num(p.design_damping_ratio);
-  if (p.method == controller::PatternMethod::kEi) label += " V=" + Num(p.vibration_tolerance);
-  if (p.method == controller::PatternMethod::kMethod3) label += " k1=" + Num(p.k1);
-  if (p.method == controller::PatternMethod::kMethod4) label += " t1=" + Num(p.t1_s);
+  for (const std::string& key : entry.parameters) label += ParameterText(key, p);
   return label;
 }
 

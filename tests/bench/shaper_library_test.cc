@@ -13,13 +13,12 @@
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sensitivity.h"
 #include "bench_test_support.h"
-#include "controller/input_shaper.h"
+#include "controller/shaper_registry.h"
 #include "sdof_fixture.h"
 
 namespace shapebench::bench {
 namespace {
 
-using controller::PatternMethod;
 using controller::PatternRealization;
 using testing::CliResult;
 using testing::ExpectError;
@@ -34,13 +33,13 @@ const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 // --- full runs -------------------------------------------------------------------------
 
 struct RunCase {
-  PatternMethod method;
+  std::string method;
   PatternRealization realization;
   double residual_max;
 };
 
 std::string RunCaseName(const ::testing::TestParamInfo<RunCase>& info) {
-  return controller::MethodName(info.param.method) +
+  return info.param.method +
          (info.param.realization == PatternRealization::kStepped ? "_stepped" : "_table");
 }
 
@@ -58,40 +57,40 @@ TEST_P(ShaperRunTest, LeavesNoVibrationOnTheDesignMode) {
   ASSERT_NO_THROW(s.controller.validate());
   const Metrics m = RunScenario(s).metrics;
   EXPECT_LT(m.residual_ratio, c.residual_max);
-  EXPECT_LT(m.peak_ratio, c.method == PatternMethod::kEi ? 1.2 : 1.0 + 1e-6);
+  EXPECT_LT(m.peak_ratio, c.method == "ei" ? 1.2 : 1.0 + 1e-6);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Library, ShaperRunTest,
-    ::testing::Values(RunCase{PatternMethod::kZv, PatternRealization::kStepped, 1e-6},
-                      RunCase{PatternMethod::kZv, PatternRealization::kProfileTable, 1e-6},
-                      RunCase{PatternMethod::kZvd, PatternRealization::kStepped, 1e-6},
-                      RunCase{PatternMethod::kZvd, PatternRealization::kProfileTable, 1e-6},
-                      RunCase{PatternMethod::kZvdd, PatternRealization::kStepped, 1e-6},
-                      RunCase{PatternMethod::kZvdd, PatternRealization::kProfileTable, 1e-6},
-                      RunCase{PatternMethod::kMzv, PatternRealization::kStepped, 1e-6},
-                      RunCase{PatternMethod::kMzv, PatternRealization::kProfileTable, 1e-6},
-                      RunCase{PatternMethod::kEi, PatternRealization::kStepped, 0.2},
-                      RunCase{PatternMethod::kEi, PatternRealization::kProfileTable, 0.2},
-                      RunCase{PatternMethod::kUmZv, PatternRealization::kStepped, 1e-6},
-                      RunCase{PatternMethod::kUmZv, PatternRealization::kProfileTable, 1e-6}),
+    ::testing::Values(RunCase{"zv", PatternRealization::kStepped, 1e-6},
+                      RunCase{"zv", PatternRealization::kProfileTable, 1e-6},
+                      RunCase{"zvd", PatternRealization::kStepped, 1e-6},
+                      RunCase{"zvd", PatternRealization::kProfileTable, 1e-6},
+                      RunCase{"zvdd", PatternRealization::kStepped, 1e-6},
+                      RunCase{"zvdd", PatternRealization::kProfileTable, 1e-6},
+                      RunCase{"mzv", PatternRealization::kStepped, 1e-6},
+                      RunCase{"mzv", PatternRealization::kProfileTable, 1e-6},
+                      RunCase{"ei", PatternRealization::kStepped, 0.2},
+                      RunCase{"ei", PatternRealization::kProfileTable, 0.2},
+                      RunCase{"um_zv", PatternRealization::kStepped, 1e-6},
+                      RunCase{"um_zv", PatternRealization::kProfileTable, 1e-6}),
     RunCaseName);
 
 // Tests damping-aware designs in a whole run: on a 25 Hz mode with 10% damping, ZV, ZVD
 // and UM-ZV designed for zeta = 0.1 leave no vibration (1e-6) in both realizations,
 // where the undamped ZV design leaves a closed-form-sized residual (above 5%).
 TEST(ShaperLibrary, DampedDesignsCancelADampedMode) {
-  for (PatternMethod method : {PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kUmZv}) {
+  for (const char* method : {"zv", "zvd", "um_zv"}) {
     for (PatternRealization realization : {PatternRealization::kStepped, PatternRealization::kProfileTable}) {
       Scenario s = SdofScenario(25.0, 0.1);
       s.controller.pattern.method = method;
       s.controller.pattern.realization = realization;
       s.controller.pattern.design_damping_ratio = 0.1;
-      EXPECT_LT(RunScenario(s).metrics.residual_ratio, 1e-6) << controller::MethodName(method);
+      EXPECT_LT(RunScenario(s).metrics.residual_ratio, 1e-6) << method;
     }
   }
   Scenario undamped_design = SdofScenario(25.0, 0.1);
-  undamped_design.controller.pattern.method = PatternMethod::kZv;
+  undamped_design.controller.pattern.method = "zv";
   EXPECT_GT(RunScenario(undamped_design).metrics.residual_ratio, 0.05);
 }
 
@@ -103,7 +102,7 @@ TEST(ShaperLibrary, SeveralModesInOneRun) {
   model::ModalMachineConfig modal;
   modal.modes = {model::ModalMode{25.0, 0.0, 1.0}, model::ModalMode{41.3, 0.0, 1.0}};
   s.machine.axes[s.machine.driven_axis] = model::MachineConfig{modal};
-  s.controller.pattern.method = PatternMethod::kZv;
+  s.controller.pattern.method = "zv";
   s.controller.pattern.frequencies_hz = {25.0, 41.3};
   EXPECT_LT(RunScenario(s).metrics.residual_ratio, 1e-6);
   s.controller.pattern.frequencies_hz.clear();
@@ -125,7 +124,7 @@ TEST(ShaperLibrary, ScenarioKeysLoad) {
       "    impulses: [{amplitude: 0.5, time_s: 0}, {amplitude: 0.5, time_s: 0.02}]\n"
       "move: {distance_mm: 100}\n");
   const Scenario s = LoadScenario(path, {});
-  EXPECT_EQ(s.controller.pattern.method, PatternMethod::kCustom);
+  EXPECT_EQ(s.controller.pattern.method, "custom");
   ASSERT_EQ(s.controller.pattern.frequencies_hz.size(), 2u);
   EXPECT_EQ(s.controller.pattern.frequencies_hz[1], 40.0);
   EXPECT_EQ(s.controller.pattern.design_damping_ratio, 0.02);
@@ -172,13 +171,13 @@ TEST(ShaperLibrary, BadKeysAreLocated) {
 
 // --- sensitivity ---------------------------------------------------------------------------
 
-SensitivitySpec SpecOf(const std::vector<PatternMethod>& methods) {
+SensitivitySpec SpecOf(const std::vector<std::string>& methods) {
   SensitivitySpec spec;
-  for (PatternMethod method : methods) {
+  for (const std::string& method : methods) {
     SensitivityShaper shaper;
     shaper.pattern.method = method;
     shaper.pattern.frequency_hz = 25.0;
-    shaper.label = controller::MethodName(method);
+    shaper.label = method;
     spec.shapers.push_back(shaper);
   }
   spec.ratio_steps = 1001;
@@ -190,7 +189,7 @@ SensitivitySpec SpecOf(const std::vector<PatternMethod>& methods) {
 // |cos(pi r/2)|^3, UM-ZV |2 cos(pi r/3) - 1|.
 TEST(ShaperSensitivity, ClosedFormCurves) {
   const SensitivityResult result =
-      ComputeSensitivity(SpecOf({PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kZvdd, PatternMethod::kUmZv}));
+      ComputeSensitivity(SpecOf({"zv", "zvd", "zvdd", "um_zv"}));
   ASSERT_EQ(result.curves.size(), 4u);
   ASSERT_EQ(result.ratio.size(), 1001u);
   EXPECT_DOUBLE_EQ(result.ratio.front(), 0.5);
@@ -211,7 +210,7 @@ TEST(ShaperSensitivity, ClosedFormCurves) {
 // 3 (acos(0.475) - acos(0.525)) / pi; the 10% level band too.
 TEST(ShaperSensitivity, BandWidths) {
   SensitivitySpec spec =
-      SpecOf({PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kZvdd, PatternMethod::kUmZv});
+      SpecOf({"zv", "zvd", "zvdd", "um_zv"});
   spec.level = 0.1;
   const SensitivityResult result = ComputeSensitivity(spec);
   EXPECT_NEAR(result.curves[0].band_5.width(), 0.0637, 0.002);
@@ -231,7 +230,7 @@ TEST(ShaperSensitivity, BandWidths) {
 // x >= -1 always and for x <= (3V - 1)/(1 + V): the band is [r_e, 2 - r_e] with
 // r_e = acos((3V - 1)/(1 + V)) / pi.
 TEST(ShaperSensitivity, EiBandSpansBothZeros) {
-  const SensitivityResult result = ComputeSensitivity(SpecOf({PatternMethod::kEi}));
+  const SensitivityResult result = ComputeSensitivity(SpecOf({"ei"}));
   const double v = 0.05;
   const double edge = std::acos((3 * v - 1) / (1 + v)) / kPi;
   EXPECT_NEAR(result.curves[0].band_5.low, edge, 1e-6);
@@ -242,7 +241,7 @@ TEST(ShaperSensitivity, EiBandSpansBothZeros) {
 // Tests that period_s adds the realized table's curve: for um_zv at 25 Hz and 1 ms it
 // keeps the zero at the design point (the 1%, here below 1e-9 %).
 TEST(ShaperSensitivity, RealizedTableCurve) {
-  SensitivitySpec spec = SpecOf({PatternMethod::kUmZv});
+  SensitivitySpec spec = SpecOf({"um_zv"});
   spec.period_s = 0.001;
   spec.damping_ratios = {0.0, 0.05};
   const SensitivityResult result = ComputeSensitivity(spec);

@@ -11,7 +11,7 @@ ControllerConfig Method1() {
   ControllerConfig c;
   c.feed_mm_min = 30000;
   c.accel_time_s = 0.3;
-  c.pattern.method = PatternMethod::kMethod1;
+  c.pattern.method = "1";
   return c;
 }
 
@@ -54,7 +54,7 @@ TEST(ControllerTest, ValidateNamesNestedFields) {
   c.period_s = 0.0;
   EXPECT_THROW(c.validate(), ValidationError);
   c = ControllerConfig{};
-  c.pattern.method = PatternMethod::kMethod3;
+  c.pattern.method = "3";
   c.pattern.k1 = 2.0;
   try {
     c.validate();
@@ -63,7 +63,7 @@ TEST(ControllerTest, ValidateNamesNestedFields) {
     EXPECT_EQ(e.field(), "pattern.k1");
   }
   c = ControllerConfig{};
-  c.pattern.method = PatternMethod::kMethod1;
+  c.pattern.method = "1";
   c.accel_time_s = 0.0;
   try {
     c.validate();

@@ -3,7 +3,7 @@
 // formula sum A_j e^{(zeta w + i w_d) t_j}, evaluated here independently of
 // ResidualVibration), the grid realization keeping those zeros, convolution for several
 // modes, and validation naming the field.
-#include "controller/input_shaper.h"
+#include "controller/shaper_registry.h"
 
 #include <cmath>
 #include <complex>
@@ -23,7 +23,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kF = 25.0;  // design frequency, Hz (the patent's moving column)
 
-PatternConfig Shaper(PatternMethod method, double zeta = 0.0) {
+PatternConfig Shaper(const std::string& method, double zeta = 0.0) {
   PatternConfig config;
   config.method = method;
   config.frequency_hz = kF;
@@ -51,7 +51,7 @@ double AmplitudeSum(const std::vector<Impulse>& impulses) {
 // --- damped designs: zero at the design point --------------------------------------
 
 struct DampedCase {
-  PatternMethod method;
+  std::string method;
   double zeta;
 };
 
@@ -77,14 +77,14 @@ TEST_P(DampedDesignTest, ZeroAtTheDesignPoint) {
 
 INSTANTIATE_TEST_SUITE_P(
     Shapers, DampedDesignTest,
-    ::testing::Values(DampedCase{PatternMethod::kZv, 0.05}, DampedCase{PatternMethod::kZv, 0.1},
-                      DampedCase{PatternMethod::kZvd, 0.05}, DampedCase{PatternMethod::kZvd, 0.1},
-                      DampedCase{PatternMethod::kZvdd, 0.05}, DampedCase{PatternMethod::kZvdd, 0.1},
-                      DampedCase{PatternMethod::kMzv, 0.05}, DampedCase{PatternMethod::kMzv, 0.1},
-                      DampedCase{PatternMethod::kUmZv, 0.05}, DampedCase{PatternMethod::kUmZv, 0.1},
-                      DampedCase{PatternMethod::kZv, 0.0}, DampedCase{PatternMethod::kMzv, 0.0}),
+    ::testing::Values(DampedCase{"zv", 0.05}, DampedCase{"zv", 0.1},
+                      DampedCase{"zvd", 0.05}, DampedCase{"zvd", 0.1},
+                      DampedCase{"zvdd", 0.05}, DampedCase{"zvdd", 0.1},
+                      DampedCase{"mzv", 0.05}, DampedCase{"mzv", 0.1},
+                      DampedCase{"um_zv", 0.05}, DampedCase{"um_zv", 0.1},
+                      DampedCase{"zv", 0.0}, DampedCase{"mzv", 0.0}),
     [](const ::testing::TestParamInfo<DampedCase>& info) {
-      return MethodName(info.param.method) + "_zeta" + std::to_string(static_cast<int>(info.param.zeta * 100));
+      return info.param.method + "_zeta" + std::to_string(static_cast<int>(info.param.zeta * 100));
     });
 
 // Tests the standard closed forms: ZV [1, K] / (1 + K) half a damped period apart, and ZVD
@@ -93,12 +93,12 @@ TEST(InputShaperTest, ZvAndZvdClosedForms) {
   const double zeta = 0.1;
   const double k = std::exp(-zeta * kPi / std::sqrt(1 - zeta * zeta));
   const double td = 1.0 / (kF * std::sqrt(1 - zeta * zeta));
-  const std::vector<Impulse> zv = ShaperImpulses(Shaper(PatternMethod::kZv, zeta));
+  const std::vector<Impulse> zv = ShaperImpulses(Shaper("zv", zeta));
   ASSERT_EQ(zv.size(), 2u);
   EXPECT_NEAR(zv[0].amplitude, 1 / (1 + k), 1e-15);
   EXPECT_NEAR(zv[1].amplitude, k / (1 + k), 1e-15);
   EXPECT_NEAR(zv[1].time_s, td / 2, 1e-15);
-  const std::vector<Impulse> zvd = ShaperImpulses(Shaper(PatternMethod::kZvd, zeta));
+  const std::vector<Impulse> zvd = ShaperImpulses(Shaper("zvd", zeta));
   const std::vector<Impulse> zv2 = ConvolveImpulses(zv, zv);
   ASSERT_EQ(zvd.size(), 3u);
   ASSERT_EQ(zv2.size(), 3u);
@@ -106,7 +106,7 @@ TEST(InputShaperTest, ZvAndZvdClosedForms) {
     EXPECT_NEAR(zvd[j].amplitude, zv2[j].amplitude, 1e-15);
     EXPECT_NEAR(zvd[j].time_s, zv2[j].time_s, 1e-15);
   }
-  const std::vector<Impulse> zvdd = ShaperImpulses(Shaper(PatternMethod::kZvdd, zeta));
+  const std::vector<Impulse> zvdd = ShaperImpulses(Shaper("zvdd", zeta));
   ASSERT_EQ(zvdd.size(), 4u);
   EXPECT_NEAR(zvdd[1].amplitude, 3 * k / std::pow(1 + k, 3), 1e-15);
   EXPECT_NEAR(zvdd[3].time_s, 1.5 * td, 1e-15);
@@ -115,8 +115,8 @@ TEST(InputShaperTest, ZvAndZvdClosedForms) {
 // Tests that the undamped UM-ZV is [1, -1, 1] at [0, T/6, T/3], the very impulses of the
 // patent's method 2 (a for T/6, 0 for T/6, then a).
 TEST(InputShaperTest, UndampedUmZvIsMethod2) {
-  const std::vector<Impulse> um = ShaperImpulses(Shaper(PatternMethod::kUmZv));
-  const std::vector<Impulse> m2 = ShaperImpulses(Shaper(PatternMethod::kMethod2));
+  const std::vector<Impulse> um = ShaperImpulses(Shaper("um_zv"));
+  const std::vector<Impulse> m2 = ShaperImpulses(Shaper("2"));
   ASSERT_EQ(um.size(), 3u);
   ASSERT_EQ(m2.size(), 3u);
   const double t[3] = {0.0, 1.0 / (6 * kF), 1.0 / (3 * kF)};
@@ -133,7 +133,7 @@ TEST(InputShaperTest, UndampedUmZvIsMethod2) {
 // its times solve 1 - e^{s t2} + e^{s t3} = 0 (s = zeta w + i w_d) to 1e-12.
 TEST(InputShaperTest, DampedUmZvSolvesItsEquation) {
   for (double zeta : {0.05, 0.1, 0.3}) {
-    const std::vector<Impulse> um = ShaperImpulses(Shaper(PatternMethod::kUmZv, zeta));
+    const std::vector<Impulse> um = ShaperImpulses(Shaper("um_zv", zeta));
     ASSERT_EQ(um.size(), 3u);
     EXPECT_EQ(um[1].amplitude, -1.0);
     const double w = 2 * kPi * kF;
@@ -150,7 +150,7 @@ TEST(InputShaperTest, DampedUmZvSolvesItsEquation) {
 // accuracy: 1.2% at V 0.05, 3.1% at V 0.1, zeta 0.1).
 TEST(InputShaperTest, EiMeetsItsToleranceAtTheDesignFrequency) {
   for (double v : {0.05, 0.1}) {
-    PatternConfig config = Shaper(PatternMethod::kEi);
+    PatternConfig config = Shaper("ei");
     config.vibration_tolerance = v;
     const std::vector<Impulse> ei = ShaperImpulses(config);
     for (double r = 0.5; r <= 1.5; r += 0.01) {
@@ -174,7 +174,7 @@ TEST(InputShaperTest, EiMeetsItsToleranceAtTheDesignFrequency) {
 // frequency (1e-12), and its table on the 1 ms grid cancels at both too (1e-9); so does
 // ZV's, where the plain split between ticks leaves more than 1e-5 at each.
 TEST(InputShaperTest, SeveralModesCancelAtEach) {
-  PatternConfig config = Shaper(PatternMethod::kZvd, 0.05);
+  PatternConfig config = Shaper("zvd", 0.05);
   config.frequencies_hz = {25.0, 41.3};
   ASSERT_NO_THROW(config.validate());
   const std::vector<Impulse> impulses = ShaperImpulses(config);
@@ -188,7 +188,7 @@ TEST(InputShaperTest, SeveralModesCancelAtEach) {
     EXPECT_LT(DampedResidual(TableImpulses(table, 0.001), f, 0.05), 1e-9) << f;
   }
   PatternConfig zv = config;
-  zv.method = PatternMethod::kZv;
+  zv.method = "zv";
   const std::vector<Impulse> zv_impulses = ShaperImpulses(zv);
   ASSERT_EQ(zv_impulses.size(), 4u);
   const std::vector<double> zv_table = ProfileTableFromImpulses(zv_impulses, 0.001, ShaperGridDesign(zv));
@@ -198,7 +198,7 @@ TEST(InputShaperTest, SeveralModesCancelAtEach) {
     EXPECT_GT(DampedResidual(TableImpulses(plain, 0.001), f, 0.05), 1e-5) << f;
   }
   // The patent's method 1 convolved for two modes: T/2 at each.
-  PatternConfig patent = Shaper(PatternMethod::kMethod1);
+  PatternConfig patent = Shaper("1");
   patent.frequencies_hz = {25.0, 50.0};
   const std::vector<Impulse> m1 = ShaperImpulses(patent);
   ASSERT_EQ(m1.size(), 4u);
@@ -212,7 +212,7 @@ TEST(InputShaperTest, SeveralModesCancelAtEach) {
 // nearest tick (7 and 13 ms) leaves |1 - e^{i 0.35 pi} + e^{i 0.65 pi}| = 1 - 2 cos(0.35 pi)
 // = 9.2%.
 TEST(InputShaperTest, UmZvOnTheGridKeepsItsZero) {
-  const PatternConfig config = Shaper(PatternMethod::kUmZv);
+  const PatternConfig config = Shaper("um_zv");
   const std::vector<Impulse> impulses = ShaperImpulses(config);
   const std::vector<double> table = ProfileTableFromImpulses(impulses, 0.001, ShaperGridDesign(config));
   EXPECT_LE(ResidualVibration(TableImpulses(table, 0.001), kF), 0.01);
@@ -237,7 +237,7 @@ double GridResidual(const CommandTrajectory& c, double frequency_hz) {
   return w * std::abs(sum) / c.MaxAbsAccel();
 }
 
-class ConvolvedPhaseTest : public ::testing::TestWithParam<PatternMethod> {};
+class ConvolvedPhaseTest : public ::testing::TestWithParam<std::string> {};
 
 // Tests the stepped realization of a library shaper: the phase is the steady acceleration
 // convolved with the shaper (reaches the speed; never above a; jerks a A_j at t_j), and
@@ -273,17 +273,17 @@ TEST_P(ConvolvedPhaseTest, ShapesEveryPhaseOnTheGrid) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapers, ConvolvedPhaseTest,
-                         ::testing::Values(PatternMethod::kZv, PatternMethod::kZvd, PatternMethod::kZvdd,
-                                           PatternMethod::kMzv, PatternMethod::kUmZv),
-                         [](const ::testing::TestParamInfo<PatternMethod>& info) {
-                           return MethodName(info.param);
+                         ::testing::Values("zv", "zvd", "zvdd",
+                                           "mzv", "um_zv"),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
                          });
 
 // Tests mode start with a library shaper: the unshaped end's step must fall after the
 // shaper, which needs v >= a (D - mu) (ZV: D = T/2, mu = T/4); below, the phase is shaped
 // at both ends rather than overshoot the speed.
 TEST(InputShaperTest, ModeStartNeedsThePhaseToOutlastTheShaper) {
-  PatternConfig config = Shaper(PatternMethod::kZv);
+  PatternConfig config = Shaper("zv");
   config.mode = PatternMode::kStart;
   const StepPattern pattern = MakeStepPattern(config);
   const double a = 2.0;
@@ -317,7 +317,7 @@ std::string FieldOf(const PatternConfig& config) {
 // amplitudes not summing to 1, a negative or non-ascending time, a non-finite amplitude,
 // and impulses given to another method.
 TEST(InputShaperTest, CustomShaperValidation) {
-  PatternConfig config = Shaper(PatternMethod::kCustom);
+  PatternConfig config = Shaper("custom");
   EXPECT_EQ(FieldOf(config), "impulses");
   config.impulses = {{0.0, 0.5}, {0.02, 0.5}};
   EXPECT_EQ(FieldOf(config), "(valid)");
@@ -330,7 +330,7 @@ TEST(InputShaperTest, CustomShaperValidation) {
   EXPECT_EQ(FieldOf(config), "impulses[2].time_s");
   config.impulses = {{0.0, 0.5}, {0.01, std::nan("")}, {0.02, 0.5}};
   EXPECT_EQ(FieldOf(config), "impulses[1].amplitude");
-  PatternConfig zv = Shaper(PatternMethod::kZv);
+  PatternConfig zv = Shaper("zv");
   zv.impulses = {{0.0, 1.0}};
   EXPECT_EQ(FieldOf(zv), "impulses");
 }
@@ -339,18 +339,18 @@ TEST(InputShaperTest, CustomShaperValidation) {
 // [0, 1) (and none for the patent's undamped methods), every frequencies_hz entry > 0,
 // and method 4's t1 within T/6 of every design frequency.
 TEST(InputShaperTest, KeyValidation) {
-  PatternConfig ei = Shaper(PatternMethod::kEi);
+  PatternConfig ei = Shaper("ei");
   for (double v : {0.0, 1.0, -0.1}) {
     ei.vibration_tolerance = v;
     EXPECT_EQ(FieldOf(ei), "vibration_tolerance") << v;
   }
-  for (double zeta : {-0.01, 1.0}) EXPECT_EQ(FieldOf(Shaper(PatternMethod::kZv, zeta)), "design_damping_ratio");
-  EXPECT_EQ(FieldOf(Shaper(PatternMethod::kMethod1, 0.05)), "design_damping_ratio");
-  EXPECT_EQ(FieldOf(Shaper(PatternMethod::kUmZv, 0.9)), "design_damping_ratio");
-  PatternConfig several = Shaper(PatternMethod::kZv);
+  for (double zeta : {-0.01, 1.0}) EXPECT_EQ(FieldOf(Shaper("zv", zeta)), "design_damping_ratio");
+  EXPECT_EQ(FieldOf(Shaper("1", 0.05)), "design_damping_ratio");
+  EXPECT_EQ(FieldOf(Shaper("um_zv", 0.9)), "design_damping_ratio");
+  PatternConfig several = Shaper("zv");
   several.frequencies_hz = {25.0, 0.0};
   EXPECT_EQ(FieldOf(several), "frequencies_hz[1]");
-  PatternConfig m4 = Shaper(PatternMethod::kMethod4);
+  PatternConfig m4 = Shaper("4");
   m4.t1_s = 0.004;  // below T/6 at 25 Hz (6.67 ms), above it at 50 Hz (3.33 ms)
   m4.frequencies_hz = {25.0, 50.0};
   EXPECT_EQ(FieldOf(m4), "t1_s");

@@ -8,13 +8,14 @@
 #include <gtest/gtest.h>
 
 #include "controller/grid_realization.h"
+#include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-StepPattern Pattern(PatternMethod method, PatternMode mode = PatternMode::kBoth) {
+StepPattern Pattern(const std::string& method, PatternMode mode = PatternMode::kBoth) {
   PatternConfig config;
   config.method = method;
   config.mode = mode;
@@ -38,7 +39,7 @@ double GridResidual(const CommandTrajectory& c, double frequency_hz) {
 // Tests that an acc phase reaches the speed and runs the steps in para. 49's order: at the
 // start SR1, SR2, steady; at the end steady, SR2, SR1.
 TEST(LinearAccDecTest, AccelPhaseRunsStepsInPatentOrder) {
-  const StepPattern p = Pattern(PatternMethod::kMethod3);
+  const StepPattern p = Pattern("3");
   const double a = 1.6667;
   const IdealProfile phase = AccelPhase(0.5, a, p);
   ASSERT_EQ(phase.segments.size(), 5u);
@@ -55,7 +56,7 @@ TEST(LinearAccDecTest, AccelPhaseRunsStepsInPatentOrder) {
 // Tests para. 50: lowering the speed shortens the steady acceleration first, then step 2,
 // then step 1 (method 3 at both ends: steps gain (K1 + 1 - K1) a t1 each).
 TEST(LinearAccDecTest, ShorteningOrderIsSteadyThenStep2ThenStep1) {
-  const StepPattern p = Pattern(PatternMethod::kMethod3);
+  const StepPattern p = Pattern("3");
   const double a = 1.0;
   const double t1 = p.step1.duration_s;
   const double steps_speed = 2 * a * t1;  // (K1 + (1-K1)) a t1 per end
@@ -79,14 +80,14 @@ TEST(LinearAccDecTest, ShorteningOrderIsSteadyThenStep2ThenStep1) {
 // allows it and a lowered peak speed where it does not.
 TEST(LinearAccDecTest, RestToRestCoversTheDistance) {
   for (double distance : {0.2, 0.05, 0.01}) {
-    const IdealProfile profile = PlanRestToRest(distance, 0.5, 1.6667, Pattern(PatternMethod::kMethod1));
+    const IdealProfile profile = PlanRestToRest(distance, 0.5, 1.6667, Pattern("1"));
     EXPECT_NEAR(profile.Distance(), distance, 1e-13 * distance);
     EXPECT_EQ(profile.VelocityAt(profile.Duration() + 1.0), 0.0);
   }
 }
 
 struct GridCase {
-  PatternMethod method;
+  std::string method;
   PatternMode mode;
   double period_s;
   double distance_m;
@@ -116,19 +117,19 @@ TEST_P(GridRealizationTest, KeepsDistanceRestAndTheVibrationZero) {
 
 INSTANTIATE_TEST_SUITE_P(
     Grid, GridRealizationTest,
-    ::testing::Values(GridCase{PatternMethod::kMethod1, PatternMode::kBoth, 1e-3, 0.213},
-                      GridCase{PatternMethod::kMethod2, PatternMode::kBoth, 1e-3, 0.213},
-                      GridCase{PatternMethod::kMethod3, PatternMode::kBoth, 1e-3, 0.2},
-                      GridCase{PatternMethod::kMethod4, PatternMode::kBoth, 1e-3, 0.123},
-                      GridCase{PatternMethod::kMethod2, PatternMode::kBoth, 3e-4, 0.1},
-                      GridCase{PatternMethod::kMethod3, PatternMode::kStart, 1e-3, 0.213},
-                      GridCase{PatternMethod::kNone, PatternMode::kOff, 1e-3, 0.0071},
-                      GridCase{PatternMethod::kMethod2, PatternMode::kBoth, 1e-3, 0.03}));
+    ::testing::Values(GridCase{"1", PatternMode::kBoth, 1e-3, 0.213},
+                      GridCase{"2", PatternMode::kBoth, 1e-3, 0.213},
+                      GridCase{"3", PatternMode::kBoth, 1e-3, 0.2},
+                      GridCase{"4", PatternMode::kBoth, 1e-3, 0.123},
+                      GridCase{"2", PatternMode::kBoth, 3e-4, 0.1},
+                      GridCase{"3", PatternMode::kStart, 1e-3, 0.213},
+                      GridCase{"none", PatternMode::kOff, 1e-3, 0.0071},
+                      GridCase{"2", PatternMode::kBoth, 1e-3, 0.03}));
 
 // Tests that a grid-aligned pattern (method 1 at 1 ms: steps at multiples of 20 ms) is
 // carried exactly: the velocity at every tick equals the ideal profile's.
 TEST(LinearAccDecTest, GridAlignedPatternIsCarriedExactly) {
-  const StepPattern p = Pattern(PatternMethod::kMethod1);
+  const StepPattern p = Pattern("1");
   const double a = 0.5 / 0.3;
   const CommandTrajectory command = SampleOnTicks(0.2, 0.5, a, p, 1e-3, 25.0);
   const IdealProfile ideal = PlanRestToRest(0.2, 0.5, a, p);

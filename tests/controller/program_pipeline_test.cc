@@ -164,7 +164,7 @@ TEST(ProgramPipelineTest, NoMotionIsLost) {
         c.post_interp.type = PostInterpType::kProfileTable;
         c.post_interp.moving_average_s = 0.032;
       } else if (variant == 3) {
-        c.pattern.method = PatternMethod::kMethod2;
+        c.pattern.method = "2";
         c.pattern.realization = PatternRealization::kProfileTable;
         c.post_interp.type = PostInterpType::kProfileTable;
         c.post_interp.table = {0.2, 0.5, 0.3};
@@ -184,7 +184,7 @@ TEST(ProgramPipelineTest, TableRealizationMatchesSteps) {
   ControllerConfig c = Config();
   c.feed_mm_min = 30000;
   c.accel_time_s = 0.3;
-  c.pattern.method = PatternMethod::kMethod1;
+  c.pattern.method = "1";
   ControllerConfig table = c;
   table.pattern.realization = PatternRealization::kProfileTable;
   MoveConfig move;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "common/validation_error.h"
+#include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
@@ -15,7 +16,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kT = 0.040;  // 25 Hz
 
-PatternConfig Config(PatternMethod method) {
+PatternConfig Config(const std::string& method) {
   PatternConfig config;
   config.method = method;
   config.frequency_hz = 25.0;
@@ -35,11 +36,11 @@ double PhasePlaneResidual(const StepPattern& p) {
 
 // Tests that method 1 is a/2 for T/2 (para. 38) and method 2 is a, 0 for T/6 each (para. 40).
 TEST(VibrationSuppressionPatternTest, Methods1And2MatchThePatent) {
-  const StepPattern m1 = MakeStepPattern(Config(PatternMethod::kMethod1));
+  const StepPattern m1 = MakeStepPattern(Config("1"));
   EXPECT_DOUBLE_EQ(m1.step1.duration_s, kT / 2);
   EXPECT_DOUBLE_EQ(m1.step1.ratio, 0.5);
   EXPECT_DOUBLE_EQ(m1.step2.duration_s, 0.0);
-  const StepPattern m2 = MakeStepPattern(Config(PatternMethod::kMethod2));
+  const StepPattern m2 = MakeStepPattern(Config("2"));
   EXPECT_DOUBLE_EQ(m2.step1.duration_s, kT / 6);
   EXPECT_DOUBLE_EQ(m2.step1.ratio, 1.0);
   EXPECT_DOUBLE_EQ(m2.step2.duration_s, kT / 6);
@@ -62,7 +63,7 @@ TEST(VibrationSuppressionPatternTest, Method4EndsAreMethods1And2) {
 }
 
 struct PatternCase {
-  PatternMethod method;
+  std::string method;
   double k1;
   double t1_s;
 };
@@ -84,16 +85,16 @@ TEST_P(PatternZeroTest, LeavesNoVibrationAtTheDesignFrequency) {
 
 INSTANTIATE_TEST_SUITE_P(
     Methods, PatternZeroTest,
-    ::testing::Values(PatternCase{PatternMethod::kMethod1, 0, 0}, PatternCase{PatternMethod::kMethod2, 0, 0},
-                      PatternCase{PatternMethod::kMethod3, 0.55, 0}, PatternCase{PatternMethod::kMethod3, 0.675, 0},
-                      PatternCase{PatternMethod::kMethod3, 0.8, 0}, PatternCase{PatternMethod::kMethod3, 0.95, 0},
-                      PatternCase{PatternMethod::kMethod4, 0, 0.001}, PatternCase{PatternMethod::kMethod4, 0, 0.003},
-                      PatternCase{PatternMethod::kMethod4, 0, 0.005}, PatternCase{PatternMethod::kMethod4, 0, kT / 6}));
+    ::testing::Values(PatternCase{"1", 0, 0}, PatternCase{"2", 0, 0},
+                      PatternCase{"3", 0.55, 0}, PatternCase{"3", 0.675, 0},
+                      PatternCase{"3", 0.8, 0}, PatternCase{"3", 0.95, 0},
+                      PatternCase{"4", 0, 0.001}, PatternCase{"4", 0, 0.003},
+                      PatternCase{"4", 0, 0.005}, PatternCase{"4", 0, kT / 6}));
 
 // Tests that rounding step times to the patent's 0.1 ms units leaves the ~1% residual the
 // README warns about for method 2 (6.667 ms -> 6.7 ms), closed form |1 - e^{iwt} + e^{2iwt}|.
 TEST(VibrationSuppressionPatternTest, PatentResolutionRoundsMethod2) {
-  PatternConfig config = Config(PatternMethod::kMethod2);
+  PatternConfig config = Config("2");
   config.step_resolution_s = 1e-4;
   const StepPattern pattern = MakeStepPattern(config);
   EXPECT_DOUBLE_EQ(pattern.step1.duration_s, 0.0067);
@@ -115,7 +116,7 @@ TEST(VibrationSuppressionPatternTest, DampedResidualOfAZvPairIsZero) {
 
 // Tests that out-of-range parameters are rejected naming the field.
 TEST(VibrationSuppressionPatternTest, ValidateNamesTheField) {
-  PatternConfig config = Config(PatternMethod::kMethod3);
+  PatternConfig config = Config("3");
   config.k1 = 0.4;
   try {
     config.validate();
@@ -123,7 +124,7 @@ TEST(VibrationSuppressionPatternTest, ValidateNamesTheField) {
   } catch (const ValidationError& e) {
     EXPECT_EQ(e.field(), "k1");
   }
-  config = Config(PatternMethod::kMethod4);
+  config = Config("4");
   config.t1_s = kT / 6 * 1.01;
   try {
     config.validate();
@@ -131,7 +132,7 @@ TEST(VibrationSuppressionPatternTest, ValidateNamesTheField) {
   } catch (const ValidationError& e) {
     EXPECT_EQ(e.field(), "t1_s");
   }
-  config = Config(PatternMethod::kMethod1);
+  config = Config("1");
   config.frequency_hz = 0.0;
   EXPECT_THROW(config.validate(), ValidationError);
 }
