@@ -84,12 +84,16 @@ std::vector<std::string> ShaperKeys() {
 std::vector<std::string> BuiltInShaperKeys() { return TheRegistry().built_in_keys; }
 
 const ShaperEntry& FindShaper(const std::string& key) {
-  const std::vector<const ShaperEntry*> entries = Shapers();
-  std::string keys;
-  for (const ShaperEntry* entry : entries) {
-    if (entry->key == key) return *entry;
-    keys += (keys.empty() ? "" : ", ") + entry->key;
+  {
+    // Every command generation asks: no copies, no strings built on the way.
+    Registry& registry = TheRegistry();
+    std::lock_guard<std::mutex> lock(registry.mutex);
+    for (const ShaperEntry* entry : registry.ordered) {
+      if (entry->key == key) return *entry;
+    }
   }
+  std::string keys;
+  for (const ShaperEntry* entry : Shapers()) keys += (keys.empty() ? "" : ", ") + entry->key;
   throw ValidationError("method", "is not a shaper of the registry (got '" + key + "'); allowed: " + keys);
 }
 

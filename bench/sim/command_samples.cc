@@ -7,26 +7,31 @@ namespace shapebench::bench {
 namespace {
 
 // One axis' column of the samples, as MultiAxisCommand's velocity_m_s, accel_m_s2 and
-// Positions compute them.
+// Positions compute them. (Plain pointers and a local count: the stores are doubles, and
+// a double member reached through `s` could alias them for all the compiler knows.)
 void SampleAxis(const controller::MultiAxisCommand& command, int axis, CommandSamples* s) {
   const controller::CommandTrajectory& trajectory = command.axes[axis];
   const std::vector<double>& v = trajectory.velocity_m_s;
-  s->velocity[0](axis) = v[0];
+  const std::size_t n = s->n;
+  Eigen::Vector3d* velocity = s->velocity.data();
+  Eigen::Vector3d* accel = s->accel.data();
+  Eigen::Vector3d* positions = s->positions.data();
+  velocity[0](axis) = v[0];
   double position = command.start_m(axis);
   if (std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); })) {
     // An axis that does not move: the same sums, of zeros (the first turns -0 into +0).
     position += 0.0;
-    for (std::size_t k = 1; k <= s->n; ++k) {
-      s->velocity[k](axis) = 0.0;
-      s->positions[k](axis) = position;
+    for (std::size_t k = 1; k <= n; ++k) {
+      velocity[k](axis) = 0.0;
+      positions[k](axis) = position;
     }
     return;
   }
-  for (std::size_t k = 1; k <= s->n; ++k) {
-    s->velocity[k](axis) = v[k];
-    s->accel[k](axis) = trajectory.accel_m_s2(k);
+  for (std::size_t k = 1; k <= n; ++k) {
+    velocity[k](axis) = v[k];
+    accel[k](axis) = trajectory.accel_m_s2(k);
     position += trajectory.increment_m(k);
-    s->positions[k](axis) = position;
+    positions[k](axis) = position;
   }
 }
 
@@ -41,12 +46,14 @@ CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
   for (int axis = 0; axis < controller::kNumAxes; ++axis) SampleAxis(command, axis, &s);
   // Largest squared norms, their roots below: the root of the largest square is the
   // largest norm (norm() is the root of squaredNorm(), the root is monotone).
+  double max_accel_sq = 0.0;
+  double max_speed_sq = 0.0;
   for (std::size_t k = 1; k <= s.n; ++k) {
-    s.max_accel_m_s2 = std::max(s.max_accel_m_s2, s.accel[k].squaredNorm());
-    s.max_speed_m_s = std::max(s.max_speed_m_s, s.velocity[k].squaredNorm());
+    max_accel_sq = std::max(max_accel_sq, s.accel[k].squaredNorm());
+    max_speed_sq = std::max(max_speed_sq, s.velocity[k].squaredNorm());
   }
-  s.max_accel_m_s2 = std::sqrt(s.max_accel_m_s2);
-  s.max_speed_m_s = std::sqrt(s.max_speed_m_s);
+  s.max_accel_m_s2 = std::sqrt(max_accel_sq);
+  s.max_speed_m_s = std::sqrt(max_speed_sq);
   std::size_t last_moving = 0;
   for (std::size_t k = s.n + 1; k-- > 0;) {
     const Eigen::Vector3d& v = s.velocity[k];
