@@ -31,7 +31,7 @@ test: build
 clean:
 	@rm -rf $(BUILD_DIR)
 
-# Issue 7. `make test-sanitize`: the whole suite under AddressSanitizer and
+# `make test-sanitize`: the whole suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer in its own build directory (-O1: the suite's runs stay fast,
 # the build stays within CI's budget; any report fails the test that triggered it).
 # `make fuzz`: each libFuzzer target (clang) for FUZZ_SECONDS, seeded from fuzz/corpus/.
@@ -57,7 +57,7 @@ fuzz:
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 	@fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
-# Issue 6. `make bench`: Google Benchmark over benchmarks/cases/ (case 1 one mode, case 2
+# `make bench`: Google Benchmark over benchmarks/cases/ (case 1 one mode, case 2
 # the moving column with the servo, case 3 a 1000-point sweep, CVODE's choices at equal
 # accuracy), the Python baselines on case 1 (scripts/baseline.py; needs python3-scipy and
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak

@@ -1,4 +1,4 @@
-// `make bench` (issue 6): Google Benchmark over the fixed cases of benchmarks/cases/.
+// `make bench`: Google Benchmark over the fixed cases of benchmarks/cases/.
 //
 //   case 1  one undamped 25 Hz mode, 100 mm at 6000 mm/min, method 1, 1 ms (case1.yaml)
 //   case 2  the moving-column machine (X, Y, Z), servo drive, the pocket corner

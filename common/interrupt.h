@@ -1,4 +1,4 @@
-// SIGINT and SIGTERM (issue 7): an interrupted command leaves complete files only.
+// SIGINT and SIGTERM: an interrupted command leaves complete files only.
 //
 // Files are written only inside deferred sections (DeferInterrupts): the output of `run`,
 // `sensitivity`, `check --junit`, `merge`, and a whole sweep. A signal outside one ends

@@ -21,7 +21,7 @@ struct ServoConfig {
 };
 
 // kinematic: the driven point follows the command exactly, the command's acceleration
-// held over each interpolation period (SPEC section 3).
+// held over each interpolation period (JP2551868B2, seed 004: the excitation the patent analyses).
 struct DriveConfig {
   DriveType type = DriveType::kKinematic;
   ServoConfig servo;  // used when type is kServo

@@ -20,7 +20,7 @@ namespace shapebench::model {
 enum class IntegratorMethod { kCvode, kExact, kAuto };
 enum class CvodeLmm { kAdams, kBdf };
 
-// How CvodeIntegrator drives CVODE. The defaults are the measured choices (issue 6,
+// How CvodeIntegrator drives CVODE. The defaults are the measured choices (docs/performance.md,
 // README "Performance"); the others exist to measure them against (benchmarks/).
 enum class CvodeInputMode {
   // Integrate across ticks while the held acceleration stays the same (the master says for

@@ -1,4 +1,4 @@
-// Assembly of the lumped mass-spring-damper form (SPEC section 3) into second-order
+// Assembly of the lumped mass-spring-damper form (docs/scenario-reference.md) into second-order
 // matrices, shared by BuildPlant and AnalyzeModes.
 #pragma once
 

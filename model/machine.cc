@@ -1,4 +1,4 @@
-// BuildPlant and AnalyzeModes for both machine forms (SPEC section 3).
+// BuildPlant and AnalyzeModes for both machine forms (machine.h).
 #include "model/machine.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Machine models: the modal form and the lumped mass-spring-damper form (SPEC section 3),
+// Machine models: the modal form and the lumped mass-spring-damper form (docs/scenario-reference.md),
 // both turned into a LinearPlant; modal analysis of either.
 #pragma once
 

@@ -1,6 +1,6 @@
 // The machine as the co-simulation sees it: a structural model per axis (X, Y, Z; an
 // axis without one is rigid), uncoupled (the lumped forms have no rotation), each with
-// its drive. SPEC section 3's single forms (`modes:` or `bodies:`) model one axis.
+// its drive. The single forms (`modes:` or `bodies:`) model one axis.
 #pragma once
 
 #include <array>
@@ -19,16 +19,16 @@ constexpr int kNumAxes = 3;  // x, y, z
 const char* AxisName(int axis);  // "x", "y", "z"
 
 struct MultiAxisMachineConfig {
-  // Default: SPEC's default machine (what a scenario without `machine:` runs), the modal
+  // Default: the default machine (what a scenario without `machine:` runs), the modal
   // form's default (one 25 Hz mode) on Y, as a single form. Clear `axes` to build another.
   std::array<std::optional<MachineConfig>, kNumAxes> axes{std::nullopt, MachineConfig{},
                                                           std::nullopt};
-  // The axis `move:` runs along and SPEC's modes report refers to; Y by default (the
+  // The axis `move:` runs along and the modes report refers to; Y by default (the
   // moving column's axis in the patent).
   int driven_axis = 1;
   // The stroke per axis, [min, max] in metres (machine.stroke in mm); nullopt: unlimited.
   std::array<std::optional<std::array<double, 2>>, kNumAxes> stroke_m;
-  // Read from SPEC's single form (`modes:` or `bodies:` with an optional `axis:`): the one
+  // Read from the single form (`modes:` or `bodies:` with an optional `axis:`): the one
   // axis' fields are then named as in that form ("modes[0].gain", not "axes.y.modes[0].gain").
   bool single_form = true;
   // Throws ValidationError naming e.g. "axes.y.modes[0].frequency_hz" (or, for a

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Benchmark case 1 the way a user would without shapebench (issue 6, `make bench`).
+"""Benchmark case 1 the way a user would without shapebench (`make bench`).
 
 Input: the JSON `shapebench_benchmarks --export_case1=FILE` writes: the one mode
 (frequency, damping, gain), the interpolation period, the output substeps per period, the

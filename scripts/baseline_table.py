@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The one table of `make bench` (issue 6): every figure of one run of the benchmarks, the
+"""The one table of `make bench`: every figure of one run of the benchmarks, the
 baselines and the memory measurement, as time per run, runs per second and the ratio to
 shapebench's exact path on the same case (and, for the sweep, the same number of jobs).
 

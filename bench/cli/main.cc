@@ -1,4 +1,4 @@
-// shapebench command line (SPEC section 2): run, check, modes, pattern, sensitivity,
+// shapebench command line: run, check, modes, pattern, sensitivity,
 // sweep, merge.
 // Exit codes: 0 ok; 1 a check failed; 2 bad input, usage or unwritable output;
 // 3 the solver failed. Errors go to stderr as "error: ...".
@@ -208,7 +208,7 @@ struct ModesArgs {
 };
 
 int ModesCommand(const ModesArgs& args) {
-  // Every modelled axis; the static deflection SPEC names is the driven axis'.
+  // Every modelled axis; the static deflection reported is the driven axis'.
   const model::MultiAxisMachineConfig machine =
       LoadMachineAxes(args.file, ParseOverrides(args.sets));
   const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(machine);

@@ -1,5 +1,5 @@
 // A configuration error located in the input: a YAML file position or a --set option.
-// what() is "FILE:LINE:COL: key.path: message" (SPEC section 2); the CLI prints
+// what() is "FILE:LINE:COL: key.path: message"; the CLI prints
 // "error: " + what() and exits 2.
 #pragma once
 

@@ -44,7 +44,7 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern,
     if (config.frequencies_hz.empty()) {
       throw frequencies->Error("expected at least one frequency, e.g. [25, 60]");
     }
-    // Guard rail (issue 7): the convolved shaper has the product of the shapers' impulse
+    // Guard rail (docs/reliability.md): the convolved shaper has the product of the shapers' impulse
     // counts (4^10 for ten ZVDDs: minutes and gigabytes to realize).
     constexpr std::size_t kMaxFrequencies = 8;
     if (config.frequencies_hz.size() > kMaxFrequencies) {

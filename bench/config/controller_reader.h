@@ -1,4 +1,4 @@
-// The `controller:` and `move:` mappings (SPEC section 3). Physical checks are left to
+// The `controller:` and `move:` mappings. Physical checks are left to
 // ControllerConfig::validate() and MoveConfig::validate().
 #pragma once
 

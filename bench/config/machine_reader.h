@@ -1,4 +1,4 @@
-// The `machine:` mapping (SPEC section 3): the modal form (`modes`) or the lumped
+// The `machine:` mapping: the modal form (`modes`) or the lumped
 // mass-spring-damper form (`bodies`, `elements`, ...) for one axis, or the multi-axis form
 // `axes: {x: FORM, y: FORM, z: FORM}`. Physical checks are left to validate().
 #pragma once

@@ -1,4 +1,4 @@
-// --set KEY=VALUE: one key of the input replaced from the command line (SPEC section 2).
+// --set KEY=VALUE: one key of the input replaced from the command line.
 #pragma once
 
 #include <string>

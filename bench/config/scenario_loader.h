@@ -1,4 +1,4 @@
-// YAML -> Scenario (SPEC section 3) with exact error reporting: every error is a
+// YAML -> Scenario with exact error reporting: every error is a
 // ConfigError located at FILE:LINE:COL (or --set:N:1 for a --set value) with the key
 // path, e.g. "scen.yaml:7:19: controller.pattern.k1: must be in [0.5, 1]".
 #pragma once
@@ -36,7 +36,7 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
 // through a scalar); the keys and values themselves are not validated.
 YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides);
 
-// `checks: {METRIC: {min: .., max: ..}, ...}` (SPEC section 4 metric names), in order.
+// `checks: {METRIC: {min: .., max: ..}, ...}` (MetricTable() names), in order.
 std::vector<Check> ReadChecks(const NodeReader& checks);
 
 // The `machine:` entry of a scenario (a mapping; a machine file has been spliced in

@@ -1,6 +1,6 @@
 // Sweep points that change only numbers of the machine's structure (the natural-period
 // sweep, robustness grids over damping, gain, mass, stiffness): set on a scenario loaded
-// once, instead of reading the YAML again for every point (issue 6: reading it was half of
+// once, instead of reading the YAML again for every point (reading it was half of
 // a point's time). The result is the scenario LoadScenario reads for the point, field for
 // field: the same number text read by the same rule (IsNumberText, then strtod), and the
 // same checks of the machine (MachineChecksPass). tests/bench/structure_numbers_test.cc

@@ -1,5 +1,5 @@
 // The `modes` command's report: natural frequencies, damping ratios and static
-// participation of the machine model (SPEC section 2), for every modelled axis.
+// participation of the machine model, for every modelled axis.
 #pragma once
 
 #include <ostream>
@@ -25,7 +25,7 @@ void PrintModesTable(std::ostream& out, const std::vector<model::AxisModes>& axe
 // driven axis).
 nlohmann::ordered_json ModesJson(const std::vector<model::AxisModes>& axes, int driven_axis);
 
-// One axis without axis names (SPEC section 2's original shape).
+// One axis without axis names (the original single-axis shape).
 void PrintModesTable(std::ostream& out, const model::ModalAnalysis& analysis);
 nlohmann::ordered_json ModesJson(const model::ModalAnalysis& analysis);
 

@@ -149,6 +149,7 @@ class CoSimulation {
   int width_ = 0;                  // outputs per substep in outputs_
   int deflection_at_ = 0;
   int tool_error_at_ = 0;
+  bool holds_ = false;           // the integrator integrates across held inputs (SameInput)
   std::size_t next_change_ = 0;  // the first tick after k whose acceleration differs from a_k
   RunAccumulator acc_;
   Eigen::Vector3d peak_axes_ = Eigen::Vector3d::Zero();
@@ -191,6 +192,7 @@ void CoSimulation::SetUpPlant() {
     integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_,
                                         std::max(samples_.max_accel_m_s2, 1e-12), samples_.max_speed_m_s);
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
+    holds_ = integrator_->UsesInputHolds();
   }
   rows_ = plant.num_outputs();
   width_ = rows_;
@@ -230,7 +232,7 @@ void CoSimulation::SetUpSampling() {
 // For how many periods from tick k on the held acceleration stays a_k (the tail's is
 // zero): an integrator that can (CVODE) integrates across those ticks (AdvancePeriod).
 long CoSimulation::SameInput(std::size_t k) {
-  if (!integrator_->UsesInputHolds()) return 1;
+  if (!holds_) return 1;
   if (k >= next_change_) {
     const Eigen::Vector3d& here = samples_.AccelAt(k);
     next_change_ = k + 1;

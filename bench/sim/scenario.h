@@ -1,4 +1,4 @@
-// A scenario: everything one run needs (SPEC section 3), already validated.
+// A scenario: everything one run needs (docs/scenario-reference.md), already validated.
 #pragma once
 
 #include <optional>
@@ -13,7 +13,7 @@
 
 namespace shapebench::bench {
 
-// A bound on one metric (SPEC section 4 names), e.g. peak_ratio: {max: 1.01}.
+// A bound on one metric (MetricTable() names), e.g. peak_ratio: {max: 1.01}.
 struct Check {
   std::string metric;
   std::optional<double> min;
@@ -31,7 +31,7 @@ struct OutputConfig {
   OutputDirection direction = OutputDirection::kAuto;
 };
 
-// Guard rails (issue 7), `limits:` in a scenario. A run whose simulated time (motion and
+// Guard rails (docs/reliability.md), `limits:` in a scenario. A run whose simulated time (motion and
 // the residual window) would exceed max_simulated_s, or whose command would exceed
 // max_ticks interpolation periods, is refused (exit 2) before anything is generated, from
 // a lower bound of its length (MinimumRunSeconds), and again on the generated command.

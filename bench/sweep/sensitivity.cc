@@ -79,7 +79,7 @@ Band BandAroundDesign(const std::function<double(double)>& residual, double leve
   if (!Inside(residual(start), level)) {
     // The sample nearest the design point that is inside, on a grid of kStep or finer.
     // At most a million samples (a huge ratio range must neither overflow the count nor
-    // take forever; issue 7).
+    // take forever).
     const long samples =
         std::max(2L, static_cast<long>(std::min(1e6, std::ceil((to - from) / kStep))) + 1);
     double best = -1.0;

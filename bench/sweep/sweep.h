@@ -1,4 +1,4 @@
-// A sweep file (SPEC section 2; issue 5): a base scenario and a grid of values over any
+// A sweep file (docs/sweeps.md): a base scenario and a grid of values over any
 // of its keys, the metrics to keep, the plots to draw and checks for every point.
 //
 //   name: natural_period                 # optional; default: the file's stem

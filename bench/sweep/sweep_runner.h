@@ -1,4 +1,4 @@
-// Running a sweep (SPEC section 2, issue 5): points on worker threads, results.csv
+// Running a sweep (docs/sweeps.md): points on worker threads, results.csv
 // streamed in point order, shards, resume after a kill, merging shards, and `check` on a
 // sweep.
 //

@@ -201,7 +201,7 @@ TEST(Cli, CheckWithoutChecksExits2) {
   EXPECT_FALSE(std::filesystem::exists(junit));
 }
 
-// Tests that `modes --json` has exactly the documented shape: SPEC's keys, each mode with
+// Tests that `modes --json` has exactly the documented shape: the documented keys, each mode with
 // its axis, and the static deflection per modelled axis (a single-form machine: Y only).
 TEST(Cli, ModesJsonShape) {
   const CliResult r = RunCli({"modes", DataPath("machines/two_modes.yaml"), "--json"}, kSourceDir);

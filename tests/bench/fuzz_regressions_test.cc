@@ -1,4 +1,4 @@
-// Every input the fuzz targets found (fuzz/regressions/TARGET/*, issue 7) goes through the
+// Every input the fuzz targets found (fuzz/regressions/TARGET/*) goes through the
 // target's body again (fuzz/fuzz_targets.h) and is accepted or refused with a located
 // error: no exception escapes, no invariant breaks (and, in the sanitized build, no
 // sanitizer report).

@@ -42,7 +42,7 @@ double Frequency(const model::MachineConfig& machine, int mode) {
 }
 
 // Tests that a single form with `axis: x` models X alone and drives it; without `axis` it
-// is Y, as SPEC's single forms always were.
+// is Y, as the single forms always were.
 TEST(MachineAxesLoader, SingleFormWithAxis) {
   ScratchDir dir;
   const model::MultiAxisMachineConfig on_x = LoadMachineAxes(

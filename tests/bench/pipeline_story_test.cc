@@ -1,4 +1,4 @@
-// Issue 3's oracles for the whole pipeline (program -> planner -> interpolation ->
+// The oracles for the whole pipeline (program -> planner -> interpolation ->
 // post-interpolation acc/dec -> drive -> machine): Fanuc's radial-error formulas on the
 // circle test, seed 000's tangential distribution, and the patent's pocket-corner story.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 7 through the built CLI: solver faults in one point of a sweep, SIGTERM/SIGINT
+// Reliability through the built CLI (docs/reliability.md): solver faults in one point of a sweep, SIGTERM/SIGINT
 // and resume, CSV-hostile error messages, guard rails (run length, trace decimation,
 // non-regular input files), gnuplot given hostile titles, paths relative to the file
 // that names them. The README's table "Faults and bad input" points here.

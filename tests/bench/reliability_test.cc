@@ -1,4 +1,4 @@
-// Issue 7 in process: CSV round trips of hostile fields, RunOrdered cancelled midway,
+// Reliability in process (docs/reliability.md): CSV round trips of hostile fields, RunOrdered cancelled midway,
 // deferred signals, the run-length bound, the trace stride, gnuplot quoting.
 #include <signal.h>
 

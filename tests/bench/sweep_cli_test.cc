@@ -1,4 +1,4 @@
-// `shapebench sweep`, `merge` and `check` on sweep files through the built CLI (issue 5,
+// `shapebench sweep`, `merge` and `check` on sweep files through the built CLI (docs/sweeps.md,
 // must-show 2 and 4): results.csv independent of --jobs, of sharding and of a kill and
 // restart; failing points recorded; plots; JUnit naming the point.
 #include <signal.h>

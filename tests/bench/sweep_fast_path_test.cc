@@ -1,4 +1,4 @@
-// What issue 6 changed in running a sweep's points (bench/sweep/sweep.cc RunPoint): the base
+// The fast path of running a sweep's points (bench/sweep/sweep.cc RunPoint): the base
 // scenario parsed once per thread (ParseCacheScope) and one command shared by the points
 // whose swept keys the controller does not read. A point's metrics must stay, bit for bit,
 // those of loading and running it on its own.

@@ -1,4 +1,4 @@
-// The integrators' fast paths of issue 6 against their plain step-by-step use:
+// The integrators' fast paths (docs/performance.md) against their plain step-by-step use:
 // integrator.method auto, AdvancePeriod (the exact integrator's whole-period products;
 // CVODE integrating across ticks where the input is held), SelectOutputs and
 // OutputRowIsZero, CVODE memory reused across runs, the exact discretisation kept per thread.

@@ -249,7 +249,7 @@ TEST(MultiAxisMachine, ValidationNamesTheAxis) {
   }
 }
 
-// Tests that the default machine is SPEC's default: the modal form's default on Y.
+// Tests that the default machine is the documented default: the modal form's default on Y.
 TEST(MultiAxisMachine, DefaultIsSpecDefault) {
   const MultiAxisMachineConfig machine;
   EXPECT_NO_THROW(machine.validate());
