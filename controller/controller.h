@@ -15,6 +15,7 @@
 #include "controller/short_block_clamp.h"
 #include "controller/stroke_end.h"
 #include "controller/vibration_suppression_pattern.h"
+#include "common/field_list.h"
 
 namespace shapebench::controller {
 
@@ -33,6 +34,19 @@ struct PostInterpConfig {
   int max_table_length = 64;  // alpha_0 .. alpha_63 (para. 58)
   Distribution distribution = Distribution::kPerAxis;
   void validate() const;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("type", &type, Choices<PostInterpType>{{"none", PostInterpType::kNone},
+                                                    {"exponential", PostInterpType::kExponential},
+                                                    {"profile_table", PostInterpType::kProfileTable}});
+    a->Visit("time_constant_s", &time_constant_s);
+    a->Visit("table", &table);
+    a->Visit("moving_average_s", &moving_average_s);
+    a->Visit("max_table_length", &max_table_length);
+    a->Visit("distribution", &distribution,
+             Choices<Distribution>{{"per_axis", Distribution::kPerAxis}, {"tangential", Distribution::kTangential}});
+  }
 };
 
 struct ControllerConfig {
@@ -56,12 +70,32 @@ struct ControllerConfig {
   // The steady acceleration of linear acc/dec: feed / accel_time (a one-period ramp for
   // accel_time_s = 0, the fastest the tick grid carries).
   double accel_m_s2() const;
+
+  // The sections (pattern, ...) are read by their own readers (bench/config/field_reader.h).
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("period_s", &period_s);
+    a->Visit("feed_mm_min", &feed_mm_min);
+    a->Visit("accel_time_s", &accel_time_s);
+    a->Visit("rapid_feed_mm_min", &rapid_feed_mm_min);
+    a->Visit("corner_velocity_change_mm_min", &corner_velocity_change_mm_min);
+    a->Visit("pattern", &pattern);
+    a->Visit("post_interp", &post_interp);
+    a->Visit("short_block", &short_block);
+    a->Visit("stroke_end", &stroke_end);
+  }
 };
 
 struct MoveConfig {
   double distance_mm = 100.0;  // signed: negative moves the other way
   int axis = -1;               // 0..2; -1: the machine's driven axis (the bench decides)
   void validate() const;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("distance_mm", &distance_mm);
+    a->Visit("axis", &axis, Choices<int>{{"x", 0}, {"y", 1}, {"z", 2}});
+  }
 };
 
 // The one-block program `move:` stands for: a straight move from the origin along `axis`.

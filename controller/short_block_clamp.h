@@ -15,6 +15,7 @@
 
 #include <string>
 #include <vector>
+#include "common/field_list.h"
 
 namespace shapebench::controller {
 
@@ -30,6 +31,21 @@ struct ShortBlockConfig {
   double scale = 0.5;                // mode scale
   double preset_feed_mm_min = 600.0; // mode preset
   void validate() const;             // throws ValidationError naming the field
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("mode", &mode, Choices<ShortBlockMode>{{"off", ShortBlockMode::kOff},
+                                                    {"ratio", ShortBlockMode::kRatio},
+                                                    {"length", ShortBlockMode::kLength},
+                                                    {"scale", ShortBlockMode::kScale},
+                                                    {"preset", ShortBlockMode::kPreset}});
+    a->Visit("ratio_line", &ratio_line);
+    a->Visit("ratio_arc", &ratio_arc);
+    a->Visit("min_ratio_line", &min_ratio_line);
+    a->Visit("min_ratio_arc", &min_ratio_arc);
+    a->Visit("scale", &scale);
+    a->Visit("preset_feed_mm_min", &preset_feed_mm_min);
+  }
 };
 
 struct ShortBlockFeed {

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "controller/path_geometry.h"
+#include "common/field_list.h"
 
 namespace shapebench::controller {
 
@@ -20,6 +21,13 @@ struct StrokeEndConfig {
   int look_ahead_blocks = 15;          // pre-read blocks the check sees
   double minute_feed_mm_min = 100.0;   // the speed near the stroke end
   void validate() const;               // throws ValidationError naming the field
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("enabled", &enabled, Choices<bool>{{"true", true}, {"false", false}});
+    a->Visit("look_ahead_blocks", &look_ahead_blocks);
+    a->Visit("minute_feed_mm_min", &minute_feed_mm_min);
+  }
 };
 
 // Per axis, [min, max] in metres; nullopt: no stroke limit on that axis.

@@ -1,6 +1,8 @@
 // The drive between command and plant, one per axis.
 #pragma once
 
+#include "common/field_list.h"
+
 namespace shapebench::model {
 
 enum class DriveType { kKinematic, kServo };
@@ -18,6 +20,15 @@ struct ServoConfig {
   double velocity_loop_hz = 200.0;
   double motor_mass_kg = 40.0;  // rotor and screw inertia reflected to the axis
   void validate() const;        // throws ValidationError naming the field
+
+  // The servo's keys sit beside `type` in the `drive:` mapping.
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("position_gain", &position_gain_1_s);
+    a->Visit("velocity_feedforward", &velocity_feedforward);
+    a->Visit("velocity_loop_hz", &velocity_loop_hz);
+    a->Visit("motor_mass_kg", &motor_mass_kg);
+  }
 };
 
 // kinematic: the driven point follows the command exactly, the command's acceleration
@@ -26,6 +37,10 @@ struct DriveConfig {
   DriveType type = DriveType::kKinematic;
   ServoConfig servo;  // used when type is kServo
   void validate() const;
+
+  static Choices<DriveType> TypeChoices() {
+    return {{"kinematic", DriveType::kKinematic}, {"servo", DriveType::kServo}};
+  }
 };
 
 }  // namespace shapebench::model

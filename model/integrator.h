@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "model/linear_plant.h"
+#include "common/field_list.h"
 
 namespace shapebench::model {
 
@@ -75,6 +76,18 @@ struct IntegratorConfig {
   int output_substeps = 0;      // samples per interpolation period; 0 = automatic
   CvodeTuning tuning;           // not a scenario key: what the benchmarks compare
   void validate() const;        // throws ValidationError naming the field
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("method", &method, Choices<IntegratorMethod>{{"cvode", IntegratorMethod::kCvode},
+                                                          {"exact", IntegratorMethod::kExact},
+                                                          {"auto", IntegratorMethod::kAuto}});
+    a->Visit("rtol", &rtol);
+    a->Visit("atol_scale", &atol_scale);
+    a->Visit("lmm", &lmm, Choices<CvodeLmm>{{"adams", CvodeLmm::kAdams}, {"bdf", CvodeLmm::kBdf}});
+    a->Visit("max_num_steps", &max_num_steps);
+    a->Visit("output_substeps", &output_substeps);
+  }
 };
 
 struct IntegratorStats {

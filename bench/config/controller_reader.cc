@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/config/field_reader.h"
 #include "controller/program_builder.h"
 #include "controller/shaper_registry.h"
 
@@ -78,92 +79,23 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern,
   return config;
 }
 
-namespace {
-
-controller::PostInterpConfig ReadPostInterp(const NodeReader& post_interp) {
-  post_interp.ExpectMap({"type", "time_constant_s", "table", "moving_average_s",
-                         "max_table_length", "distribution"});
-  controller::PostInterpConfig config;
-  post_interp.Read<PostInterpType>("type",
-                                   {{"none", PostInterpType::kNone},
-                                    {"exponential", PostInterpType::kExponential},
-                                    {"profile_table", PostInterpType::kProfileTable}},
-                                   &config.type);
-  post_interp.Read("time_constant_s", &config.time_constant_s);
-  if (auto table = post_interp.Child("table")) {
-    for (const NodeReader& alpha : table->Elements()) config.table.push_back(alpha.AsNumber());
-  }
-  post_interp.Read("moving_average_s", &config.moving_average_s);
-  post_interp.Read("max_table_length", &config.max_table_length);
-  post_interp.Read<controller::Distribution>(
-      "distribution",
-      {{"per_axis", controller::Distribution::kPerAxis},
-       {"tangential", controller::Distribution::kTangential}},
-      &config.distribution);
-  return config;
-}
-
-controller::ShortBlockConfig ReadShortBlock(const NodeReader& node) {
-  node.ExpectMap({"mode", "ratio_line", "ratio_arc", "min_ratio_line", "min_ratio_arc", "scale",
-                  "preset_feed_mm_min"});
-  controller::ShortBlockConfig config;
-  node.Read<controller::ShortBlockMode>("mode",
-                                        {{"off", controller::ShortBlockMode::kOff},
-                                         {"ratio", controller::ShortBlockMode::kRatio},
-                                         {"length", controller::ShortBlockMode::kLength},
-                                         {"scale", controller::ShortBlockMode::kScale},
-                                         {"preset", controller::ShortBlockMode::kPreset}},
-                                        &config.mode);
-  node.Read("ratio_line", &config.ratio_line);
-  node.Read("ratio_arc", &config.ratio_arc);
-  node.Read("min_ratio_line", &config.min_ratio_line);
-  node.Read("min_ratio_arc", &config.min_ratio_arc);
-  node.Read("scale", &config.scale);
-  node.Read("preset_feed_mm_min", &config.preset_feed_mm_min);
-  return config;
-}
-
-controller::StrokeEndConfig ReadStrokeEnd(const NodeReader& node) {
-  node.ExpectMap({"enabled", "look_ahead_blocks", "minute_feed_mm_min"});
-  controller::StrokeEndConfig config;
-  node.Read<bool>("enabled", {{"true", true}, {"false", false}}, &config.enabled);
-  node.Read("look_ahead_blocks", &config.look_ahead_blocks);
-  node.Read("minute_feed_mm_min", &config.minute_feed_mm_min);
-  return config;
-}
-
-}  // namespace
+void ReadSection(const NodeReader& node, controller::PatternConfig* config) { *config = ReadPattern(node); }
 
 controller::ControllerConfig ReadController(const NodeReader& controller) {
-  controller.ExpectMap(
-      {"period_s", "feed_mm_min", "accel_time_s", "rapid_feed_mm_min",
-       "corner_velocity_change_mm_min", "pattern", "post_interp", "short_block", "stroke_end"});
   controller::ControllerConfig config;
-  controller.Read("period_s", &config.period_s);
-  controller.Read("feed_mm_min", &config.feed_mm_min);
-  controller.Read("accel_time_s", &config.accel_time_s);
-  controller.Read("rapid_feed_mm_min", &config.rapid_feed_mm_min);
+  ReadFields(controller, &config);
   for (const char* key : {"feed_mm_min", "rapid_feed_mm_min"}) {
     const auto node = controller.Child(key);
     if (node && node->AsNumber() > controller::kMaxFeedMmMin) {
       throw node->Error("must be at most 1000000 (mm/min, 1 km/min), got " + node->node().Scalar());
     }
   }
-  controller.Read("corner_velocity_change_mm_min", &config.corner_velocity_change_mm_min);
-  if (auto pattern = controller.Child("pattern")) config.pattern = ReadPattern(*pattern);
-  if (auto post_interp = controller.Child("post_interp")) {
-    config.post_interp = ReadPostInterp(*post_interp);
-  }
-  if (auto short_block = controller.Child("short_block")) config.short_block = ReadShortBlock(*short_block);
-  if (auto stroke_end = controller.Child("stroke_end")) config.stroke_end = ReadStrokeEnd(*stroke_end);
   return config;
 }
 
 controller::MoveConfig ReadMove(const NodeReader& move) {
-  move.ExpectMap({"distance_mm", "axis"});
   controller::MoveConfig config;
-  move.Read("distance_mm", &config.distance_mm);
-  move.Read<int>("axis", {{"x", 0}, {"y", 1}, {"z", 2}}, &config.axis);
+  ReadFields(move, &config);
   return config;
 }
 

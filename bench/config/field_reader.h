@@ -4,20 +4,31 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "bench/config/node_reader.h"
 #include "common/field_list.h"
+#include "controller/pattern_config.h"
 
 namespace shapebench::bench {
+
+// The pattern's own reader (controller_reader.cc): its keys depend on each other.
+void ReadSection(const NodeReader& node, controller::PatternConfig* config);
 
 class FieldReader {
  public:
   explicit FieldReader(const NodeReader& node) : node_(node) {}
 
+  // A number, an integer or a string; any other type is a section (a nested mapping)
+  // read by ReadSection.
   template <typename T>
   void Visit(const char* name, T* field) {
-    node_.Read(name, field);
+    if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>) {
+      node_.Read(name, field);
+    } else if (auto section = node_.Child(name)) {
+      ReadSection(*section, field);
+    }
   }
   template <typename E>
   void Visit(const char* name, E* field, const Choices<E>& choices) {
@@ -36,6 +47,11 @@ class FieldReader {
   const NodeReader& node_;
 };
 
+// A section reads through its field list unless an overload says otherwise (the pattern:
+// bench/config/controller_reader.h).
+template <typename Config>
+void ReadSection(const NodeReader& node, Config* config);
+
 // Reads every key of `config`'s field list present in `node`, which may hold only those
 // and `extra_keys` (read by the caller).
 template <typename Config>
@@ -45,6 +61,11 @@ void ReadFields(const NodeReader& node, Config* config, const std::vector<std::s
   node.ExpectMap(allowed);
   FieldReader reader(node);
   config->Serialize(&reader);
+}
+
+template <typename Config>
+void ReadSection(const NodeReader& node, Config* config) {
+  ReadFields(node, config);
 }
 
 template <typename T>

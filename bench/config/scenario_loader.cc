@@ -9,6 +9,7 @@
 
 #include "bench/config/config_document.h"
 #include "bench/config/controller_reader.h"
+#include "bench/config/field_reader.h"
 #include "bench/config/key_path.h"
 #include "bench/config/machine_reader.h"
 #include "bench/sim/metrics.h"
@@ -104,19 +105,17 @@ ConfigDocument BuildScenarioDocument(const std::string& path,
   return document;
 }
 
-const std::vector<std::string> kServoKeys = {"position_gain", "velocity_feedforward",
-                                             "velocity_loop_hz", "motor_mass_kg"};
-
 model::DriveConfig ReadDrive(const NodeReader& drive) {
-  std::vector<std::string> allowed = {"type"};
-  allowed.insert(allowed.end(), kServoKeys.begin(), kServoKeys.end());
-  drive.ExpectMap(allowed);
+  const std::vector<std::string> servo_keys = FieldNames<model::ServoConfig>();
+  drive.ExpectMap([&] {
+    std::vector<std::string> allowed = {"type"};
+    allowed.insert(allowed.end(), servo_keys.begin(), servo_keys.end());
+    return allowed;
+  }());
   model::DriveConfig config;
-  drive.Read<model::DriveType>(
-      "type", {{"kinematic", model::DriveType::kKinematic}, {"servo", model::DriveType::kServo}},
-      &config.type);
+  drive.Read<model::DriveType>("type", model::DriveConfig::TypeChoices(), &config.type);
   if (config.type != model::DriveType::kServo) {
-    for (const auto& key : kServoKeys) {
+    for (const auto& key : servo_keys) {
       if (auto child = drive.Child(key)) {
         throw child->Error("'" + key +
                            "' is a servo setting; it needs type: servo (the kinematic drive "
@@ -125,11 +124,8 @@ model::DriveConfig ReadDrive(const NodeReader& drive) {
     }
     return config;
   }
-  model::ServoConfig& servo = config.servo;
-  drive.Read("position_gain", &servo.position_gain_1_s);
-  drive.Read("velocity_feedforward", &servo.velocity_feedforward);
-  drive.Read("velocity_loop_hz", &servo.velocity_loop_hz);
-  drive.Read("motor_mass_kg", &servo.motor_mass_kg);
+  FieldReader servo(drive);
+  config.servo.Serialize(&servo);
   try {
     config.validate();
   } catch (const ValidationError& error) {
@@ -141,21 +137,8 @@ model::DriveConfig ReadDrive(const NodeReader& drive) {
 }
 
 model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
-  integrator.ExpectMap(
-      {"method", "rtol", "atol_scale", "lmm", "max_num_steps", "output_substeps"});
   model::IntegratorConfig config;
-  integrator.Read<model::IntegratorMethod>(
-      "method",
-      {{"cvode", model::IntegratorMethod::kCvode},
-       {"exact", model::IntegratorMethod::kExact},
-       {"auto", model::IntegratorMethod::kAuto}},
-      &config.method);
-  integrator.Read("rtol", &config.rtol);
-  integrator.Read("atol_scale", &config.atol_scale);
-  integrator.Read<model::CvodeLmm>(
-      "lmm", {{"adams", model::CvodeLmm::kAdams}, {"bdf", model::CvodeLmm::kBdf}}, &config.lmm);
-  integrator.Read("max_num_steps", &config.max_num_steps);
-  integrator.Read("output_substeps", &config.output_substeps);
+  ReadFields(integrator, &config);
   return config;
 }
 
@@ -179,11 +162,8 @@ std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
 }
 
 RunLimits ReadLimits(const NodeReader& limits) {
-  limits.ExpectMap({"max_simulated_s", "max_ticks", "max_trace_rows"});
   RunLimits config;
-  limits.Read("max_simulated_s", &config.max_simulated_s);
-  limits.Read("max_ticks", &config.max_ticks);
-  limits.Read("max_trace_rows", &config.max_trace_rows);
+  ReadFields(limits, &config);
   if (!(config.max_simulated_s > 0.0)) {
     throw limits.Child("max_simulated_s")->Error("must be > 0 s");
   }

@@ -41,6 +41,13 @@ struct RunLimits {
   double max_simulated_s = 600.0;
   long max_ticks = 10'000'000;
   long max_trace_rows = 1'000'000;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {  // the field list (common/field_list.h)
+    a->Visit("max_simulated_s", &max_simulated_s);
+    a->Visit("max_ticks", &max_ticks);
+    a->Visit("max_trace_rows", &max_trace_rows);
+  }
 };
 
 struct Scenario {
