@@ -82,3 +82,19 @@ bench: deps
 	@rm -rf $(BENCH_OUT)/million
 	@/usr/bin/python3 scripts/baseline_table.py $(BENCH_OUT)/benchmarks.json \
 	  $(BENCH_OUT)/baseline.json $(BENCH_OUT)/memory.txt
+
+# `make bench-compare REF=<commit>`: REF's benchmarks built from `git archive` beside this
+# tree's, then case 1 exact and case 3 timed with the two binaries interleaved, medians
+# of 5 rounds (scripts/bench_compare.py; exit 1 when one is more than 3% slower).
+.PHONY: bench-compare
+REF ?= HEAD
+bench-compare: deps
+	@scripts/install-deps.sh libbenchmark-dev
+	@rm -rf $(BUILD_DIR)/ref-src && mkdir -p $(BUILD_DIR)/ref-src
+	@git archive $(REF) | tar -x -C $(BUILD_DIR)/ref-src
+	@cmake -S $(BUILD_DIR)/ref-src -B $(BUILD_DIR)/ref-build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD_DIR)/ref-build -j $(JOBS) --target shapebench_benchmarks
+	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target shapebench_benchmarks
+	@/usr/bin/python3 scripts/bench_compare.py $(BUILD_DIR)/ref-build/benchmarks/shapebench_benchmarks \
+	  $(BUILD_DIR)/benchmarks/shapebench_benchmarks
