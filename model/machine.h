@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -92,9 +93,22 @@ struct LumpedMachineConfig {
 };
 
 struct MachineConfig {
-  std::variant<ModalMachineConfig, LumpedMachineConfig> form = ModalMachineConfig{};
+  using Form = std::variant<ModalMachineConfig, LumpedMachineConfig>;
+  Form form = ModalMachineConfig{};
   void validate() const;
 };
+
+// Calls f(form) with a default-constructed instance of every plant form, in the variant's
+// order: key lists that cover "any form" (the sweep's plant-only keys, structure numbers)
+// take a new form in with no edit.
+template <typename F, std::size_t... I>
+void ForEachMachineForm(F&& f, std::index_sequence<I...>) {
+  (f(std::variant_alternative_t<I, MachineConfig::Form>{}), ...);
+}
+template <typename F>
+void ForEachMachineForm(F&& f) {
+  ForEachMachineForm(f, std::make_index_sequence<std::variant_size_v<MachineConfig::Form>>{});
+}
 
 LinearPlant BuildPlant(const MachineConfig& machine);
 

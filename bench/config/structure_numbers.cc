@@ -26,8 +26,11 @@ struct StructureKey {
 
 bool IsField(const std::string& list, const std::string& field) {
   // A number field of an entry of one of the forms' lists (their field lists say which).
-  return ListHasNumberField<model::ModalMachineConfig>(list, field) ||
-         ListHasNumberField<model::LumpedMachineConfig>(list, field);
+  bool found = false;
+  model::ForEachMachineForm([&](const auto& form) {
+    found = found || ListHasNumberField<std::decay_t<decltype(form)>>(list, field);
+  });
+  return found;
 }
 
 std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {

@@ -571,8 +571,10 @@ bool PlantOnlyKey(const std::string& key) {
   for (const char* prefix : {"drive", "integrator", "output", "checks"}) {
     if (IsPathPrefix(prefix, key)) return true;
   }
-  std::vector<std::string> lists = ListNames<model::ModalMachineConfig>();
-  for (const std::string& list : ListNames<model::LumpedMachineConfig>()) lists.push_back(list);
+  std::vector<std::string> lists;
+  model::ForEachMachineForm([&](const auto& form) {
+    for (std::string& list : ListNames<std::decay_t<decltype(form)>>()) lists.push_back(std::move(list));
+  });
   for (const std::string& list : lists) {
     if (IsPathPrefix("machine." + list, key)) return true;
     for (const char* axis : {"x", "y", "z"}) {

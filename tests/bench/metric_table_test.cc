@@ -36,8 +36,12 @@ TEST(MetricTable, RowsAreComplete) {
     const std::set<std::string_view> units = {"m", "s", "1", "count", "bool"};
     EXPECT_EQ(units.count(info.unit), 1u) << info.name;
     const std::string name(info.name);
-    if (name.size() > 2 && name.substr(name.size() - 2) == "_m") EXPECT_EQ(info.unit, "m") << name;
-    if (name.size() > 2 && name.substr(name.size() - 2) == "_s") EXPECT_EQ(info.unit, "s") << name;
+    if (name.size() > 2 && name.substr(name.size() - 2) == "_m") {
+      EXPECT_EQ(info.unit, "m") << name;
+    }
+    if (name.size() > 2 && name.substr(name.size() - 2) == "_s") {
+      EXPECT_EQ(info.unit, "s") << name;
+    }
   }
   EXPECT_EQ(names.size(), kNumMetrics);
 }
