@@ -80,6 +80,40 @@ SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
   return {axis, e->start_m(axis), e->direction(axis), e->length_m};
 }
 
+// One tick of single-axis samples (SingleAxis): the general samples' arithmetic, the other
+// components left out; the same operations in the same order. A function of its own, kept
+// out of line, so that its loop keeps every value in registers (inlined into the master's
+// loop it spilled them). Returns whether a value was not finite (or a square overflowed).
+struct SingleAxisSampling {  // what stays the same from tick to tick
+  const double* deflections;
+  const double* tool_errors;
+  const double* taus;
+  int width;
+  int substeps;
+  SingleAxis single;
+};
+
+template <RunPhase P>
+[[gnu::noinline]] bool SampleSingleAxisTick(const SingleAxisSampling& in, double p0, double v0,
+                                            double half_a, TickAccumulator* out) {
+  TickAccumulator tick = *out;
+  // An `or` of comparisons, not a running sum, keeps the samples independent.
+  bool not_finite = false;
+  for (int j = 0; j < in.substeps; ++j) {
+    const double tau = in.taus[j];
+    const double p = p0 + v0 * tau + half_a * tau * tau;
+    const double actual = p + in.tool_errors[j * in.width];
+    const double magnitude = std::abs(in.deflections[j * in.width]);
+    const double along = std::clamp((actual - in.single.start_m) * in.single.direction, 0.0, in.single.length_m);
+    const double off = actual - (in.single.start_m + along * in.single.direction);
+    const double square = off * off;
+    not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
+    tick.Add<P>(j, magnitude, square);
+  }
+  *out = tick;
+  return not_finite;
+}
+
 // The largest deflection a held commanded acceleration gives, in the view.
 double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view) {
   double static_m = 0.0;
@@ -145,6 +179,7 @@ class CoSimulation {
   std::vector<double> taus_;     // the substeps' times within a period
   std::vector<ArcWindow> arcs_;
   SingleAxis single_;
+  SingleAxisSampling single_sampling_{};
   std::vector<int> watched_rows_;  // other axes' rows the single-axis samples must see at 0
   int width_ = 0;                  // outputs per substep in outputs_
   int deflection_at_ = 0;
@@ -227,6 +262,8 @@ void CoSimulation::SetUpSampling() {
     deflection_at_ = 0;
     tool_error_at_ = 1;
   }
+  single_sampling_ = {outputs_.data() + deflection_at_, outputs_.data() + tool_error_at_, taus_.data(),
+                      width_, substeps_, single_};
 }
 
 // For how many periods from tick k on the held acceleration stays a_k (the tail's is
@@ -295,40 +332,26 @@ void CoSimulation::Tick(std::size_t k) {
 
 template <RunPhase P>
 void CoSimulation::SampleTick(std::size_t k, bool others_zero) {
+  // Two accumulators, so that the single-axis one never has its address taken by the
+  // general samples (an out-of-line call): it then stays in registers.
   TickAccumulator tick = acc_.StartTick(P, k, window_.motion_ticks, substeps_);
   if (others_zero) {
     SampleSingleAxis<P>(k, &tick);
   } else {
-    SampleGeneral<P>(k, &tick);
+    TickAccumulator general = tick;
+    SampleGeneral<P>(k, &general);
+    tick = general;
   }
   acc_.Merge(tick, k, substeps_, k <= samples_.n && window_.cruise_tick[k]);
 }
 
-// The single-axis samples (SingleAxis): the general samples' arithmetic, the other
-// components left out; the same operations in the same order.
 template <RunPhase P>
 void CoSimulation::SampleSingleAxis(std::size_t k, TickAccumulator* tick) {
   const bool commanded = k <= samples_.n;
   const int ax = single_.axis;
   const double p0 = (commanded ? samples_.positions[k - 1] : samples_.positions.back())(ax);
   const double v0 = commanded ? samples_.velocity[k - 1](ax) : 0.0;
-  const double half_a = 0.5 * samples_.AccelAt(k)(ax);
-  const double* deflections = outputs_.data() + deflection_at_;
-  const double* tool_errors = outputs_.data() + tool_error_at_;
-  // Set when a deflection or tool error was not finite (or a square overflowed): an
-  // `or` of comparisons, not a running sum, keeps the samples independent.
-  bool not_finite = false;
-  for (int j = 0; j < substeps_; ++j) {
-    const double tau = taus_[j];
-    const double p = p0 + v0 * tau + half_a * tau * tau;
-    const double actual = p + tool_errors[j * width_];
-    const double magnitude = std::abs(deflections[j * width_]);
-    const double along = std::clamp((actual - single_.start_m) * single_.direction, 0.0, single_.length_m);
-    const double off = actual - (single_.start_m + along * single_.direction);
-    const double square = off * off;
-    not_finite |= !(square + magnitude <= std::numeric_limits<double>::max());
-    tick->Add<P>(j, magnitude, square);
-  }
+  const bool not_finite = SampleSingleAxisTick<P>(single_sampling_, p0, v0, 0.5 * samples_.AccelAt(k)(ax), tick);
   if (integrator_ && not_finite) CheckFinite(k);  // throws for a non-finite output
 }
 
