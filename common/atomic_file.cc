@@ -10,10 +10,13 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace shapebench {
 namespace {
+
+constexpr std::size_t kMaxTempNameBytes = 255;
 
 std::runtime_error WriteError(const std::string& path, const std::string& what) {
   return std::runtime_error("cannot write " + path + ": " + what);
@@ -34,7 +37,12 @@ mode_t FileMode() {
 TempFile::TempFile(const std::string& final_path) : final_path_(final_path) {
   const std::filesystem::path target(final_path);
   const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
-  std::string pattern = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
+  // ".NAME.tmp.XXXXXX" says what the file was for; when that would not fit NAME_MAX (255
+  // bytes on Linux file systems), a short hidden name in the same directory (rename stays
+  // within one file system).
+  std::string temp_name = "." + target.filename().string() + ".tmp.XXXXXX";
+  if (temp_name.size() > kMaxTempNameBytes) temp_name = ".tmp." + std::to_string(getpid()) + ".XXXXXX";
+  std::string pattern = (dir / temp_name).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = mkstemp(name.data());

@@ -19,6 +19,7 @@
 #include "bench/sim/checks.h"
 #include "bench/sim/cosim.h"
 #include "common/interrupt.h"
+#include "common/shown_text.h"
 #include "bench/report/modes_report.h"
 #include "bench/report/pattern_report.h"
 #include "bench/report/report.h"
@@ -40,6 +41,9 @@ constexpr int kExitCheckFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
+// Text from the input as printed: its control characters visible, not obeyed by the terminal.
+std::string Safe(const std::string& text) { return TerminalSafe(text, /*keep_newlines=*/true); }
+
 std::string SolverMessage(const model::SolverError& error) {
   return "solver failed: " + error.flag_name() + ": " + error.what();
 }
@@ -49,24 +53,24 @@ int Guarded(const std::function<int()>& command) {
   try {
     return command();
   } catch (const InterruptedError& error) {  // SIGINT, SIGTERM: 130, 143
-    std::cerr << "error: " << error.what() << "\n";
+    std::cerr << "error: " << Safe(error.what()) << "\n";
     return error.exit_code();
   } catch (const std::exception& error) {
     if (PendingInterrupt() != 0) {
       // E.g. gnuplot killed by the terminal's SIGINT: report the interruption.
-      std::cerr << "error: interrupted by " << SignalName(PendingInterrupt()) << " (" << error.what()
+      std::cerr << "error: interrupted by " << SignalName(PendingInterrupt()) << " (" << Safe(error.what())
                 << ")\n";
       return 128 + PendingInterrupt();
     }
     if (const auto* config = dynamic_cast<const ConfigError*>(&error)) {
-      std::cerr << "error: " << config->what() << "\n";
+      std::cerr << "error: " << Safe(config->what()) << "\n";
       return kExitBadInput;
     }
     if (const auto* solver = dynamic_cast<const model::SolverError*>(&error)) {
-      std::cerr << "error: " << SolverMessage(*solver) << "\n";
+      std::cerr << "error: " << Safe(SolverMessage(*solver)) << "\n";
       return kExitSolverFailed;
     }
-    std::cerr << "error: " << error.what() << "\n";  // ValidationError without a file, I/O
+    std::cerr << "error: " << Safe(error.what()) << "\n";  // ValidationError without a file, I/O
     return kExitBadInput;
   }
 }
@@ -92,7 +96,7 @@ int RunCommand(const RunArgs& args) {
   const Scenario scenario = LoadScenario(args.scenario, overrides);
   const RunResult result = RunLocated(scenario, overrides);
   for (const std::string& warning : result.command.warnings) {
-    std::cerr << "warning: " << scenario.source_file << ": " << warning << "\n";
+    std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
   if (!args.out_dir.empty()) {
     // Created only now: bad input and solver failures leave no directory behind. A signal
@@ -118,7 +122,7 @@ int RunCommand(const RunArgs& args) {
   if (args.json) {
     std::cout << MetricsJson(result.metrics).dump(2) << std::endl;
   } else {
-    std::cout << "scenario " << scenario.name << " (" << scenario.source_file << ")\n";
+    std::cout << "scenario " << Safe(scenario.name) << " (" << Safe(scenario.source_file) << ")\n";
     PrintMetricsTable(std::cout, result.metrics);
     std::cout.flush();
   }
@@ -177,17 +181,17 @@ int CheckCommand(const CheckArgs& args) {
       report.results = EvaluateChecks(scenario.checks, result.metrics);
     } catch (const ConfigError& error) {
       report.error = error.what();
-      std::cerr << "error: " << error.what() << "\n";
+      std::cerr << "error: " << Safe(error.what()) << "\n";
       raise(kExitBadInput);
     } catch (const model::SolverError& error) {
       report.error = SolverMessage(error);
-      std::cerr << "error: " << report.error << " (" << report.file << ")\n";
+      std::cerr << "error: " << Safe(report.error) << " (" << Safe(report.file) << ")\n";
       raise(kExitSolverFailed);
     }
     report.run_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const CheckResult& result : report.results) {
-      std::cout << FormatCheckLine(report.file, result) << "\n";
+      std::cout << Safe(FormatCheckLine(report.file, result)) << "\n";
       if (!result.passed) raise(kExitCheckFailed);
     }
     std::cout.flush();
@@ -298,7 +302,7 @@ int SweepCommand(const SweepArgs& args) {
   options.jobs = JobsOrDefault(args.jobs);
   options.progress = isatty(STDERR_FILENO) != 0;
   const SweepRunSummary summary = RunSweep(sweep, overrides, options);
-  std::cout << "sweep " << sweep.name << ": " << summary.points << " points";
+  std::cout << "sweep " << Safe(sweep.name) << ": " << summary.points << " points";
   if (options.shard_count > 1) {
     std::cout << " (shard " << options.shard_index << "/" << options.shard_count << " of "
               << sweep.points << ")";
@@ -428,7 +432,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) return app.exit(error);  // --help
-    std::cerr << "error: " << error.what() << "\n";
+    std::cerr << "error: " << Safe(error.what()) << "\n";
     const auto parsed = app.get_subcommands();
     std::cerr << (parsed.empty() ? app.help() : parsed.back()->help());
     return kExitBadInput;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/shown_text.h"
 #include "bench/config/key_path.h"
 
 namespace shapebench::bench {
@@ -141,7 +142,7 @@ void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
   try {
     value = YAML::Load(override_value.value_yaml);
   } catch (const YAML::ParserException& e) {
-    throw fail("malformed YAML value '" + override_value.value_yaml + "': " + e.msg);
+    throw fail("malformed YAML value '" + ClippedForMessage(override_value.value_yaml) + "': " + e.msg);
   }
 
   if (!root_.IsMap()) {
@@ -181,7 +182,8 @@ void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
     }
     if (current.IsNull()) current = YAML::Node(YAML::NodeType::Map);  // "key:" left empty
     if (!current.IsMap()) {
-      throw fail("cannot set key '" + element.key + "' in '" + path + "': it is " +
+      throw fail("cannot set key '" + ClippedForMessage(element.key) + "' in '" + ClippedForMessage(path) +
+                 "': it is " +
                  Describe(current) + ", not a mapping");
     }
     if (last) {

@@ -1,5 +1,7 @@
 #include "bench/config/config_error.h"
 
+#include "common/shown_text.h"
+
 namespace shapebench::bench {
 namespace {
 
@@ -8,7 +10,7 @@ std::string Format(const std::string& file, int line, int column,
   std::string text = file;
   if (line > 0) text += ":" + std::to_string(line) + ":" + std::to_string(column);
   text += ": ";
-  if (!key_path.empty()) text += key_path + ": ";
+  if (!key_path.empty()) text += ClippedForMessage(key_path) + ": ";  // a 10 MB key
   return text + message;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <set>
 
+#include "common/shown_text.h"
 #include "bench/config/key_path.h"
 
 namespace shapebench::bench {
@@ -72,8 +73,8 @@ ConfigError NodeReader::Error(const std::string& message) const {
 std::string NodeReader::Shown() const {
   switch (node_.Type()) {
     case YAML::NodeType::Scalar:
-      return IsQuoted(node_) ? "\"" + node_.Scalar() + "\" (a quoted string)"
-                             : "'" + node_.Scalar() + "'";
+      return IsQuoted(node_) ? "\"" + ClippedForMessage(node_.Scalar()) + "\" (a quoted string)"
+                             : "'" + ClippedForMessage(node_.Scalar()) + "'";
     case YAML::NodeType::Sequence: return "a sequence";
     case YAML::NodeType::Map: return "a mapping";
     default: return "nothing (empty value)";
@@ -93,10 +94,10 @@ void NodeReader::ExpectMap(const std::vector<std::string>& allowed) const {
     for (const auto& name : allowed) known = known || name == key;
     if (!known) {
       throw document_->ErrorAt(entry.first, key_path,
-                               "unknown key '" + key + "'; allowed: " + JoinNames(allowed, ", "));
+                               "unknown key '" + ClippedForMessage(key) + "'; allowed: " + JoinNames(allowed, ", "));
     }
     if (!seen.insert(key).second) {
-      throw document_->ErrorAt(entry.first, key_path, "duplicate key '" + key + "'");
+      throw document_->ErrorAt(entry.first, key_path, "duplicate key '" + ClippedForMessage(key) + "'");
     }
   }
 }

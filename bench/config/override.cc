@@ -1,5 +1,6 @@
 #include "bench/config/override.h"
 
+#include "common/shown_text.h"
 #include "bench/config/config_error.h"
 #include "bench/config/key_path.h"
 
@@ -9,7 +10,7 @@ Override ParseOverride(const std::string& text, int index) {
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos) {
     throw ConfigError(kOverrideSource, index, 1, "",
-                      "expected KEY=VALUE (e.g. controller.pattern.method=3), got '" + text +
+                      "expected KEY=VALUE (e.g. controller.pattern.method=3), got '" + ClippedForMessage(text) +
                           "'");
   }
   Override result{text.substr(0, eq), text.substr(eq + 1)};

@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "common/shown_text.h"
 #include "bench/config/config_document.h"
 #include "bench/config/controller_reader.h"
 #include "bench/config/field_reader.h"
@@ -204,13 +205,17 @@ void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
   if (RunLengthWithinLimits(scenario, seconds)) return;
   const double ticks = seconds / scenario.controller.period_s;
   const RunLimits& limits = scenario.limits;
-  if (seconds > limits.max_simulated_s) {
+  // Both exceeded: the message names the limit that binds (the fewer ticks).
+  const bool ticks_bind = ticks > static_cast<double>(limits.max_ticks) &&
+                          static_cast<double>(limits.max_ticks) * scenario.controller.period_s <
+                              limits.max_simulated_s;
+  if (seconds > limits.max_simulated_s && !ticks_bind) {
     // The suggested limit as text (a double: the bound may exceed any integer type).
     char suggested[32];
     std::snprintf(suggested, sizeof suggested, "%.3g", std::ceil(seconds * 2.0));
     throw document.ErrorAtPath(
         "limits.max_simulated_s",
-        "scenario '" + scenario.name + "' would simulate at least " + Seconds(seconds) + " (" +
+        "scenario '" + ClippedForMessage(scenario.name) + "' would simulate at least " + Seconds(seconds) + " (" +
             breakdown + "), more than limits.max_simulated_s (" + Seconds(limits.max_simulated_s) +
             (std::isfinite(seconds) ? "); raise it (e.g. --set limits.max_simulated_s=" +
                                           std::string(suggested) + ") to run it anyway"
@@ -221,7 +226,7 @@ void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
     std::snprintf(count, sizeof count, "%.4g", ticks);
     throw document.ErrorAtPath(
         "limits.max_ticks",
-        "scenario '" + scenario.name + "' would take at least " + count +
+        "scenario '" + ClippedForMessage(scenario.name) + "' would take at least " + count +
             " interpolation periods of " + Seconds(scenario.controller.period_s) + " (" +
             breakdown + "), more than limits.max_ticks (" + std::to_string(limits.max_ticks) +
             "); raise it or lengthen controller.period_s");

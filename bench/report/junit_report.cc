@@ -8,21 +8,31 @@
 namespace shapebench::bench {
 namespace {
 
-// Length of the valid UTF-8 sequence at text[i], or 0.
-std::size_t Utf8Length(const std::string& text, std::size_t i) {
+// Length of the well-formed UTF-8 sequence at text[i], or 0; *allowed says whether XML 1.0
+// allows its code point (Char ::= #x9 | #xA | #xD | [#x20-#xD7FF] | [#xE000-#xFFFD] |
+// [#x10000-#x10FFFF]): not overlong forms, surrogates, U+FFFE, U+FFFF, above U+10FFFF.
+std::size_t Utf8Length(const std::string& text, std::size_t i, bool* allowed) {
   const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
   const unsigned char lead = byte(i);
   std::size_t length = 0;
-  if (lead >= 0xC2 && lead <= 0xDF) length = 2;
-  else if (lead >= 0xE0 && lead <= 0xEF) length = 3;
-  else if (lead >= 0xF0 && lead <= 0xF4) length = 4;
+  char32_t code = 0;
+  if (lead >= 0xC2 && lead <= 0xDF) length = 2, code = lead & 0x1F;
+  else if (lead >= 0xE0 && lead <= 0xEF) length = 3, code = lead & 0x0F;
+  else if (lead >= 0xF0 && lead <= 0xF4) length = 4, code = lead & 0x07;
   else return 0;
   if (i + length > text.size()) return 0;
   for (std::size_t k = 1; k < length; ++k) {
     if ((byte(i + k) & 0xC0) != 0x80) return 0;
+    code = (code << 6) | (byte(i + k) & 0x3F);
   }
+  static constexpr char32_t kLeast[] = {0, 0, 0x80, 0x800, 0x10000};  // shortest form
+  *allowed = code >= kLeast[length] && code <= 0x10FFFF && !(code >= 0xD800 && code <= 0xDFFF) &&
+             code != 0xFFFE && code != 0xFFFF;
   return length;
 }
+
+// U+FFFD REPLACEMENT CHARACTER: what XML cannot carry is shown as replaced, not dropped.
+constexpr char kReplacement[] = "\xEF\xBF\xBD";
 
 std::string Seconds(double seconds) {
   char text[32];
@@ -48,14 +58,14 @@ std::string XmlEscape(const std::string& text) {
       default: break;
     }
     if (c < 0x20) {
-      escaped += '?';  // not representable in XML 1.0
+      escaped += kReplacement;  // not representable in XML 1.0
     } else if (c < 0x80) {
       escaped += static_cast<char>(c);
-    } else if (const std::size_t length = Utf8Length(text, i)) {
-      escaped += text.substr(i, length);
+    } else if (bool allowed = false; const std::size_t length = Utf8Length(text, i, &allowed)) {
+      escaped += allowed ? text.substr(i, length) : std::string(kReplacement);  // one per character
       i += length - 1;
     } else {
-      escaped += '?';  // a byte that is not UTF-8
+      escaped += kReplacement;  // not UTF-8, or a code point XML 1.0 does not allow
     }
   }
   return escaped;

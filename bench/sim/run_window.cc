@@ -32,10 +32,12 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
   w.motion_ticks = samples.motion_ticks;
   w.residual_ticks = static_cast<std::size_t>(std::ceil(3.0 * lowest_period_s / period_s));
   w.period_ticks = static_cast<std::size_t>(std::ceil(lowest_period_s / period_s));
-  const double limit_ticks = std::min(scenario.limits.max_simulated_s / period_s,
-                                      static_cast<double>(scenario.limits.max_ticks));
+  const double seconds_ticks = scenario.limits.max_simulated_s / period_s;
+  const double limit_ticks = std::min(seconds_ticks, static_cast<double>(scenario.limits.max_ticks));
   if (static_cast<double>(w.window_end()) > limit_ticks) {
-    throw ValidationError("limits.max_simulated_s",
+    // Named after the limit that binds, the one the user has to raise.
+    const bool ticks_bind = static_cast<double>(scenario.limits.max_ticks) < seconds_ticks;
+    throw ValidationError(ticks_bind ? "limits.max_ticks" : "limits.max_simulated_s",
                           "the command and its residual window take " + std::to_string(w.window_end()) +
                               " periods, more than limits allow (max_simulated_s, max_ticks)");
   }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/ordered_pool.h"
+#include "common/shown_text.h"
 #include "bench/sim/checks.h"
 #include "bench/sweep/sweep_runner.h"
 
@@ -74,7 +75,7 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
             tally.worst_point = label;
           }
           if (!result.passed) {
-            out << FormatCheckLine(sweep.file, result) << "\n";
+            out << TerminalSafe(FormatCheckLine(sweep.file, result), true) << "\n";
             raise(kExitCheckFailed);
           }
           report->results.push_back(std::move(result));
