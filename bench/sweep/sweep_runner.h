@@ -16,6 +16,10 @@
 // Started again with the same --out, a sweep keeps the partial file's complete rows (a
 // torn last row is cut off), runs the points after them and ends with the same bytes as
 // an uninterrupted run. A directory holding another sweep (or another shard) is refused.
+// A sweep or merge holds an exclusive lock on the directory (.shapebench.lock, with its
+// PID; bench/sweep/output_dir.h) while it writes there: a second one is refused (exit 2).
+// manifest.json also keeps the grid's values, so that a merge checks each row's keys.
+// Only regular files are read (a FIFO or a device is refused), the manifest up to 64 MiB.
 #pragma once
 
 #include <cstdint>
@@ -67,7 +71,9 @@ struct MergeSummary {
 
 // Joins the finished shards 0..N-1 of one sweep into out_dir: results.csv (byte for byte
 // the unsharded run's), manifest.json (the unsharded one's) and the plots. Refuses shards
-// of different sweeps, missing, repeated or unfinished shards (std::runtime_error).
+// of different sweeps, missing, repeated or unfinished shards, rows a resumed sweep would
+// not keep (status, point index or key values), and an out_dir that is neither empty nor
+// this sweep's merged result (std::runtime_error).
 MergeSummary MergeShards(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
 
 // `check` on a sweep: runs every point on `jobs` threads and evaluates the sweep's checks
