@@ -3,6 +3,7 @@
 #pragma once
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +19,35 @@
 #include "bench/config/config_error.h"
 
 namespace shapebench::bench::testing {
+
+// AddressSanitizer reserves terabytes of address space for its shadow memory, so a child
+// run under an address-space limit (RLIMIT_AS, prlimit --as) cannot start in the
+// sanitizer build (make test-sanitize). There the memory bound is ASan's own: an RSS
+// limit in ASAN_OPTIONS (hard_rss_limit_mb), which ends the child like the limit would.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kUnderAddressSanitizer = true;
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+
+// In a child about to exec the CLI: bound its memory to `bytes` (see kUnderAddressSanitizer).
+inline void LimitChildMemory(unsigned long bytes) {
+  if (kUnderAddressSanitizer) {
+    const char* old = std::getenv("ASAN_OPTIONS");
+    const std::string options = std::string(old != nullptr ? old : "") + ":hard_rss_limit_mb=" +
+                                std::to_string(bytes >> 20);
+    setenv("ASAN_OPTIONS", options.c_str(), 1);
+  } else {
+    const rlimit limit{bytes, bytes};
+    setrlimit(RLIMIT_AS, &limit);
+  }
+}
 
 // The ConfigError `read` throws (a failure when it throws none).
 template <typename Read>

@@ -24,6 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::CliResult;
+using testing::LimitChildMemory;
 using testing::ReadText;
 using testing::RunCli;
 using testing::ScratchDir;
@@ -51,8 +52,7 @@ Bounded RunBounded(const std::vector<std::string>& args, int seconds) {
   const std::string err_file = capture.File("err");
   const pid_t pid = fork();
   if (pid == 0) {
-    const rlimit limit{1ul << 30, 1ul << 30};
-    setrlimit(RLIMIT_AS, &limit);
+    LimitChildMemory(1ul << 30);
     const int null = open("/dev/null", O_WRONLY);
     const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(null, STDOUT_FILENO);
