@@ -1,8 +1,11 @@
 #include "common/atomic_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -32,17 +35,73 @@ mode_t FileMode() {
   return mode;
 }
 
+// The PID in a temporary name this file makes (".NAME.tmp.<pid>.XXXXXX", ".tmp.<pid>.XXXXXX"),
+// or 0 when `name` is not one.
+pid_t TempNameOwner(const std::string& name) {
+  const std::size_t marker = name.rfind(".tmp.");
+  if (name.empty() || name[0] != '.' || marker == std::string::npos) return 0;
+  const std::size_t digits = marker + 5;
+  const std::size_t dot = name.find('.', digits);
+  if (dot == std::string::npos || dot == digits || dot - digits > 9 || name.size() != dot + 7) return 0;
+  for (std::size_t i = digits; i < dot; ++i) {
+    if (name[i] < '0' || name[i] > '9') return 0;
+  }
+  for (std::size_t i = dot + 1; i < name.size(); ++i) {
+    if (std::isalnum(static_cast<unsigned char>(name[i])) == 0) return 0;
+  }
+  return static_cast<pid_t>(std::stol(name.substr(digits, dot - digits)));
+}
+
+// fsync of a file or directory; false (errno set) when it fails.
+bool SyncPath(const std::string& path, int flags) {
+  const int fd = open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool synced = fsync(fd) == 0;
+  const int saved = errno;
+  close(fd);
+  errno = saved;
+  return synced;
+}
+
+std::string DirectoryOf(const std::string& path) {
+  const std::filesystem::path target(path);
+  return target.has_parent_path() ? target.parent_path().string() : ".";
+}
+
 }  // namespace
 
-TempFile::TempFile(const std::string& final_path) : final_path_(final_path) {
+std::string TempNamePattern(const std::string& final_path) {
   const std::filesystem::path target(final_path);
   const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
-  // ".NAME.tmp.XXXXXX" says what the file was for; when that would not fit NAME_MAX (255
-  // bytes on Linux file systems), a short hidden name in the same directory (rename stays
-  // within one file system).
-  std::string temp_name = "." + target.filename().string() + ".tmp.XXXXXX";
-  if (temp_name.size() > kMaxTempNameBytes) temp_name = ".tmp." + std::to_string(getpid()) + ".XXXXXX";
-  std::string pattern = (dir / temp_name).string();
+  // ".NAME.tmp.<pid>.XXXXXX" says what the file was for and who writes it (so a later write
+  // can tell a stale one); when that would not fit NAME_MAX (255 bytes on Linux file
+  // systems), a short hidden name in the same directory (rename stays within one file system).
+  const std::string pid = std::to_string(getpid());
+  std::string temp_name = "." + target.filename().string() + ".tmp." + pid + ".XXXXXX";
+  if (temp_name.size() > kMaxTempNameBytes) temp_name = ".tmp." + pid + ".XXXXXX";
+  return (dir / temp_name).string();
+}
+
+void RemoveStaleTempFiles(const std::string& dir) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t owner = TempNameOwner(it->path().filename().string());
+    // ESRCH only: EPERM means the process lives (under another user).
+    if (owner <= 0 || kill(owner, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    const auto status = it->symlink_status(ignored);
+    if (std::filesystem::is_directory(status)) {
+      std::filesystem::remove_all(it->path(), ignored);
+    } else if (std::filesystem::is_regular_file(status)) {
+      std::filesystem::remove(it->path(), ignored);
+    }
+  }
+}
+
+TempFile::TempFile(const std::string& final_path) : final_path_(final_path) {
+  // Left by a process killed while writing (SIGKILL runs no destructor).
+  RemoveStaleTempFiles(DirectoryOf(final_path));
+  const std::string pattern = TempNamePattern(final_path);
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = mkstemp(name.data());
@@ -57,10 +116,68 @@ TempFile::~TempFile() {
 }
 
 void TempFile::Commit() {
+  // On disk before the name says complete: a crash or full disk after the rename must not
+  // leave a short file under the final name; the directory synced so the rename persists.
+  if (!SyncPath(temp_path_, O_RDONLY)) throw WriteError(final_path_, std::strerror(errno));
   if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
     throw WriteError(final_path_, std::strerror(errno));
   }
   committed_ = true;
+  if (!SyncPath(DirectoryOf(final_path_), O_RDONLY | O_DIRECTORY)) {
+    throw WriteError(final_path_, std::string("syncing its directory: ") + std::strerror(errno));
+  }
+}
+
+StagedDirectory::StagedDirectory(const std::string& final_dir)
+    : final_dir_(final_dir), path_(final_dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(final_dir, ec) || ec) {
+    std::filesystem::create_directories(final_dir);  // throws when it is not a directory
+    return;
+  }
+  // A trailing slash would leave an empty file name for the sibling.
+  const std::filesystem::path target = std::filesystem::path(final_dir).lexically_normal();
+  const std::string name = target.filename().empty() ? target.parent_path().string() : target.string();
+  const std::string parent = DirectoryOf(name);
+  std::filesystem::create_directories(parent);
+  RemoveStaleTempFiles(parent);
+  const std::string pattern = TempNamePattern(name);
+  std::vector<char> dir(pattern.begin(), pattern.end());
+  dir.push_back('\0');
+  if (mkdtemp(dir.data()) == nullptr) throw WriteError(final_dir, std::strerror(errno));
+  // mkdtemp creates 0700; a finished directory gets the usual 0777 & ~umask.
+  chmod(dir.data(), FileMode() | ((FileMode() & 0444) >> 2));
+  path_ = dir.data();
+  final_dir_ = name;
+  staged_ = true;
+}
+
+StagedDirectory::~StagedDirectory() {
+  if (!staged_) return;
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string StagedDirectory::Shown(const std::string& text) const {
+  if (!staged_) return text;
+  std::string shown = text;
+  for (std::size_t at = shown.find(path_); at != std::string::npos; at = shown.find(path_, at + final_dir_.size())) {
+    shown.replace(at, path_.size(), final_dir_);
+  }
+  return shown;
+}
+
+void StagedDirectory::Commit() {
+  if (!staged_) return;
+  // rename(2) refuses a non-empty target: a directory made meanwhile by another is kept.
+  if (std::rename(path_.c_str(), final_dir_.c_str()) != 0) {
+    throw WriteError(final_dir_, std::strerror(errno));
+  }
+  staged_ = false;
+  path_ = final_dir_;
+  if (!SyncPath(DirectoryOf(final_dir_), O_RDONLY | O_DIRECTORY)) {
+    throw WriteError(final_dir_, std::string("syncing its directory: ") + std::strerror(errno));
+  }
 }
 
 void WriteFileAtomically(const std::string& path,

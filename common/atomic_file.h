@@ -26,6 +26,37 @@ class TempFile {
   bool committed_ = false;
 };
 
+// The mkstemp pattern of a temporary file for `final_path`: ".NAME.tmp.<pid>.XXXXXX" in the
+// same directory (".tmp.<pid>.XXXXXX" when that name would be too long).
+std::string TempNamePattern(const std::string& final_path);
+
+// Removes temporary files and directories in `dir` named as TempNamePattern names them whose
+// process no longer exists (left by a SIGKILL or a crash). Errors are ignored.
+void RemoveStaleTempFiles(const std::string& dir);
+
+// The directory a command's outputs go to, appearing complete or not at all. When `final_dir`
+// does not exist, the files are written into a temporary sibling (".NAME.tmp.<pid>.XXXXXX",
+// same parent, so the rename is atomic) renamed into place by Commit() and removed with
+// its contents otherwise. When it exists, path() is `final_dir` itself (each file is then
+// replaced atomically on its own; a directory already in use is not moved aside).
+class StagedDirectory {
+ public:
+  explicit StagedDirectory(const std::string& final_dir);  // throws std::runtime_error
+  ~StagedDirectory();
+  StagedDirectory(const StagedDirectory&) = delete;
+  StagedDirectory& operator=(const StagedDirectory&) = delete;
+
+  const std::string& path() const { return path_; }
+  // `text` (a message) with path() written as the final directory.
+  std::string Shown(const std::string& text) const;
+  void Commit();  // throws std::runtime_error
+
+ private:
+  std::string final_dir_;
+  std::string path_;
+  bool staged_ = false;
+};
+
 // Calls `write` on a stream to a TempFile, then commits it. Throws std::runtime_error
 // naming `path` when anything fails.
 void WriteFileAtomically(const std::string& path,

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <typeinfo>
 #include <vector>
 
 #include <unistd.h>
@@ -84,6 +85,36 @@ RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& over
   }
 }
 
+// The files of `run --out DIR`. Created only now: bad input and solver failures leave no
+// directory behind. A new directory is filled under a temporary name and renamed when
+// complete, so a failure (gnuplot, full disk) leaves none behind either. A signal while
+// writing lets the files finish (each is complete or absent), then stops.
+void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const RunResult& result) {
+  const DeferInterrupts defer;
+  StagedDirectory staged(out_dir);
+  const std::filesystem::path dir(staged.path());
+  try {
+    WriteFileAtomically((dir / "metrics.json").string(), [&](std::ostream& out) {
+      out << MetricsJson(result.metrics).dump(2) << "\n";
+    });
+    const std::size_t stride =
+        WriteTraceCsv((dir / "trace.csv").string(), result.trace, scenario.limits.max_trace_rows);
+    if (stride > 1) {
+      std::cerr << "note: " << scenario.source_file << ": the trace has " << result.trace.time_s.size()
+                << " samples, more than limits.max_trace_rows (" << scenario.limits.max_trace_rows
+                << "): trace.csv and the plots keep 1 in " << stride
+                << "; the metrics use every sample\n";
+    }
+    WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
+    WritePathPlot((dir / "path.png").string(), result, scenario);
+  } catch (const std::runtime_error& error) {
+    if (typeid(error) != typeid(std::runtime_error)) throw;
+    throw std::runtime_error(staged.Shown(error.what()));  // DIR/FILE, not the temporary name
+  }
+  staged.Commit();
+  ThrowIfInterrupted("the output in " + out_dir + " is complete");
+}
+
 struct RunArgs {
   std::string scenario;
   std::vector<std::string> sets;
@@ -98,27 +129,7 @@ int RunCommand(const RunArgs& args) {
   for (const std::string& warning : result.command.warnings) {
     std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
-  if (!args.out_dir.empty()) {
-    // Created only now: bad input and solver failures leave no directory behind. A signal
-    // while writing lets the files finish (each is complete or absent), then stops.
-    const DeferInterrupts defer;
-    std::filesystem::create_directories(args.out_dir);
-    const std::filesystem::path dir(args.out_dir);
-    WriteFileAtomically((dir / "metrics.json").string(), [&](std::ostream& out) {
-      out << MetricsJson(result.metrics).dump(2) << "\n";
-    });
-    const std::size_t stride =
-        WriteTraceCsv((dir / "trace.csv").string(), result.trace, scenario.limits.max_trace_rows);
-    if (stride > 1) {
-      std::cerr << "note: " << scenario.source_file << ": the trace has " << result.trace.time_s.size()
-                << " samples, more than limits.max_trace_rows (" << scenario.limits.max_trace_rows
-                << "): trace.csv and the plots keep 1 in " << stride
-                << "; the metrics use every sample\n";
-    }
-    WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
-    WritePathPlot((dir / "path.png").string(), result, scenario);
-    ThrowIfInterrupted("the output in " + args.out_dir + " is complete");
-  }
+  if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result);
   if (args.json) {
     std::cout << MetricsJson(result.metrics).dump(2) << std::endl;
   } else {

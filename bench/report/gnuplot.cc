@@ -5,7 +5,9 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <array>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -55,7 +57,46 @@ class SigpipeBlock {
   sigset_t saved_;
 };
 
+// The PNG signature (ISO/IEC 15948) and the whole IEND chunk: length 0,
+// type "IEND", its CRC. A PNG cut short (full disk, killed writer) lacks the tail.
+constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+constexpr std::array<unsigned char, 12> kPngEnd = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+
+template <std::size_t N>
+bool ReadsAs(std::ifstream& in, std::streamoff offset, std::ios::seekdir from,
+             const std::array<unsigned char, N>& expected) {
+  std::array<char, N> bytes{};
+  in.seekg(offset, from);
+  if (!in.read(bytes.data(), N)) return false;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (static_cast<unsigned char>(bytes[i]) != expected[i]) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+std::string PngDefect(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "cannot read it back";
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size <= 0) return "gnuplot wrote nothing";
+  if (size < static_cast<std::streamoff>(kPngSignature.size() + kPngEnd.size()) ||
+      !ReadsAs(in, 0, std::ios::beg, kPngSignature)) {
+    return "not a PNG (no PNG signature)";
+  }
+  if (!ReadsAs(in, -static_cast<std::streamoff>(kPngEnd.size()), std::ios::end, kPngEnd)) {
+    return "the PNG is truncated (no IEND chunk at its end; is the disk full?)";
+  }
+  return "";
+}
+
+void CommitPng(TempFile& temp, const std::string& path_png) {
+  const std::string defect = PngDefect(temp.path());
+  if (!defect.empty()) throw std::runtime_error("cannot write " + path_png + ": " + defect);
+  temp.Commit();
+}
 
 std::string GnuplotQuoted(const std::string& text) { return QuotedText(text); }
 
@@ -83,11 +124,7 @@ void RunGnuplot(const std::string& path_png,
                              std::to_string(code) + (code == 127 ? ", is gnuplot installed?" : "") +
                              ")");
   }
-  std::error_code ec;
-  if (std::filesystem::file_size(temp.path(), ec) == 0 || ec) {
-    throw std::runtime_error("cannot write " + path_png + ": gnuplot wrote nothing");
-  }
-  temp.Commit();
+  CommitPng(temp, path_png);
 }
 
 }  // namespace shapebench::bench
