@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/sim/cosim.h"
 #include "bench_test_support.h"
+#include "common/validation_error.h"
 
 namespace shapebench::bench {
 namespace {
@@ -87,6 +89,24 @@ TEST(MemoryGuard, TinyPeriodBeyondTheMemoryBudgetIsRefused) {
   const CliResult bad = RunCliCapped({"run", scenario, "--set", "limits.max_memory_mb=0"});
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
   EXPECT_NE(bad.err.find("limits.max_memory_mb: must be >= 1"), std::string::npos) << bad.err;
+}
+
+// Tests that a run given without the loader (as a sweep's points are) is still refused on
+// its planned length before the per-tick command is allocated, naming limits.max_memory_mb.
+TEST(MemoryGuard, PlannedCommandBeyondTheBudgetIsRefusedBeforeInterpolating) {
+  Scenario scenario;
+  scenario.drive.type = model::DriveType::kKinematic;
+  scenario.move.distance_mm = 1000.0;
+  scenario.limits.max_memory_mb = 1;  // about 2,900 periods; the move takes more
+  try {
+    RunScenario(scenario, RunOptions{false});
+    ADD_FAILURE() << "no ValidationError";
+  } catch (const ValidationError& error) {
+    EXPECT_EQ(error.field(), "limits.max_memory_mb");
+    EXPECT_NE(std::string(error.what()).find("the command takes "), std::string::npos) << error.what();
+  }
+  scenario.limits.max_memory_mb = 1024;
+  EXPECT_NO_THROW(RunScenario(scenario, RunOptions{false}));
 }
 
 }  // namespace
