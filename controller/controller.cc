@@ -236,7 +236,8 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   }
 }
 
-MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program) {
+MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program,
+                                        const CommandLimits& limits) {
   const double dt = controller.period_s;
   const PathGeometry path(program);
   PlannerSettings settings;
@@ -251,6 +252,11 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.stroke_end = controller.stroke_end;
   settings.stroke_limits = controller.stroke_limits;
   SpeedPlan plan = PlanPathSpeed(program, path, settings);
+  if (plan.speed_m_s.size() > limits.max_ticks) {
+    throw ValidationError(limits.key, "the command takes " + std::to_string(plan.speed_m_s.size() - 1) +
+                                          " periods, more than " + limits.key + " allows (" +
+                                          std::to_string(limits.max_ticks) + " periods)");
+  }
   InterpolatedPulses pulses = Interpolate(path, plan, dt);
 
   const PulseFilter filter = PostInterpFilter(controller);

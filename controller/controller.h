@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -124,8 +125,16 @@ struct MultiAxisCommand {
   std::vector<Eigen::Vector3d> Positions() const;
 };
 
+// A bound on the command's length, checked once the speed plan knows it and before the
+// per-tick pulses are allocated; `key` names the limit in the ValidationError.
+struct CommandLimits {
+  std::size_t max_ticks = std::numeric_limits<std::size_t>::max();
+  std::string key;
+};
+
 // Throws ValidationError with a scenario-root key path when the program cannot be run.
-MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program);
+MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program,
+                                        const CommandLimits& limits = {});
 
 // Para. 50 taken to its end cuts step 1 and leaves nothing of the shaping: the bench
 // refuses a single move (or feed) too short (low) for its stepped pattern, naming

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <vector>
 
@@ -129,10 +130,44 @@ ScannedLine ScanLine(const std::string& line, int line_number) {
   return scanned;
 }
 
+// The time `block` takes at least: its chord at its feed (a lower bound of an arc's
+// length; a full circle's chord is 0), plus its dwell.
+double MinimumBlockSeconds(const ProgramBlock& block, const GcodeLimits& limits) {
+  const double feed = block.kind == MotionKind::kRapid ? limits.rapid_feed_m_s
+                      : std::isnan(block.feed_m_s)      ? limits.default_feed_m_s
+                                                        : block.feed_m_s;
+  const double chord_m = (block.end_m - block.start_m).norm();
+  const double move_s = feed > 0.0 && std::isfinite(chord_m) ? chord_m / feed : 0.0;
+  return move_s + block.dwell_s;
+}
+
+// Refuses the program as soon as its blocks or its path's time cross `limits`.
+void CheckParsedSoFar(const Program& program, std::size_t counted, double* path_s,
+                      const GcodeLimits& limits, int line_number) {
+  for (std::size_t i = counted; i < program.blocks.size(); ++i) {
+    *path_s += MinimumBlockSeconds(program.blocks[i], limits);
+  }
+  if (program.blocks.size() > limits.max_blocks) {
+    throw ProgramError(line_number, 1, -1,
+                       "the program has more than " + std::to_string(limits.max_blocks) +
+                           " blocks by this line, more than " + limits.max_blocks_key +
+                           " allows; reading stopped here");
+  }
+  if (*path_s > limits.max_path_s) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4g s at its feeds by this line (limit %.4g s)", *path_s,
+                  limits.max_path_s);
+    throw ProgramError(line_number, 1, -1,
+                       std::string("the program's path already takes ") + text + ", more than " +
+                           limits.max_path_key + " allows; reading stopped here");
+  }
+}
+
 }  // namespace
 
-Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m) {
+Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, const GcodeLimits& limits) {
   ProgramBuilder builder(start_m);
+  double path_s = 0.0;  // the path's time so far, at least
   bool opened = false;     // an opening `%` was read
   int closing_line = 0;    // the line of the closing `%`, 0 while open
   bool any_block = false;  // a line with words was read
@@ -171,7 +206,9 @@ Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m) {
     Block block;
     block.words = scanned.words;
     block.source_line = line_number;
+    const std::size_t counted = builder.program().blocks.size();
     builder.Apply(block);
+    CheckParsedSoFar(builder.program(), counted, &path_s, limits, line_number);
     any_block = true;
   }
   return builder.TakeProgram();

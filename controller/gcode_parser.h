@@ -19,6 +19,8 @@
 //     its `(`; a stray character at itself.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
 
 #include <Eigen/Dense>
@@ -28,8 +30,23 @@
 
 namespace shapebench::controller {
 
+// Bounds checked while parsing, so that a huge file is refused at the block that crosses
+// them instead of after the whole program is built (docs/reliability.md, guard rails).
+// `*_key` names the limit in the message (the caller's configuration key).
+struct GcodeLimits {
+  std::size_t max_blocks = std::numeric_limits<std::size_t>::max();
+  std::string max_blocks_key;
+  // The path's time at its programmed feeds (each block's chord over its feed, a lower
+  // bound of an arc's) plus the dwells, in s.
+  double max_path_s = std::numeric_limits<double>::infinity();
+  std::string max_path_key;
+  double default_feed_m_s = 0.0;  // blocks before the first F word
+  double rapid_feed_m_s = 0.0;    // G0
+};
+
 // Throws ProgramError with the 1-based line and column of what is wrong.
 Program ParseGcode(const std::string& text,
-                   const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+                   const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
+                   const GcodeLimits& limits = {});
 
 }  // namespace shapebench::controller

@@ -24,6 +24,7 @@
 #include <Eigen/Dense>
 
 #include "bench/config/node_reader.h"
+#include "controller/gcode_parser.h"
 #include "controller/program.h"
 
 namespace shapebench::bench {
@@ -31,8 +32,10 @@ namespace shapebench::bench {
 controller::Program ReadProgramList(const NodeReader& program,
                                     const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
 
+// `limits` stops the parse at the block that crosses them (ParseGcode).
 controller::Program ReadProgramFile(const NodeReader& program_file,
                                     const std::string& scenario_dir,
-                                    const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+                                    const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
+                                    const controller::GcodeLimits& limits = {});
 
 }  // namespace shapebench::bench

@@ -14,6 +14,7 @@
 #include "bench/config/key_path.h"
 #include "bench/config/machine_reader.h"
 #include "bench/sim/metrics.h"
+#include "bench/sim/run_memory.h"
 #include "bench/config/node_reader.h"
 #include "bench/config/program_reader.h"
 #include "controller/controller.h"
@@ -170,6 +171,7 @@ RunLimits ReadLimits(const NodeReader& limits) {
   }
   if (config.max_ticks < 1) throw limits.Child("max_ticks")->Error("must be >= 1");
   if (config.max_trace_rows < 2) throw limits.Child("max_trace_rows")->Error("must be >= 2");
+  if (config.max_memory_mb < 1) throw limits.Child("max_memory_mb")->Error("must be >= 1");
   return config;
 }
 
@@ -192,8 +194,28 @@ void CheckPlantFinite(const Scenario& scenario) {
 }
 
 bool RunLengthWithinLimits(const Scenario& scenario, double seconds) {
+  const double ticks = seconds / scenario.controller.period_s;
   return !(seconds > scenario.limits.max_simulated_s) &&
-         !(seconds / scenario.controller.period_s > static_cast<double>(scenario.limits.max_ticks));
+         !(ticks > static_cast<double>(scenario.limits.max_ticks)) &&
+         !(ticks > MemoryTickLimit(scenario.limits));
+}
+
+// Guard rail: a run whose command, samples and trace would need more than
+// limits.max_memory_mb (a tiny period within max_ticks) is refused before allocating.
+void CheckRunMemory(const ConfigDocument& document, const Scenario& scenario, double seconds,
+                    const std::string& breakdown) {
+  const double ticks = seconds / scenario.controller.period_s;
+  if (!(ticks > MemoryTickLimit(scenario.limits))) return;
+  char text[96];
+  std::snprintf(text, sizeof text, "%.4g MB (%.4g interpolation periods of %.4g s, %.0f bytes each",
+                RunBytes(ticks) / MegabytesToBytes(1.0), ticks, scenario.controller.period_s,
+                kRunBytesPerTick);
+  throw document.ErrorAtPath(
+      "limits.max_memory_mb",
+      "scenario '" + ClippedForMessage(scenario.name) + "' would need at least " + text +
+          " for its command, samples and trace; " + breakdown + "), more than limits.max_memory_mb (" +
+          std::to_string(scenario.limits.max_memory_mb) +
+          " MB a run; a sweep needs about --jobs times it); raise it or lengthen controller.period_s");
 }
 
 // Guard rail: a run known to be longer than limits: allow is refused before any command
@@ -231,6 +253,38 @@ void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
             breakdown + "), more than limits.max_ticks (" + std::to_string(limits.max_ticks) +
             "); raise it or lengthen controller.period_s");
   }
+  CheckRunMemory(document, scenario, seconds, breakdown);
+}
+
+// The limits a G-code file is parsed under: its path's time within the run's (the binding
+// one of max_simulated_s, max_ticks and max_memory_mb), its blocks within the memory budget
+// and the ticks (every block takes at least one interpolation period).
+controller::GcodeLimits ParseLimits(const Scenario& scenario) {
+  const RunLimits& limits = scenario.limits;
+  const double period_s = scenario.controller.period_s;
+  double ticks = limits.max_simulated_s / period_s;
+  std::string key = "limits.max_simulated_s";
+  if (static_cast<double>(limits.max_ticks) < ticks) {
+    ticks = static_cast<double>(limits.max_ticks);
+    key = "limits.max_ticks";
+  }
+  if (MemoryTickLimit(limits) < ticks) {
+    ticks = MemoryTickLimit(limits);
+    key = "limits.max_memory_mb";
+  }
+  controller::GcodeLimits parse;
+  parse.max_path_s = ticks * period_s;
+  parse.max_path_key = key;
+  parse.default_feed_m_s = scenario.controller.feed_m_s();
+  parse.rapid_feed_m_s = scenario.controller.rapid_feed_mm_min / 60000.0;
+  const double memory_blocks = MegabytesToBytes(static_cast<double>(limits.max_memory_mb)) / kBytesPerBlock;
+  const double blocks = std::min(ticks, memory_blocks);
+  parse.max_blocks = static_cast<std::size_t>(std::max(1.0, std::floor(blocks)));
+  parse.max_blocks_key = memory_blocks < ticks ? "limits.max_memory_mb (about " +
+                                                     std::to_string(static_cast<long>(kBytesPerBlock)) +
+                                                     " bytes a block)"
+                                               : key + " (every block takes an interpolation period at least)";
+  return parse;
 }
 
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
@@ -245,6 +299,8 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   if (auto machine = top.Child("machine")) scenario.machine = ReadMachineAxesEntry(*machine);
   if (auto drive = top.Child("drive")) scenario.drive = ReadDrive(*drive);
   if (auto controller = top.Child("controller")) scenario.controller = ReadController(*controller);
+  // Before the program: a G-code file is read under them.
+  if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
   // One of move (the one-block shorthand), program and program_file says what runs.
   std::optional<NodeReader> what_runs;
   for (const char* key : {"move", "program", "program_file"}) {
@@ -259,7 +315,11 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
   if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
   if (auto program_file = top.Child("program_file")) {
-    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string());
+    // Limits from a validated period only (an invalid one is reported below, as before).
+    const bool period_ok = scenario.controller.period_s > 0.0 && std::isfinite(scenario.controller.period_s);
+    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string(),
+                                       Eigen::Vector3d::Zero(),
+                                       period_ok ? ParseLimits(scenario) : controller::GcodeLimits{});
   }
   if (auto output = top.Child("output")) {
     output->ExpectMap({"direction"});
@@ -273,7 +333,6 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   }
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
   if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
-  if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
 
   Validated(document, "machine", [&] { scenario.machine.validate(); });
   Validated(document, "controller", [&] { scenario.controller.validate(); });

@@ -1,5 +1,7 @@
 #include "bench/sim/cosim.h"
 
+#include "bench/sim/run_memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +12,7 @@
 #include "bench/sim/command_samples.h"
 #include "bench/sim/metric_accumulator.h"
 #include "bench/sim/output_view.h"
+#include "bench/sim/run_memory.h"
 #include "bench/sim/run_window.h"
 #include "controller/path_geometry.h"
 #include "controller/stroke_end.h"
@@ -467,7 +470,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   if (options.command == nullptr) {
     controller::ControllerConfig controller = scenario.controller;
     controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
-    result.command = controller::GenerateProgramCommand(controller, result.program);
+    // The memory budget again, on the planned length, before the per-tick command exists.
+    controller::CommandLimits limits;
+    limits.max_ticks = static_cast<std::size_t>(std::min(MemoryTickLimit(scenario.limits), 1e18));
+    limits.key = "limits.max_memory_mb";
+    result.command = controller::GenerateProgramCommand(controller, result.program, limits);
   }
   const controller::MultiAxisCommand& command = options.command != nullptr ? *options.command : result.command;
   const controller::PathGeometry path(result.program);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "bench/sim/run_memory.h"
 #include "common/validation_error.h"
 
 namespace shapebench::bench {
@@ -40,6 +41,16 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
     throw ValidationError(ticks_bind ? "limits.max_ticks" : "limits.max_simulated_s",
                           "the command and its residual window take " + std::to_string(w.window_end()) +
                               " periods, more than limits allow (max_simulated_s, max_ticks)");
+  }
+  // Again on the generated command, before the trace grows (the load-time check used a
+  // lower bound of the run's length).
+  if (static_cast<double>(w.window_end()) > MemoryTickLimit(scenario.limits)) {
+    throw ValidationError("limits.max_memory_mb",
+                          "the command and its residual window take " + std::to_string(w.window_end()) +
+                              " periods, about " + std::to_string(static_cast<long>(
+                                  RunBytes(static_cast<double>(w.window_end())) / MegabytesToBytes(1.0))) +
+                              " MB with the trace, more than limits.max_memory_mb (" +
+                              std::to_string(scenario.limits.max_memory_mb) + " MB a run)");
   }
   w.max_ticks = static_cast<std::size_t>(std::min(
       static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));

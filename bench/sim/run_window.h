@@ -44,8 +44,9 @@ struct RunWindow {
   }
 };
 
-// Throws ValidationError("limits.max_simulated_s") when the motion and its residual
-// window exceed the scenario's limits.
+// Throws ValidationError("limits.max_simulated_s", "limits.max_ticks" or
+// "limits.max_memory_mb") when the motion and its residual window exceed the scenario's
+// limits (bench/sim/run_memory.h for the memory).
 RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
                         const model::MachineDynamics& dynamics, double period_s);
 

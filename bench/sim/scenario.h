@@ -37,16 +37,21 @@ struct OutputConfig {
 // a lower bound of its length (MinimumRunSeconds), and again on the generated command.
 // trace.csv and the plots keep at most max_trace_rows samples (evenly decimated, noted in
 // trace.csv's first line and on stderr); the metrics always use every sample.
+// max_memory_mb bounds the memory one run needs for its command, per-tick samples and
+// trace (bench/sim/run_memory.h), estimated from the same lower bound of its length; a
+// sweep's peak is about --jobs times it.
 struct RunLimits {
   double max_simulated_s = 600.0;
   long max_ticks = 10'000'000;
   long max_trace_rows = 1'000'000;
+  long max_memory_mb = 1024;
 
   template <typename Archive>
   void Serialize(Archive* a) {  // the field list (common/field_list.h)
     a->Visit("max_simulated_s", &max_simulated_s);
     a->Visit("max_ticks", &max_ticks);
     a->Visit("max_trace_rows", &max_trace_rows);
+    a->Visit("max_memory_mb", &max_memory_mb);
   }
 };
 
