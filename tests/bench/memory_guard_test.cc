@@ -28,8 +28,13 @@ constexpr const char* kAddressSpaceCap = "1500000000";  // bytes, for the CLI's 
 // Runs the CLI under `prlimit --as=kAddressSpaceCap`, capturing stdout and stderr.
 CliResult RunCliCapped(const std::vector<std::string>& args) {
   ScratchDir capture;
-  std::string command = "cd " + ShellQuoted(kSourceDir) + " && prlimit --as=" + kAddressSpaceCap + " " +
-                        ShellQuoted(SHAPEBENCH_BINARY);
+  // Under AddressSanitizer an address-space cap stops the sanitizer itself from starting:
+  // its RSS limit bounds the child instead (bench_test_support.h, kUnderAddressSanitizer).
+  const std::string cap = testing::kUnderAddressSanitizer
+                              ? "ASAN_OPTIONS=\"$ASAN_OPTIONS:hard_rss_limit_mb=" +
+                                    std::to_string(std::stoull(kAddressSpaceCap) >> 20) + "\" "
+                              : std::string("prlimit --as=") + kAddressSpaceCap + " ";
+  std::string command = "cd " + ShellQuoted(kSourceDir) + " && " + cap + ShellQuoted(SHAPEBENCH_BINARY);
   for (const auto& arg : args) command += " " + ShellQuoted(arg);
   command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
   const int status = std::system(command.c_str());
