@@ -122,10 +122,12 @@ inline std::string ShellQuoted(const std::string& text) {
   return quoted + "'";
 }
 
-// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr.
-inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir) {
+// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr. `wrapper`, when
+// given, is shell text put before the binary (an environment assignment, `prlimit ...`).
+inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir,
+                        const std::string& wrapper = "") {
   ScratchDir capture;
-  std::string command = "cd " + ShellQuoted(work_dir) + " && " + ShellQuoted(SHAPEBENCH_BINARY);
+  std::string command = "cd " + ShellQuoted(work_dir) + " && " + wrapper + ShellQuoted(SHAPEBENCH_BINARY);
   for (const auto& arg : args) command += " " + ShellQuoted(arg);
   command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
   const int status = std::system(command.c_str());

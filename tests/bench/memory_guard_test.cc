@@ -25,24 +25,15 @@ using testing::ShellQuoted;
 const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 constexpr const char* kAddressSpaceCap = "1500000000";  // bytes, for the CLI's whole process
 
-// Runs the CLI under `prlimit --as=kAddressSpaceCap`, capturing stdout and stderr.
+// Runs the CLI under `prlimit --as=kAddressSpaceCap`, capturing stdout and stderr. Under
+// AddressSanitizer an address-space cap stops the sanitizer itself from starting: its RSS
+// limit bounds the child instead (bench_test_support.h, kUnderAddressSanitizer).
 CliResult RunCliCapped(const std::vector<std::string>& args) {
-  ScratchDir capture;
-  // Under AddressSanitizer an address-space cap stops the sanitizer itself from starting:
-  // its RSS limit bounds the child instead (bench_test_support.h, kUnderAddressSanitizer).
   const std::string cap = testing::kUnderAddressSanitizer
                               ? "ASAN_OPTIONS=\"$ASAN_OPTIONS:hard_rss_limit_mb=" +
                                     std::to_string(std::stoull(kAddressSpaceCap) >> 20) + "\" "
                               : std::string("prlimit --as=") + kAddressSpaceCap + " ";
-  std::string command = "cd " + ShellQuoted(kSourceDir) + " && " + cap + ShellQuoted(SHAPEBENCH_BINARY);
-  for (const auto& arg : args) command += " " + ShellQuoted(arg);
-  command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
-  const int status = std::system(command.c_str());
-  CliResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadText(capture.File("out"));
-  result.err = ReadText(capture.File("err"));
-  return result;
+  return testing::RunCli(args, kSourceDir, cap);
 }
 
 // Tests that a G-code file of five million short lines (X1 / X0, the path far longer
