@@ -21,4 +21,12 @@ inline std::string FormatNumber(double value) {
   return buffer;
 }
 
+// A measured quantity to `digits` significant digits (a deviation, a time): its precision is
+// not that of the double.
+inline std::string FormatNumber(double value, int digits) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
 }  // namespace shapebench

@@ -20,6 +20,10 @@ namespace shapebench::model {
 // exists yet; MakeIntegrator resolves kAuto with ResolveMethod).
 enum class IntegratorMethod { kCvode, kExact, kAuto };
 enum class CvodeLmm { kAdams, kBdf };
+// What a run does when CVODE disagrees with the exact discretisation of its linear plant
+// beyond the documented accuracy (model/cvode_cross_check.h): refuse it (solver trouble),
+// run it with a warning, or not check.
+enum class CrossCheckPolicy { kRefuse, kWarn, kOff };
 
 // How CvodeIntegrator drives CVODE. The defaults are the measured choices (docs/performance.md,
 // README "Performance"); the others exist to measure them against (benchmarks/).
@@ -73,6 +77,7 @@ struct IntegratorConfig {
   // lightly damped, non-stiff plants (measured in tests/model/cvode_integrator_test.cc).
   CvodeLmm lmm = CvodeLmm::kAdams;
   long max_num_steps = 100000;  // CVODE internal steps to reach one output substep
+  CrossCheckPolicy cross_check = CrossCheckPolicy::kRefuse;
   int output_substeps = 0;      // samples per interpolation period; 0 = automatic
   CvodeTuning tuning;           // not a scenario key: what the benchmarks compare
   void validate() const;        // throws ValidationError naming the field
@@ -87,6 +92,10 @@ struct IntegratorConfig {
     a->Visit("lmm", &lmm, Choices<CvodeLmm>{{"adams", CvodeLmm::kAdams}, {"bdf", CvodeLmm::kBdf}});
     a->Visit("max_num_steps", &max_num_steps);
     a->Visit("output_substeps", &output_substeps);
+    a->Visit("cross_check", &cross_check,
+             Choices<CrossCheckPolicy>{{"refuse", CrossCheckPolicy::kRefuse},
+                                       {"warn", CrossCheckPolicy::kWarn},
+                                       {"off", CrossCheckPolicy::kOff}});
   }
 };
 

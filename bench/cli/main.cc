@@ -129,6 +129,9 @@ int RunCommand(const RunArgs& args) {
   for (const std::string& warning : result.command.warnings) {
     std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
+  for (const std::string& warning : result.warnings) {
+    std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
+  }
   if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result);
   if (args.json) {
     std::cout << MetricsJson(result.metrics).dump(2) << std::endl;

@@ -16,6 +16,7 @@
 #include "bench/sim/run_window.h"
 #include "controller/path_geometry.h"
 #include "controller/stroke_end.h"
+#include "model/cvode_cross_check.h"
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
@@ -152,6 +153,7 @@ class CoSimulation {
 
  private:
   void SetUpPlant();
+  void CrossCheckCvode(const model::LinearPlant& plant, double scale_accel);
   void SetUpSampling();
   bool StepPlant(std::size_t k);  // true: the other axes' outputs are all exactly 0
   long SameInput(std::size_t k);
@@ -193,6 +195,7 @@ class CoSimulation {
   Eigen::Vector3d peak_axes_ = Eigen::Vector3d::Zero();
   double overshoot_ = 0.0;
   double travelled_m_ = 0.0;  // the command's distance along its own path (magnitude view)
+  std::string unchecked_;     // why CVODE's accuracy is unknown (its check pulse failed)
 };
 
 CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxisCommand& command,
@@ -227,8 +230,10 @@ void CoSimulation::SetUpPlant() {
   result_.substeps = substeps_;
   const model::LinearPlant& plant = machine_.plant;
   if (plant.num_states() > 0) {
-    integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_,
-                                        std::max(samples_.max_accel_m_s2, 1e-12), samples_.max_speed_m_s);
+    const double scale_accel = std::max(samples_.max_accel_m_s2, 1e-12);
+    CrossCheckCvode(plant, scale_accel);
+    integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_, scale_accel,
+                                        samples_.max_speed_m_s);
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
     holds_ = integrator_->UsesInputHolds();
   }
@@ -237,6 +242,31 @@ void CoSimulation::SetUpPlant() {
   outputs_.assign(static_cast<std::size_t>(substeps_) * std::max(rows_, model::kNumOutputRows), 0.0);
   taus_.resize(substeps_);
   for (int j = 1; j <= substeps_; ++j) taus_[j - 1] = dt_ * static_cast<double>(j) / substeps_;
+}
+
+// CVODE on a linear plant is checked against the exact discretisation once per distinct
+// plant and settings (model/cvode_cross_check.h): beyond the documented accuracy the run is
+// refused, or warned about.
+void CoSimulation::CrossCheckCvode(const model::LinearPlant& plant, double scale_accel) {
+  const model::IntegratorConfig& config = scenario_.integrator;
+  if (config.cross_check == model::CrossCheckPolicy::kOff ||
+      model::ResolveMethod(config.method, plant) != model::IntegratorMethod::kCvode) {
+    return;
+  }
+  const model::CrossCheckResult check = model::CachedCrossCheckCvode(
+      plant, config, dt_, substeps_, scale_accel, samples_.max_speed_m_s);
+  // The metrics are read up to the end of the residual window.
+  const double run_s = static_cast<double>(window_.window_end()) * dt_;
+  if (check.Passed(run_s)) return;
+  std::string message = model::CrossCheckMessage(check, config, run_s);
+  if (!check.solver_failure.empty()) {
+    // The run's own CVODE failure, if it has one, is the better report: it comes first.
+    unchecked_ = std::move(message);
+  } else if (config.cross_check == model::CrossCheckPolicy::kRefuse) {
+    throw model::SolverError("CROSS_CHECK_FAILED", message);
+  } else {
+    result_.warnings.push_back(std::move(message));
+  }
 }
 
 void CoSimulation::SetUpSampling() {
@@ -426,6 +456,12 @@ void CoSimulation::Finish(std::size_t last_tick, bool settled) {
   }
   FinishMetrics(&m);
   if (integrator_) result_.stats = integrator_->Stats();
+  if (!unchecked_.empty()) {
+    if (scenario_.integrator.cross_check == model::CrossCheckPolicy::kRefuse) {
+      throw model::SolverError("CROSS_CHECK_FAILED", unchecked_);
+    }
+    result_.warnings.push_back(unchecked_);
+  }
 }
 
 void CoSimulation::FinishMetrics(Metrics* m) const {

@@ -5,6 +5,7 @@
 // metrics.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -44,6 +45,9 @@ struct RunResult {
   model::IntegratorStats stats;
   int substeps = 0;
   double simulated_s = 0.0;  // the time of the last sample (motion and tail)
+  // What the user must be told beside the metrics (a failed CVODE cross-check under
+  // integrator.cross_check: warn).
+  std::vector<std::string> warnings;
 };
 
 struct RunOptions {

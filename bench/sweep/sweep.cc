@@ -618,6 +618,14 @@ std::string SetsKey(const SweepPoint& point) {
   return key;
 }
 
+// A point that ran with a warning (integrator.cross_check: warn) says so in its row's
+// error column; its status stays ok.
+std::string WarningText(const std::vector<std::string>& warnings) {
+  std::string text;
+  for (const std::string& warning : warnings) text += (text.empty() ? "warning: " : "; warning: ") + warning;
+  return text;
+}
+
 }  // namespace
 
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
@@ -659,10 +667,13 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
       thread_local SharedCommand shared;
       const std::string key = CommandKey(point);
       if (shared.command && shared.sweep_id == sweep.id && sweep.id != 0 && shared.key == key) {
-        outcome.metrics = RunScenario(scenario, RunOptions{false, shared.command.get()}).metrics;
+        const RunResult result = RunScenario(scenario, RunOptions{false, shared.command.get()});
+        outcome.metrics = result.metrics;
+        outcome.error = WarningText(result.warnings);
       } else {
         RunResult result = RunScenario(scenario, RunOptions{false});  // no trace needed
         outcome.metrics = result.metrics;
+        outcome.error = WarningText(result.warnings);
         shared.sweep_id = sweep.id;
         shared.key = key;
         shared.command = std::make_shared<const controller::MultiAxisCommand>(std::move(result.command));
