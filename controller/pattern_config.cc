@@ -65,6 +65,21 @@ void PatternConfig::validate() const {
                                           " only (method is " + method + ")");
   }
   if (entry.validate) entry.validate(*this);
+  if (entry.kind == ShaperKind::kImpulse || entry.kind == ShaperKind::kPatentStep) {
+    // Guard rail (docs/reliability.md): the convolved shaper has the product of the
+    // designs' impulse counts; at most ZVDD's at 8 frequencies, 4^8.
+    constexpr double kMaxConvolvedImpulses = 65536.0;
+    const std::vector<double> frequencies = DesignFrequencies();
+    const double per_mode = static_cast<double>(entry.design(*this, frequencies.front()).size());
+    const double count = std::pow(per_mode, static_cast<double>(frequencies.size()));
+    if (count > kMaxConvolvedImpulses) {
+      throw ValidationError(frequencies_hz.empty() ? "frequency_hz" : "frequencies_hz",
+                            "the shaper convolved for " + std::to_string(frequencies.size()) +
+                                " frequencies would have " + Num(per_mode) + "^" +
+                                std::to_string(frequencies.size()) + " = " + Num(count) +
+                                " impulses; allowed: at most 65536 (fewer frequencies or impulses)");
+    }
+  }
   if (!(Finite(step_resolution_s) && step_resolution_s >= 0.0)) {
     throw ValidationError("step_resolution_s", "must be >= 0 (0 keeps exact step times; got " +
                                                    Num(step_resolution_s) + ")");

@@ -32,7 +32,9 @@ struct PatternConfig {
   std::vector<double> frequencies_hz;
   // Library shapers: the damping ratio of the mode(s) they are designed for, in [0, 1).
   double design_damping_ratio = 0.0;
-  double vibration_tolerance = 0.05;  // ei: the residual allowed at the design frequency
+  double vibration_tolerance = 0.05;  // ei*: the residual allowed in each hump
+  int impulse_count = 3;                  // mzv_n: the number of impulses, 3..16
+  double impulse_spacing_periods = 0.375;  // mzv_n: their spacing in damped periods, (1/4, 1/2]
   std::vector<Impulse> impulses;      // custom: amplitudes summing to 1, times ascending
   double k1 = 0.675;           // method 3: 0.5 <= k1 <= 1
   double t1_s = 0.004;         // method 4: 0 <= t1 <= T/6

@@ -19,8 +19,9 @@ using controller::PostInterpType;
 controller::PatternConfig ReadPattern(const NodeReader& pattern,
                                       const std::vector<std::string>& extra_keys) {
   std::vector<std::string> allowed = {"method", "mode", "frequency_hz", "frequencies_hz",
-                                      "design_damping_ratio", "vibration_tolerance", "impulses",
-                                      "k1", "t1_s", "step_resolution_s", "realization"};
+                                      "design_damping_ratio", "vibration_tolerance", "impulse_count",
+                                      "impulse_spacing_periods", "impulses", "k1", "t1_s",
+                                      "step_resolution_s", "realization"};
   allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
   pattern.ExpectMap(allowed);
   controller::PatternConfig config;
@@ -56,6 +57,8 @@ controller::PatternConfig ReadPattern(const NodeReader& pattern,
   }
   pattern.Read("design_damping_ratio", &config.design_damping_ratio);
   pattern.Read("vibration_tolerance", &config.vibration_tolerance);
+  pattern.Read("impulse_count", &config.impulse_count);
+  pattern.Read("impulse_spacing_periods", &config.impulse_spacing_periods);
   if (auto impulses = pattern.Child("impulses")) {
     for (const NodeReader& impulse : impulses->Elements()) {
       impulse.ExpectMap({"amplitude", "time_s"});

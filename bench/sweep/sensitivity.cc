@@ -32,6 +32,8 @@ std::string ParameterText(const std::string& key, const controller::PatternConfi
   if (key == "vibration_tolerance") return " V=" + Num(p.vibration_tolerance);
   if (key == "k1") return " k1=" + Num(p.k1);
   if (key == "t1_s") return " t1=" + Num(p.t1_s);
+  if (key == "impulse_count") return " n=" + std::to_string(p.impulse_count);
+  if (key == "impulse_spacing_periods") return " s=" + Num(p.impulse_spacing_periods);
   return "";
 }
 

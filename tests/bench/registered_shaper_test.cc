@@ -96,7 +96,8 @@ TEST(RegisteredShaper, UnknownMethodListsTheRegistry) {
   const std::string path = dir.Write("bad.yaml", "controller:\n  pattern: {method: test_zvv}\n");
   testing::ExpectError(testing::ErrorOf([&] { LoadScenario(path, {}); }), path, 2, 21,
                        "controller.pattern.method",
-                       "expected one of none|1|2|3|4|zv|zvd|zvdd|mzv|ei|um_zv|custom|test_zv, got 'test_zvv'");
+                       "expected one of none|1|2|3|4|zv|zvd|zvdd|mzv|mzv_n|ei|ei_2hump|ei_3hump|um_zv|custom|test_zv, "
+                       "got 'test_zvv'");
 }
 
 }  // namespace

@@ -58,18 +58,20 @@ TEST(ShaperRegistry, EveryEntryIsWellFormed) {
       }
     }
   }
-  EXPECT_GE(keys.size(), 12u);
+  EXPECT_GE(keys.size(), 15u);
 }
 
 // Tests that the built-ins keep the order every listing had before the registry (the
-// YAML choices, the error messages, the pattern report).
+// YAML choices, the error messages, the pattern report), each family after its first
+// member (mzv_n after mzv, the multi-hump EIs after ei).
 TEST(ShaperRegistry, BuiltInsInTheirListedOrder) {
-  const std::vector<std::string> expected = {"none", "1",   "2",  "3",  "4",     "zv",
-                                             "zvd",  "zvdd", "mzv", "ei", "um_zv", "custom"};
+  const std::vector<std::string> expected = {"none", "1",     "2",  "3",        "4",        "zv",
+                                             "zvd",  "zvdd",  "mzv", "mzv_n",    "ei",       "ei_2hump",
+                                             "ei_3hump", "um_zv", "custom"};
   EXPECT_EQ(BuiltInShaperKeys(), expected);
   EXPECT_EQ(FindShaper("none").kind, ShaperKind::kNone);
   for (const char* key : {"1", "2", "3", "4"}) EXPECT_EQ(FindShaper(key).kind, ShaperKind::kPatentStep);
-  for (const char* key : {"zv", "zvd", "zvdd", "mzv", "ei", "um_zv"}) {
+  for (const char* key : {"zv", "zvd", "zvdd", "mzv", "mzv_n", "ei", "ei_2hump", "ei_3hump", "um_zv"}) {
     EXPECT_EQ(FindShaper(key).kind, ShaperKind::kImpulse);
   }
   EXPECT_EQ(FindShaper("custom").kind, ShaperKind::kCustom);
@@ -106,7 +108,8 @@ TEST(ShaperRegistry, DampingMessageListsTheKinds) {
     ADD_FAILURE() << "no ValidationError";
   } catch (const ValidationError& error) {
     EXPECT_EQ(error.field(), "design_damping_ratio");
-    EXPECT_NE(error.message().find("applies to the library shapers (zv, zvd, zvdd, mzv, ei, um_zv, custom"),
+    EXPECT_NE(error.message().find("applies to the library shapers (zv, zvd, zvdd, mzv, mzv_n, ei, ei_2hump, ei_3hump, um_zv, "
+                                     "custom"),
               std::string::npos)
         << error.message();
     EXPECT_NE(error.message().find("the patent's methods (1, 2, 3, 4) are designed for an undamped mode"),
@@ -150,7 +153,7 @@ TEST(ShaperRegistry, ListsByRank) {
   const std::vector<std::string> keys = ShaperKeys();
   const std::vector<std::string> head(keys.begin(), keys.begin() + 5);
   EXPECT_EQ(head, (std::vector<std::string>{"none", "1", "2", "test_rank_25", "3"}));
-  EXPECT_EQ(BuiltInShaperKeys().size(), 12u);
+  EXPECT_EQ(BuiltInShaperKeys().size(), 15u);
 }
 
 // The cells of a markdown table row "| a | b | c |", trimmed, backticks removed.
