@@ -154,7 +154,8 @@ void CheckSameGrid(const Sweep& baseline, const Sweep& candidate) {
                              candidate.file + "; point by point needs the same grid");
   };
   if (baseline.axes.size() != candidate.axes.size()) {
-    differ(std::to_string(baseline.axes.size()) + " axes in the baseline, " +
+    differ(std::to_string(baseline.axes.size()) + (baseline.axes.size() == 1 ? " axis" : " axes") +
+           " in the baseline, " +
            std::to_string(candidate.axes.size()) + " in the candidate");
   }
   for (std::size_t a = 0; a < baseline.axes.size(); ++a) {
