@@ -449,6 +449,11 @@ CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
   compare->add_option("--jobs", args->jobs, "sweeps: worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096))
       ->type_name("N");
+  compare->footer(
+      "Floors of max(|baseline|, floor): m 1e-9, s 1e-6, ratios 1e-6, count and bool 1. Lower is\n"
+      "better compares magnitudes. A gate on a metric n/a on either side fails. Two sweeps need\n"
+      "the same grid; a gate fails when any point fails it. Exit: 0 pass, 1 a gate failed,\n"
+      "2 bad input, 3 the solver failed. docs/compare.md");
   return compare;
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <functional>
 #include <stdexcept>
 #include <typeinfo>
 

@@ -150,6 +150,27 @@ TEST(CompareCli, SweepsComparePointByPoint) {
             "point,machine.modes[0].frequency_hz,metric,baseline,candidate,change,relative_change,favours,error");
 }
 
+// Tests that a sweep point that fails to run on one side (method 4's t1 above T/6 at 35 Hz)
+// is an error line naming the side, its option and the point, the other points are still
+// compared, and the exit code is 2 (bad input outranks a failed gate).
+TEST(CompareCli, SweepPointThatFailsOnASideExits2) {
+  const CliResult r = RunCli({"compare", DataPath("sweeps/natural_period.yaml"), "--candidate-set",
+                              "controller.pattern.method=4", "--candidate-set", "controller.pattern.t1_s=0.00477",
+                              "--gate", "motion_time_s=0"},
+                             kSourceDir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("error: --candidate-set:2:1: controller.pattern.t1_s: must be in [0, T/6]"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("(candidate " + DataPath("sweeps/natural_period.yaml") +
+                       " @ machine.modes[0].frequency_hz=35, controller.pattern.frequency_hz=35)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.out.find("points     201 (1 failed to run on a side, compared on 200)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("PASS gate motion_time_s=0: 200 of 200 points pass"), std::string::npos) << r.out;
+}
+
 // Tests that sweeps of different grids, a sweep against a scenario and a request with
 // nothing to compare exit 2 with a message saying why, before anything runs.
 TEST(CompareCli, MismatchedInputsExit2) {
