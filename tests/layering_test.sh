@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Tests that every include goes downwards in the house: a room may include itself and the
 # rooms listed before it, never one after it (controller/ and model/ never each other).
-#   common < model, controller < bench/sim < bench/config < bench/report < bench/sweep < bench/cli
+#   common < model, controller < bench/sim < bench/config < bench/report < bench/sweep
+#     < bench/compare < bench/cli
 set -u
 cd "$(dirname "$0")/.."
 allowed() {  # the include prefixes a file in room $1 may use
@@ -13,12 +14,13 @@ allowed() {  # the include prefixes a file in room $1 may use
     bench/config) echo "common/ model/ controller/ bench/sim/ bench/config/" ;;
     bench/report) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/" ;;
     bench/sweep) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/ bench/sweep/" ;;
+    bench/compare) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/ bench/sweep/ bench/compare/" ;;
     bench/cli) echo "common/ model/ controller/ bench/" ;;
   esac
 }
 bad=0
 checked=0
-for room in common model controller controller/shapers bench/sim bench/config bench/report bench/sweep bench/cli; do
+for room in common model controller controller/shapers bench/sim bench/config bench/report bench/sweep bench/compare bench/cli; do
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
     while IFS= read -r inc; do
@@ -32,6 +34,10 @@ for room in common model controller controller/shapers bench/sim bench/config be
       fi
     done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$file")
   done
+done
+# A new folder of bench/ is a room only once it has its place in the order above.
+for dir in bench/*/; do
+  [ -n "$(allowed "${dir%/}")" ] || { echo "${dir%/} is not a room of the order in $0: add it"; bad=1; }
 done
 stray=$(find bench -maxdepth 1 -name '*.cc' -o -maxdepth 1 -name '*.h')
 [ -z "$stray" ] || { echo "files outside bench's rooms: $stray"; bad=1; }

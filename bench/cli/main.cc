@@ -1,6 +1,6 @@
 // shapebench command line: run, check, modes, pattern, sensitivity,
-// sweep, merge.
-// Exit codes: 0 ok; 1 a check failed; 2 bad input, usage or unwritable output;
+// sweep, merge, compare.
+// Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage or unwritable output;
 // 3 the solver failed. Errors go to stderr as "error: ...".
 #include <chrono>
 #include <filesystem>
@@ -17,6 +17,10 @@
 #include <CLI/CLI.hpp>
 
 #include "common/atomic_file.h"
+#include "bench/compare/compare.h"
+#include "bench/compare/compare_report.h"
+#include "bench/compare/compare_runs.h"
+#include "bench/compare/compare_sweep.h"
 #include "bench/sim/checks.h"
 #include "bench/sim/cosim.h"
 #include "common/interrupt.h"
@@ -355,12 +359,105 @@ int MergeCommand(const MergeArgs& args) {
   return kExitOk;
 }
 
-void AddSetOption(CLI::App* command, std::vector<std::string>* sets) {
-  command
-      ->add_option("--set", *sets,
-                   "override one key, VALUE parsed as YAML (repeatable): --set a.b[0].c=VALUE")
+void AddSetOption(CLI::App* command, std::vector<std::string>* sets,
+                  const std::string& name = "--set",
+                  const std::string& help =
+                      "override one key, VALUE parsed as YAML (repeatable): --set a.b[0].c=VALUE") {
+  command->add_option(name, *sets, help)->allow_extra_args(false)->type_name("KEY=VALUE");
+}
+
+struct CompareArgs {
+  std::string baseline;
+  std::string candidate;
+  std::vector<std::string> sets;
+  std::vector<std::string> baseline_sets;
+  std::vector<std::string> candidate_sets;
+  std::vector<std::string> gates;
+  bool json = false;
+  std::string out_dir;
+  int jobs = 0;
+};
+
+// Two scenarios or two sweeps side by side (bench/compare/, docs/compare.md): exit 1 when
+// a gate fails; a sweep's point that fails to run makes it 2 or 3, as `check` ranks them.
+int CompareCommand(const CompareArgs& args) {
+  const std::vector<Gate> gates = ParseGates(args.gates);  // before anything runs
+  const CompareRequest request{args.baseline, args.candidate, args.sets, args.baseline_sets,
+                               args.candidate_sets};
+  const bool sweep = IsSweepFile(args.baseline);
+  if (!args.candidate.empty() && IsSweepFile(args.candidate) != sweep) {
+    throw std::runtime_error("compare: " + (sweep ? args.baseline : args.candidate) +
+                             " is a sweep file (base:, grid:), " + (sweep ? args.candidate : args.baseline) +
+                             " is not: give two scenarios or two sweeps");
+  }
+  if (sweep) {
+    const ComparedSweeps sweeps = LoadComparedSweeps(request);
+    const int jobs = JobsOrDefault(args.jobs);
+    const SweepComparison comparison =
+        args.out_dir.empty() ? CompareSweeps(sweeps, gates, jobs, nullptr, std::cerr)
+                             : CompareSweepsWritingTo(args.out_dir, sweeps, gates, jobs, std::cerr);
+    if (args.json) {
+      std::cout << ComparisonJson(comparison).dump(2) << std::endl;
+    } else {
+      PrintComparison(std::cout, comparison);
+      std::cout.flush();
+    }
+    if (comparison.point_exit_code != 0) return comparison.point_exit_code;
+    return comparison.passed() ? kExitOk : kExitCheckFailed;
+  }
+  const ScenarioComparison comparison = CompareScenarios(request, gates);
+  for (const auto& [side, run] : {std::pair{&comparison.baseline, &comparison.baseline_run},
+                                  std::pair{&comparison.candidate, &comparison.candidate_run}}) {
+    for (const std::string& warning : run->command.warnings) {
+      std::cerr << "warning: " << Safe(side->file) << ": " << Safe(warning) << "\n";
+    }
+  }
+  if (!args.out_dir.empty()) WriteComparisonOutputs(args.out_dir, comparison);
+  if (args.json) {
+    std::cout << ComparisonJson(comparison).dump(2) << std::endl;
+  } else {
+    PrintComparison(std::cout, comparison);
+    std::cout.flush();
+  }
+  return comparison.passed() ? kExitOk : kExitCheckFailed;
+}
+
+CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
+  CLI::App* compare = app->add_subcommand(
+      "compare",
+      "two scenarios (or two sweeps, point by point) side by side, every metric; --gate fails "
+      "(exit 1) when the candidate is worse");
+  compare->add_option("baseline", args->baseline, "the baseline: a scenario or sweep file")
+      ->required()
+      ->type_name("BASELINE.yaml");
+  compare->add_option("candidate", args->candidate,
+                      "the candidate: a file of the same kind (default: BASELINE with --candidate-set)")
+      ->type_name("CANDIDATE.yaml");
+  AddSetOption(compare, &args->sets, "--set", "override one key on both sides (repeatable): --set a.b=VALUE");
+  AddSetOption(compare, &args->baseline_sets, "--baseline-set",
+               "override one key on the baseline only, after --set (repeatable)");
+  AddSetOption(compare, &args->candidate_sets, "--candidate-set",
+               "override one key on the candidate only, after --set (repeatable)");
+  compare
+      ->add_option("--gate", args->gates,
+                   "exit 1 when the candidate is worse than the baseline by more than REL, relative "
+                   "to max(|baseline|, the unit's floor) (repeatable): --gate residual_ratio=0.05")
       ->allow_extra_args(false)
-      ->type_name("KEY=VALUE");
+      ->type_name("METRIC=REL");
+  compare->add_flag("--json", args->json, "print the comparison as one JSON object");
+  compare
+      ->add_option("--out", args->out_dir,
+                   "write compare.txt, compare.json and deflection.png (sweeps: points.csv) into DIR")
+      ->type_name("DIR");
+  compare->add_option("--jobs", args->jobs, "sweeps: worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096))
+      ->type_name("N");
+  compare->footer(
+      "Floors of max(|baseline|, floor): m 1e-9, s 1e-6, ratios 1e-6, count and bool 1. Lower is\n"
+      "better compares magnitudes. A gate on a metric n/a on either side fails. Two sweeps need\n"
+      "the same grid; a gate fails when any point fails it. Exit: 0 pass, 1 a gate failed,\n"
+      "2 bad input, 3 the solver failed. docs/compare.md");
+  return compare;
 }
 
 }  // namespace
@@ -442,6 +539,9 @@ int main(int argc, char** argv) {
   merge->add_option("--out", merge_args.out_dir, "output directory (then every DIR is a shard)")
       ->type_name("OUT_DIR");
 
+  CompareArgs compare_args;
+  CLI::App* compare = AddCompareCommand(&app, &compare_args);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -459,5 +559,6 @@ int main(int argc, char** argv) {
   if (sensitivity->parsed()) return Guarded([&] { return SensitivityCommand(sensitivity_args); });
   if (sweep->parsed()) return Guarded([&] { return SweepCommand(sweep_args); });
   if (merge->parsed()) return Guarded([&] { return MergeCommand(merge_args); });
+  if (compare->parsed()) return Guarded([&] { return CompareCommand(compare_args); });
   return kExitBadInput;
 }

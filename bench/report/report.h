@@ -1,5 +1,6 @@
 // What a run leaves behind: the metrics table, metrics JSON, the trace CSV, the
-// deflection plot, and JUnit XML for checks. Files are written atomically.
+// deflection plot (and two runs' overlaid), and JUnit XML for checks. Files are written
+// atomically.
 #pragma once
 
 #include <ostream>
@@ -44,6 +45,21 @@ std::size_t TraceStride(std::size_t samples, long max_rows);
 // std::runtime_error when gnuplot is missing or fails.
 void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
                          const Scenario& scenario);
+
+// One run of a deflection overlay: its result (the trace), its scenario (the trace's row
+// limit), a short name ("baseline") and its legend entry.
+struct OverlaidRun {
+  const RunResult* result = nullptr;
+  const Scenario* scenario = nullptr;
+  std::string name;
+  std::string title;
+};
+
+// The deflection of several runs over time in one plot (um against s, `compare --out`):
+// each run a line in its colour, where its motion ends dotted, its static band dashed
+// (once, grey, when the runs share it); the legend in a strip under the plot.
+void WriteDeflectionOverlayPlot(const std::string& path_png, const std::vector<OverlaidRun>& runs,
+                                const std::string& title);
 
 // The XY path (programmed vs actual tool path), the deviation from the programmed path
 // magnified so it shows at the path's scale (the circle-test plot of ISO 230-4); mm.
