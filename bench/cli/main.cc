@@ -145,6 +145,7 @@ struct CheckArgs {
   std::vector<std::string> sets;
   std::string junit;
   int jobs = 0;  // sweep files: worker threads (0: every hardware thread)
+  bool force = false;  // sweep files: load a grid above SweepLoadOptions::max_points
 };
 
 int JobsOrDefault(int jobs) {
@@ -159,9 +160,11 @@ int CheckCommand(const CheckArgs& args) {
   // A file with base: and grid: is a sweep: its checks apply to every point.
   std::vector<Scenario> scenarios;
   std::vector<std::optional<Sweep>> sweeps;
+  SweepLoadOptions load;
+  load.force = args.force;  // as `sweep --force`: the grid's refusal tells the user to pass it
   for (const std::string& file : args.files) {
     const bool sweep = IsSweepFile(file);
-    sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides)) : std::nullopt);
+    sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides, load)) : std::nullopt);
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
     if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
@@ -352,6 +355,9 @@ int MergeCommand(const MergeArgs& args) {
   return kExitOk;
 }
 
+// --force of `sweep` and `check` (SweepLoadOptions::max_points).
+constexpr const char* kForceHelp = "run a grid of more than 2,000,000 points";
+
 void AddSetOption(CLI::App* command, std::vector<std::string>* sets) {
   command
       ->add_option("--set", *sets,
@@ -386,6 +392,7 @@ int main(int argc, char** argv) {
   check->add_option("--jobs", check_args.jobs, "sweep files: worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096))
       ->type_name("N");
+  check->add_flag("--force", check_args.force, kForceHelp);
 
   ModesArgs modes_args;
   CLI::App* modes = app.add_subcommand("modes", "modal analysis of the machine model");
@@ -429,7 +436,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--shard", sweep_args.shard,
                     "run the points p with p % N == I only (I in 0..N-1); join with merge")
       ->type_name("I/N");
-  sweep->add_flag("--force", sweep_args.force, "run a grid of more than 2,000,000 points");
+  sweep->add_flag("--force", sweep_args.force, kForceHelp);
 
   MergeArgs merge_args;
   CLI::App* merge = app.add_subcommand("merge", "join the shards of a sweep into one results.csv");

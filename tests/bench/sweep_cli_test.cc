@@ -221,6 +221,32 @@ TEST(SweepCli, RefusesAnotherSweepsDirectoryAndHugeGrids) {
   EXPECT_NE(bad_shard.err.find("--shard: expected I/N"), std::string::npos) << bad_shard.err;
 }
 
+// Tests that `check` takes --force as `sweep` does: without it a grid over the limit is
+// refused naming --force; with it the grid loads, so the load goes on to the next file
+// (here a scenario without checks, so nothing runs and the 3,000,000 points stay unrun).
+TEST(SweepCli, CheckTakesForceForHugeGrids) {
+  ScratchDir dir;
+  const std::string big = dir.Write("big.yaml",
+                                    "base: " + testing::DataPath("sweeps/sdof_method1.yaml") +
+                                        "\ngrid:\n  machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 3000}\n"
+                                        "  controller.accel_time_s: {from: 0.1, to: 0.4, steps: 1000}\n"
+                                        "checks: {residual_ratio: {max: 0.05}}\n");
+  const std::string no_checks = testing::DataPath("no_checks.yaml");
+  const CliResult refused = RunCli({"check", big, no_checks}, kSourceDir);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find(big + ":3:3: grid: the grid has 3,000,000 points"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("pass --force"), std::string::npos) << refused.err;
+
+  const CliResult forced = RunCli({"check", big, no_checks, "--force"}, kSourceDir);
+  EXPECT_EQ(forced.exit_code, 2);
+  EXPECT_EQ(forced.err.find("3,000,000"), std::string::npos) << forced.err;
+  EXPECT_NE(forced.err.find(no_checks + ": checks: no checks to evaluate"), std::string::npos) << forced.err;
+
+  const CliResult help = RunCli({"check", "--help"}, kSourceDir);
+  EXPECT_NE(help.out.find("--force"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("run a grid of more than 2,000,000 points"), std::string::npos) << help.out;
+}
+
 // Tests that a value with a comma and an error message with commas and quotes are quoted
 // in results.csv (RFC 4180) and read back exactly.
 TEST(SweepCli, CsvQuotesValuesAndErrors) {
