@@ -7,11 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
+#include <new>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <tuple>
 
 #include <yaml-cpp/yaml.h>
@@ -423,11 +422,12 @@ void HashText(std::uint64_t* hash, const std::string& text) {
   *hash *= 0x100000001b3ULL;
 }
 
+// A file the hash covers (the G-code program): unreadable is an error, never an empty hash input.
 std::string FileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  return text;
 }
 
 bool EndsWith(const std::string& text, const std::string& suffix) {
@@ -702,6 +702,8 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
   } catch (const model::SolverError& error) {
     outcome.status = PointOutcome::Status::kSolverFailed;
     outcome.error = "solver failed: " + error.flag_name() + ": " + error.what();
+  } catch (const std::bad_alloc&) {
+    throw;  // the machine's, not the point's: no row, the sweep stops and resumes later
   } catch (const std::exception& error) {
     outcome.status = PointOutcome::Status::kFailed;
     outcome.error = error.what();

@@ -145,7 +145,8 @@ struct PointOutcome {
   bool ok() const { return status == Status::kOk; }
 };
 
-// Loads and runs one point; never throws. An error caused by one of the point's values
+// Loads and runs one point; throws only std::bad_alloc (out of memory says nothing of the
+// point: a row "error" would be kept by a resumed sweep, so the sweep stops instead). An error caused by one of the point's values
 // is located at that value in the sweep file; one caused by a --set reads --set:N:1.
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index);
 
