@@ -1,5 +1,7 @@
 #include "common/atomic_file.h"
 
+#include "common/fd_stream.h"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -11,9 +13,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace shapebench {
@@ -21,8 +23,51 @@ namespace {
 
 constexpr std::size_t kMaxTempNameBytes = 255;
 
-std::runtime_error WriteError(const std::string& path, const std::string& what) {
+std::runtime_error WriteFailure(const std::string& path, const std::string& what) {
   return std::runtime_error("cannot write " + path + ": " + what);
+}
+
+// An existing target that is not a regular file or a directory: a device (/dev/null,
+// /dev/full), a FIFO (`--junit >(cat)`), a socket. Renaming over it would replace the
+// device node (as root) or fail for want of rights in /dev: it is written in place.
+bool IsStreamTarget(const std::string& path) {
+  struct stat info {};
+  return stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode) && !S_ISDIR(info.st_mode);
+}
+
+// Closes a descriptor on every way out; Close() reports close(2)'s error (NFS, full disk).
+class Descriptor {
+ public:
+  explicit Descriptor(int fd) : fd_(fd) {}
+  ~Descriptor() {
+    if (fd_ >= 0) close(fd_);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int get() const { return fd_; }
+  int Close() {
+    const int result = close(fd_);
+    fd_ = -1;
+    return result == 0 ? 0 : errno;
+  }
+
+ private:
+  int fd_;
+};
+
+// `write` on a stream to the open file `fd`; errors name `shown` with their errno.
+void WriteThrough(int fd, const std::string& shown, const std::function<void(std::ostream&)>& write) {
+  Descriptor file(fd);
+  int error = 0;
+  {
+    FdStreamBuf buffer(file.get());
+    std::ostream out(&buffer);
+    write(out);
+    out.flush();
+    error = buffer.error();
+  }
+  if (error != 0) throw WriteError(shown, error);
+  if (const int close_error = file.Close()) throw WriteError(shown, close_error);
 }
 
 // mkstemp creates 0600; finished files get the usual 0666 & ~umask.
@@ -61,6 +106,15 @@ bool SyncPath(const std::string& path, int flags) {
   close(fd);
   errno = saved;
   return synced;
+}
+
+// create_directories, its failure as "cannot write DIR: CAUSE" (a file in the way: "Not a
+// directory", "File exists").
+void CreateDirectories(const std::string& dir, const std::string& shown) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!ec && !std::filesystem::is_directory(dir, ec)) ec = std::make_error_code(std::errc::not_a_directory);
+  if (ec) throw WriteFailure(shown, ec.message());
 }
 
 std::string DirectoryOf(const std::string& path) {
@@ -104,8 +158,11 @@ TempFile::TempFile(const std::string& final_path) : final_path_(final_path) {
   const std::string pattern = TempNamePattern(final_path);
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
+  // A device or FIFO in its place would be replaced by the rename (WriteFileAtomically
+  // writes those in place; gnuplot's PNGs are files).
+  if (IsStreamTarget(final_path)) throw WriteFailure(final_path, "not a regular file (a device, FIFO or socket)");
   const int fd = mkstemp(name.data());
-  if (fd < 0) throw WriteError(final_path, std::strerror(errno));
+  if (fd < 0) throw WriteError(final_path, errno);
   fchmod(fd, FileMode());
   close(fd);
   temp_path_ = name.data();
@@ -118,13 +175,11 @@ TempFile::~TempFile() {
 void TempFile::Commit() {
   // On disk before the name says complete: a crash or full disk after the rename must not
   // leave a short file under the final name; the directory synced so the rename persists.
-  if (!SyncPath(temp_path_, O_RDONLY)) throw WriteError(final_path_, std::strerror(errno));
-  if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
-    throw WriteError(final_path_, std::strerror(errno));
-  }
+  if (!SyncPath(temp_path_, O_RDONLY)) throw WriteError(final_path_, errno);
+  if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) throw WriteError(final_path_, errno);
   committed_ = true;
   if (!SyncPath(DirectoryOf(final_path_), O_RDONLY | O_DIRECTORY)) {
-    throw WriteError(final_path_, std::string("syncing its directory: ") + std::strerror(errno));
+    throw WriteFailure(final_path_, std::string("syncing its directory: ") + std::strerror(errno));
   }
 }
 
@@ -132,19 +187,19 @@ StagedDirectory::StagedDirectory(const std::string& final_dir)
     : final_dir_(final_dir), path_(final_dir) {
   std::error_code ec;
   if (std::filesystem::exists(final_dir, ec) || ec) {
-    std::filesystem::create_directories(final_dir);  // throws when it is not a directory
+    CreateDirectories(final_dir, final_dir);  // throws when it is not a directory
     return;
   }
   // A trailing slash would leave an empty file name for the sibling.
   const std::filesystem::path target = std::filesystem::path(final_dir).lexically_normal();
   const std::string name = target.filename().empty() ? target.parent_path().string() : target.string();
   const std::string parent = DirectoryOf(name);
-  std::filesystem::create_directories(parent);
+  CreateDirectories(parent, final_dir);
   RemoveStaleTempFiles(parent);
   const std::string pattern = TempNamePattern(name);
   std::vector<char> dir(pattern.begin(), pattern.end());
   dir.push_back('\0');
-  if (mkdtemp(dir.data()) == nullptr) throw WriteError(final_dir, std::strerror(errno));
+  if (mkdtemp(dir.data()) == nullptr) throw WriteError(final_dir, errno);
   // mkdtemp creates 0700; a finished directory gets the usual 0777 & ~umask.
   chmod(dir.data(), FileMode() | ((FileMode() & 0444) >> 2));
   path_ = dir.data();
@@ -170,26 +225,26 @@ std::string StagedDirectory::Shown(const std::string& text) const {
 void StagedDirectory::Commit() {
   if (!staged_) return;
   // rename(2) refuses a non-empty target: a directory made meanwhile by another is kept.
-  if (std::rename(path_.c_str(), final_dir_.c_str()) != 0) {
-    throw WriteError(final_dir_, std::strerror(errno));
-  }
+  if (std::rename(path_.c_str(), final_dir_.c_str()) != 0) throw WriteError(final_dir_, errno);
   staged_ = false;
   path_ = final_dir_;
   if (!SyncPath(DirectoryOf(final_dir_), O_RDONLY | O_DIRECTORY)) {
-    throw WriteError(final_dir_, std::string("syncing its directory: ") + std::strerror(errno));
+    throw WriteFailure(final_dir_, std::string("syncing its directory: ") + std::strerror(errno));
   }
 }
 
 void WriteFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& write) {
-  TempFile temp(path);
-  {
-    std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
-    if (!out) throw WriteError(path, "cannot open " + temp.path());
-    write(out);
-    out.flush();
-    if (!out) throw WriteError(path, "write failed");
+  if (IsStreamTarget(path)) {
+    const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) throw WriteError(path, errno);
+    WriteThrough(fd, path, write);
+    return;
   }
+  TempFile temp(path);
+  const int fd = open(temp.path().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) throw WriteError(path, errno);
+  WriteThrough(fd, path, write);  // errors name `path`, not the temporary name
   temp.Commit();
 }
 

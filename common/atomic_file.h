@@ -9,7 +9,8 @@
 namespace shapebench {
 
 // A temporary file next to `final_path`, removed unless Commit() renames it into place.
-// For writers that need a file name (gnuplot); others use WriteFileAtomically.
+// For writers that need a file name (gnuplot); others use WriteFileAtomically. Refuses a
+// `final_path` that is a device, FIFO or socket (the rename would replace it).
 class TempFile {
  public:
   explicit TempFile(const std::string& final_path);  // throws std::runtime_error
@@ -57,8 +58,10 @@ class StagedDirectory {
   bool staged_ = false;
 };
 
-// Calls `write` on a stream to a TempFile, then commits it. Throws std::runtime_error
-// naming `path` when anything fails.
+// Calls `write` on a stream to a TempFile, then commits it. An existing device or FIFO at
+// `path` (/dev/stdout, /dev/full, a pipe) is written into instead, without atomicity (a
+// stream has none). Throws std::runtime_error "cannot write PATH: CAUSE", CAUSE the errno
+// text of the call that failed ("No space left on device").
 void WriteFileAtomically(const std::string& path,
                          const std::function<void(std::ostream&)>& write);
 

@@ -1,11 +1,14 @@
 // shapebench command line: run, check, modes, pattern, sensitivity,
 // sweep, merge, compare.
-// Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage or unwritable output;
-// 3 the solver failed. Errors go to stderr as "error: ...".
+// Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage, unwritable
+// output (stdout included) or out of memory; 3 the solver failed. Errors go to stderr as
+// "error: ...".
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -17,6 +20,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/atomic_file.h"
+#include "common/fd_stream.h"
 #include "bench/compare/compare.h"
 #include "bench/compare/compare_report.h"
 #include "bench/compare/compare_runs.h"
@@ -53,10 +57,48 @@ std::string SolverMessage(const model::SolverError& error) {
   return "solver failed: " + error.flag_name() + ": " + error.what();
 }
 
+// What the command is doing and what bounds its memory, for the message of a
+// std::bad_alloc (which names neither). Set by each command as it goes.
+struct Activity {
+  std::string doing = "starting";
+  std::string memory;  // "" when no limit applies
+};
+Activity activity;
+
+void Doing(std::string doing, std::string memory = "") {
+  activity.doing = std::move(doing);
+  activity.memory = std::move(memory);
+}
+
+// A run's bound: the estimate stayed under limits.max_memory_mb (bench/sim/run_memory.h),
+// so the machine, or a limit on the process (ulimit -v), gave less than the scenario allows.
+std::string RunMemory(const Scenario& scenario) {
+  return "limits.max_memory_mb is " + std::to_string(scenario.limits.max_memory_mb) +
+         " MB a run, more than this process could get: lower it (such a run is then refused "
+         "before it starts), shorten the run or free memory";
+}
+
+std::string SweepMemory(int jobs) {
+  return (jobs == 1 ? std::string("1 run at a time (--jobs 1)")
+                    : std::to_string(jobs) + " runs at once (--jobs)") +
+         ", each up to its limits.max_memory_mb: lower --jobs or limits.max_memory_mb";
+}
+
+// Out of memory is exit 2 like the memory guard's refusal (limits.max_memory_mb): the
+// input asks for more than the machine gives, as an unwritable output is the machine's too.
+int OutOfMemory() {
+  std::cerr << "error: out of memory while " << Safe(activity.doing);
+  if (!activity.memory.empty()) std::cerr << "; " << Safe(activity.memory);
+  std::cerr << "\n";
+  return kExitBadInput;
+}
+
 // Maps the exceptions of loading, running and writing onto exit codes.
 int Guarded(const std::function<int()>& command) {
   try {
     return command();
+  } catch (const std::bad_alloc&) {
+    return OutOfMemory();
   } catch (const InterruptedError& error) {  // SIGINT, SIGTERM: 130, 143
     std::cerr << "error: " << Safe(error.what()) << "\n";
     return error.exit_code();
@@ -128,8 +170,11 @@ struct RunArgs {
 
 int RunCommand(const RunArgs& args) {
   const std::vector<Override> overrides = ParseOverrides(args.sets);
+  Doing("loading " + args.scenario);
   const Scenario scenario = LoadScenario(args.scenario, overrides);
+  Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
   const RunResult result = RunLocated(scenario, overrides);
+  Doing("writing the outputs of scenario '" + scenario.name + "'");
   for (const std::string& warning : result.command.warnings) {
     std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
@@ -152,6 +197,7 @@ struct CheckArgs {
   std::vector<std::string> sets;
   std::string junit;
   int jobs = 0;  // sweep files: worker threads (0: every hardware thread)
+  bool force = false;  // sweep files: load a grid above SweepLoadOptions::max_points
 };
 
 int JobsOrDefault(int jobs) {
@@ -166,9 +212,12 @@ int CheckCommand(const CheckArgs& args) {
   // A file with base: and grid: is a sweep: its checks apply to every point.
   std::vector<Scenario> scenarios;
   std::vector<std::optional<Sweep>> sweeps;
+  SweepLoadOptions load;
+  load.force = args.force;  // as `sweep --force`: the grid's refusal tells the user to pass it
   for (const std::string& file : args.files) {
+    Doing("loading " + file);
     const bool sweep = IsSweepFile(file);
-    sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides)) : std::nullopt);
+    sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides, load)) : std::nullopt);
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
     if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
@@ -186,6 +235,8 @@ int CheckCommand(const CheckArgs& args) {
     const Scenario& scenario = scenarios[i];
     ScenarioCheckReport report;
     if (sweeps[i]) {
+      Doing("checking sweep '" + sweeps[i]->name + "' (" + sweeps[i]->file + ")",
+            SweepMemory(JobsOrDefault(args.jobs)));
       raise(CheckSweep(*sweeps[i], overrides, JobsOrDefault(args.jobs), std::cout, std::cerr,
                        &report));
       reports.push_back(report);
@@ -194,6 +245,7 @@ int CheckCommand(const CheckArgs& args) {
     report.file = scenario.source_file;
     report.name = scenario.name;
     const auto start = std::chrono::steady_clock::now();
+    Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
     try {
       const RunResult result = RunLocated(scenario, overrides);
       report.results = EvaluateChecks(scenario.checks, result.metrics);
@@ -216,6 +268,7 @@ int CheckCommand(const CheckArgs& args) {
     reports.push_back(report);
   }
   if (!args.junit.empty()) {
+    Doing("writing " + args.junit);
     const DeferInterrupts defer;
     WriteJUnit(args.junit, reports);
     ThrowIfInterrupted(args.junit + " is complete");
@@ -231,6 +284,7 @@ struct ModesArgs {
 
 int ModesCommand(const ModesArgs& args) {
   // Every modelled axis; the static deflection reported is the driven axis'.
+  Doing("analysing the modes of " + args.file);
   const model::MultiAxisMachineConfig machine =
       LoadMachineAxes(args.file, ParseOverrides(args.sets));
   const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(machine);
@@ -250,6 +304,7 @@ struct PatternArgs {
 int PatternCommand(const PatternArgs& args) {
   LoadOptions options;
   options.plan_move = false;  // the pattern is shown whatever the move
+  Doing("showing the pattern of " + args.file);
   const Scenario scenario = LoadScenario(args.file, ParseOverrides(args.sets), options);
   PrintPatternReport(std::cout, scenario);  // with the time penalty of its move or program
   return kExitOk;
@@ -263,11 +318,17 @@ struct SensitivityArgs {
 
 // Residual vibration vs plant frequency / design frequency per shaper (bench/sweep/sensitivity.h).
 int SensitivityCommand(const SensitivityArgs& args) {
+  Doing("computing the sensitivity curves of " + args.file);
   const SensitivitySpec spec = LoadSensitivity(args.file, ParseOverrides(args.sets));
   const SensitivityResult result = ComputeSensitivity(spec);
   if (!args.out_dir.empty()) {
     const DeferInterrupts defer;
-    std::filesystem::create_directories(args.out_dir);
+    std::error_code ec;
+    std::filesystem::create_directories(args.out_dir, ec);
+    if (ec || !std::filesystem::is_directory(args.out_dir)) {
+      throw std::runtime_error("cannot create " + args.out_dir + ": " +
+                               (ec ? ec.message() : "not a directory"));
+    }
     const std::filesystem::path dir(args.out_dir);
     WriteSensitivityCsv((dir / "sensitivity.csv").string(), result);
     WriteSensitivityPlot((dir / "sensitivity.png").string(), result,
@@ -313,12 +374,15 @@ int SweepCommand(const SweepArgs& args) {
   if (!args.shard.empty()) ParseShard(args.shard, &options);
   SweepLoadOptions load;
   load.force = args.force;
+  Doing("loading " + args.file);
   const Sweep sweep = LoadSweep(args.file, overrides, load);
   options.out_dir = args.out_dir.empty()
                         ? (std::filesystem::path("sweep_out") / sweep.name).string()
                         : args.out_dir;
   options.jobs = JobsOrDefault(args.jobs);
   options.progress = isatty(STDERR_FILENO) != 0;
+  Doing("running sweep '" + sweep.name + "' (" + sweep.file + ") into " + options.out_dir,
+        SweepMemory(options.jobs) + "; the complete rows are kept, the same command resumes");
   const SweepRunSummary summary = RunSweep(sweep, overrides, options);
   std::cout << "sweep " << Safe(sweep.name) << ": " << summary.points << " points";
   if (options.shard_count > 1) {
@@ -350,6 +414,7 @@ int MergeCommand(const MergeArgs& args) {
     shards.erase(shards.begin());
   }
   const DeferInterrupts defer;
+  Doing("merging shards into " + out_dir);
   const MergeSummary summary = MergeShards(out_dir, shards);
   ThrowIfInterrupted("the merged output in " + out_dir + " is complete");
   std::cout << "merged " << summary.shards << " shards: " << summary.points << " points -> "
@@ -358,6 +423,36 @@ int MergeCommand(const MergeArgs& args) {
   std::cout.flush();
   return kExitOk;
 }
+
+// stdout goes through a buffer that keeps write(2)'s errno: `run --json > FULL_DISK` fails
+// naming the cause instead of exiting 0 with nothing written (stdio keeps no errno for a
+// failed flush). Line-buffered on a terminal, as stdio is.
+class CheckedStdout {
+ public:
+  CheckedStdout()
+      : buffer_(STDOUT_FILENO, isatty(STDOUT_FILENO) != 0), stdio_(std::cout.rdbuf(&buffer_)) {}
+  ~CheckedStdout() {
+    std::cout.flush();
+    std::cout.rdbuf(stdio_);
+  }
+  CheckedStdout(const CheckedStdout&) = delete;
+  CheckedStdout& operator=(const CheckedStdout&) = delete;
+
+  // `code`, or 2 when stdout could not be written (a solver failure or an interruption kept).
+  int Checked(int code) {
+    std::cout.flush();
+    if (buffer_.error() == 0) return code;
+    std::cerr << "error: cannot write standard output: " << std::strerror(buffer_.error()) << "\n";
+    return code == kExitOk || code == kExitCheckFailed ? kExitBadInput : code;
+  }
+
+ private:
+  FdStreamBuf buffer_;
+  std::streambuf* stdio_;
+};
+
+// --force of `sweep` and `check` (SweepLoadOptions::max_points).
+constexpr const char* kForceHelp = "run a grid of more than 2,000,000 points";
 
 void AddSetOption(CLI::App* command, std::vector<std::string>* sets,
                   const std::string& name = "--set",
@@ -464,6 +559,7 @@ CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
 
 int main(int argc, char** argv) {
   InstallInterruptHandlers();  // SIGINT, SIGTERM: complete files only (common/interrupt.h)
+  CheckedStdout stdout_checked;
   CLI::App app{"shapebench: CNC vibration co-simulation testbench"};
   app.require_subcommand(1);
 
@@ -486,6 +582,7 @@ int main(int argc, char** argv) {
   check->add_option("--jobs", check_args.jobs, "sweep files: worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096))
       ->type_name("N");
+  check->add_flag("--force", check_args.force, kForceHelp);
 
   ModesArgs modes_args;
   CLI::App* modes = app.add_subcommand("modes", "modal analysis of the machine model");
@@ -529,7 +626,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--shard", sweep_args.shard,
                     "run the points p with p % N == I only (I in 0..N-1); join with merge")
       ->type_name("I/N");
-  sweep->add_flag("--force", sweep_args.force, "run a grid of more than 2,000,000 points");
+  sweep->add_flag("--force", sweep_args.force, kForceHelp);
 
   MergeArgs merge_args;
   CLI::App* merge = app.add_subcommand("merge", "join the shards of a sweep into one results.csv");
@@ -545,20 +642,21 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    if (error.get_exit_code() == 0) return app.exit(error);  // --help
+    if (error.get_exit_code() == 0) return stdout_checked.Checked(app.exit(error));  // --help
     std::cerr << "error: " << Safe(error.what()) << "\n";
     const auto parsed = app.get_subcommands();
     std::cerr << (parsed.empty() ? app.help() : parsed.back()->help());
     return kExitBadInput;
   }
 
-  if (run->parsed()) return Guarded([&] { return RunCommand(run_args); });
-  if (check->parsed()) return Guarded([&] { return CheckCommand(check_args); });
-  if (modes->parsed()) return Guarded([&] { return ModesCommand(modes_args); });
-  if (pattern->parsed()) return Guarded([&] { return PatternCommand(pattern_args); });
-  if (sensitivity->parsed()) return Guarded([&] { return SensitivityCommand(sensitivity_args); });
-  if (sweep->parsed()) return Guarded([&] { return SweepCommand(sweep_args); });
-  if (merge->parsed()) return Guarded([&] { return MergeCommand(merge_args); });
-  if (compare->parsed()) return Guarded([&] { return CompareCommand(compare_args); });
-  return kExitBadInput;
+  int code = kExitBadInput;
+  if (run->parsed()) code = Guarded([&] { return RunCommand(run_args); });
+  if (check->parsed()) code = Guarded([&] { return CheckCommand(check_args); });
+  if (modes->parsed()) code = Guarded([&] { return ModesCommand(modes_args); });
+  if (pattern->parsed()) code = Guarded([&] { return PatternCommand(pattern_args); });
+  if (sensitivity->parsed()) code = Guarded([&] { return SensitivityCommand(sensitivity_args); });
+  if (sweep->parsed()) code = Guarded([&] { return SweepCommand(sweep_args); });
+  if (merge->parsed()) code = Guarded([&] { return MergeCommand(merge_args); });
+  if (compare->parsed()) code = Guarded([&] { return CompareCommand(compare_args); });
+  return stdout_checked.Checked(code);
 }

@@ -1,11 +1,12 @@
 #include "bench/config/config_document.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "common/shown_text.h"
 #include "bench/config/key_path.h"
@@ -51,18 +52,33 @@ bool ReadInputFile(const std::string& path, std::string* text, std::string* erro
              std::to_string(kMaxInputFileBytes >> 20) + " MiB an input file may have";
     return false;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  // read(2) itself, so that a failure keeps its errno (an ifstream would read it as the end).
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
     *error = std::string("cannot open file: ") + std::strerror(errno);
     return false;
   }
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) {
-    *error = "cannot read file";
-    return false;
+  std::string bytes;
+  char buffer[65536];
+  for (;;) {
+    const ssize_t size = read(fd, buffer, sizeof buffer);
+    if (size < 0 && errno == EINTR) continue;
+    if (size < 0) {
+      *error = std::string("cannot read file: ") + std::strerror(errno);
+      close(fd);
+      return false;
+    }
+    if (size == 0) break;
+    bytes.append(buffer, static_cast<std::size_t>(size));
+    if (bytes.size() > kMaxInputFileBytes) {  // it grew since it was measured
+      *error = "cannot read file: more than the " + std::to_string(kMaxInputFileBytes >> 20) +
+               " MiB an input file may have";
+      close(fd);
+      return false;
+    }
   }
-  *text = bytes.str();
+  close(fd);
+  *text = std::move(bytes);
   return true;
 }
 

@@ -1,13 +1,17 @@
 // RunGnuplot (bench/report/gnuplot.h).
 #include "bench/report/gnuplot.h"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -62,34 +66,46 @@ class SigpipeBlock {
 constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 constexpr std::array<unsigned char, 12> kPngEnd = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
 
+// The N bytes at `offset` of `fd` equal `expected`; *error is pread's errno when it fails.
 template <std::size_t N>
-bool ReadsAs(std::ifstream& in, std::streamoff offset, std::ios::seekdir from,
-             const std::array<unsigned char, N>& expected) {
-  std::array<char, N> bytes{};
-  in.seekg(offset, from);
-  if (!in.read(bytes.data(), N)) return false;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (static_cast<unsigned char>(bytes[i]) != expected[i]) return false;
+bool ReadsAs(int fd, off_t offset, const std::array<unsigned char, N>& expected, int* error) {
+  std::array<unsigned char, N> bytes{};
+  std::size_t done = 0;
+  while (done < N) {
+    const ssize_t size = pread(fd, bytes.data() + done, N - done, offset + static_cast<off_t>(done));
+    if (size < 0 && errno == EINTR) continue;
+    if (size < 0) *error = errno;  // right at the failing call
+    if (size <= 0) return false;
+    done += static_cast<std::size_t>(size);
   }
-  return true;
+  return bytes == expected;
+}
+
+// What PngDefect reports of the open file `fd` of `size` bytes; *error is set instead
+// when reading it fails.
+std::string DefectOf(int fd, off_t size, int* error) {
+  if (size <= 0) return "gnuplot wrote nothing";
+  if (size < static_cast<off_t>(kPngSignature.size() + kPngEnd.size()) ||
+      !ReadsAs(fd, 0, kPngSignature, error)) {
+    return "not a PNG (no PNG signature)";
+  }
+  if (!ReadsAs(fd, size - static_cast<off_t>(kPngEnd.size()), kPngEnd, error)) {
+    return "the PNG is truncated (no IEND chunk at its end; is the disk full?)";
+  }
+  return "";
 }
 
 }  // namespace
 
 std::string PngDefect(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "cannot read it back";
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size <= 0) return "gnuplot wrote nothing";
-  if (size < static_cast<std::streamoff>(kPngSignature.size() + kPngEnd.size()) ||
-      !ReadsAs(in, 0, std::ios::beg, kPngSignature)) {
-    return "not a PNG (no PNG signature)";
-  }
-  if (!ReadsAs(in, -static_cast<std::streamoff>(kPngEnd.size()), std::ios::end, kPngEnd)) {
-    return "the PNG is truncated (no IEND chunk at its end; is the disk full?)";
-  }
-  return "";
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return std::string("cannot read it back: ") + std::strerror(errno);
+  struct stat info {};
+  int error = fstat(fd, &info) == 0 ? 0 : errno;
+  const std::string defect = error == 0 ? DefectOf(fd, info.st_size, &error) : "";
+  close(fd);
+  if (error != 0) return std::string("cannot read it back: ") + std::strerror(error);
+  return defect;
 }
 
 void CommitPng(TempFile& temp, const std::string& path_png) {

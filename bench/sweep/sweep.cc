@@ -7,11 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
+#include <new>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <tuple>
 
 #include <yaml-cpp/yaml.h>
@@ -423,11 +422,12 @@ void HashText(std::uint64_t* hash, const std::string& text) {
   *hash *= 0x100000001b3ULL;
 }
 
+// A file the hash covers (the G-code program): unreadable is an error, never an empty hash input.
 std::string FileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  return text;
 }
 
 bool EndsWith(const std::string& text, const std::string& suffix) {
@@ -515,8 +515,34 @@ bool IsSweepFile(const std::string& path) {
   }
 }
 
-Sweep LoadSweep(const std::string& path, const std::vector<Override>& sets,
+std::string SweepPath(const std::string& path) {
+  // The path from the working directory (absolute when the file is outside it), its
+  // directory's symbolic links, "." and ".." resolved as the kernel resolves them. The
+  // file name itself is kept (a link to a sweep names that link). Anything that cannot be
+  // resolved (a missing directory) is left as given, for the reader to report.
+  std::error_code ec;
+  const fs::path given(path);
+  const fs::path name = given.filename();
+  if (name.empty() || name == "." || name == "..") return path;
+  const fs::path dir = fs::canonical(fs::absolute(given, ec).parent_path(), ec);
+  if (ec) return path;
+  const fs::path cwd = fs::canonical(fs::current_path(ec), ec);
+  if (ec) return (dir / name).string();
+  const fs::path relative = dir.lexically_relative(cwd);
+  const bool inside = !relative.empty() && *relative.begin() != "..";
+  if (!inside) return (dir / name).string();
+  return relative == "." ? name.string() : (relative / name).string();
+}
+
+Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets,
                 const SweepLoadOptions& options) {
+  // The sweep's identity in what it writes (results.csv's error locations, manifest.json,
+  // the base's path) is its file, not the spelling on the command line: shards run as
+  // configs/s.yaml, ./configs/../configs/s.yaml and /abs/configs/s.yaml merge into the
+  // unsharded bytes. A canonical path (not a content hash) so that messages still point
+  // at the file; relative to the working directory so that shards run from the same
+  // checkout on different machines agree too (docs/sweeps.md, shards and merge).
+  const std::string path = SweepPath(given_path);
   const ConfigDocument document(ConfigDocument::ParseFile(path), path);
   const NodeReader top(document, document.root(), "");
   if (!top.IsMap()) throw top.Error("expected a mapping of sweep keys (" + JoinNames(kSweepKeys, ", ") + ")");
@@ -687,6 +713,8 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
   } catch (const model::SolverError& error) {
     outcome.status = PointOutcome::Status::kSolverFailed;
     outcome.error = "solver failed: " + error.flag_name() + ": " + error.what();
+  } catch (const std::bad_alloc&) {
+    throw;  // the machine's, not the point's: no row, the sweep stops and resumes later
   } catch (const std::exception& error) {
     outcome.status = PointOutcome::Status::kFailed;
     outcome.error = error.what();

@@ -85,7 +85,7 @@ struct SweepPlot {
 };
 
 struct Sweep {
-  std::string file;  // as given
+  std::string file;  // SweepPath of the path given (the same for every spelling of it)
   std::string name;  // `name:` or the file's stem
   std::string base;  // the base scenario's path (resolved against the sweep file)
   std::vector<SweepAxis> axes;       // in file order; the last varies fastest
@@ -123,7 +123,12 @@ struct SweepLoadOptions {
 // scenario). False for anything unreadable (the scenario loader then reports it).
 bool IsSweepFile(const std::string& path);
 
-// Reads and checks a sweep file: every error is a ConfigError at FILE:LINE:COL with its
+// `path` as a sweep names itself in messages and files: relative to the working
+// directory when the file is inside it, else absolute; "./a/../a/s.yaml", "a/s.yaml" and
+// "/cwd/a/s.yaml" all give "a/s.yaml" (symbolic links in its directory resolved).
+std::string SweepPath(const std::string& path);
+
+// Reads and checks a sweep file (named by SweepPath(path) in its errors and results): every error is a ConfigError at FILE:LINE:COL with its
 // key path. Also loads the base scenario with `sets` (errors located there), applies
 // point 0's values to the base (a swept key that does not fit the scenario, or is not a
 // scenario key, is an error of the sweep file), and refuses --set options on swept keys.
@@ -140,7 +145,8 @@ struct PointOutcome {
   bool ok() const { return status == Status::kOk; }
 };
 
-// Loads and runs one point; never throws. An error caused by one of the point's values
+// Loads and runs one point; throws only std::bad_alloc (out of memory says nothing of the
+// point: a row "error" would be kept by a resumed sweep, so the sweep stops instead). An error caused by one of the point's values
 // is located at that value in the sweep file; one caused by a --set reads --set:N:1.
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index);
 

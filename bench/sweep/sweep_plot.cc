@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
 #include "common/csv.h"
+#include "common/fd_stream.h"
 #include "bench/report/gnuplot.h"
 #include "bench/report/report.h"
 
@@ -124,9 +124,8 @@ Slice ReadSlice(const SweepLayout& layout, const std::string& results_csv, const
   slice.y.log = has_y && layout.key_log[ky];
   slice.z.assign(nx * ny, kNaN);
 
-  std::ifstream in(results_csv, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + results_csv);
-  CsvReader reader(in);
+  InputFile in(results_csv);
+  CsvReader reader(in.stream());
   std::vector<std::string> fields;
   reader.Next(&fields);  // header
   const double scale = MetricScale(metric);
@@ -159,6 +158,7 @@ Slice ReadSlice(const SweepLayout& layout, const std::string& results_csv, const
       fixed_done = true;
     }
   }
+  in.ThrowIfFailed();
   slice.x.Finish();
   slice.y.Finish();
   return slice;

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -18,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
+#include "common/fd_stream.h"
 #include "common/csv.h"
 #include "common/interrupt.h"
 #include "bench/sweep/output_dir.h"
@@ -222,11 +222,13 @@ std::uint64_t ScanRows(const fs::path& path, const std::vector<std::string>& col
   std::error_code ec;
   if (!fs::exists(path, ec)) return 0;
   RequireRegularFile(path.string());
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return 0;
-  CsvReader reader(in);
+  InputFile in(path.string());
+  CsvReader reader(in.stream());
   std::vector<std::string> fields;
-  if (!reader.Next(&fields) || fields != columns) return 0;
+  const bool header = reader.Next(&fields);
+  // A failed read is not the end of the rows: cutting the file there would lose good ones.
+  in.ThrowIfFailed();
+  if (!header || fields != columns) return 0;
   *header_ok = true;
   *good_bytes = reader.offset();
   std::uint64_t rows = 0;
@@ -237,6 +239,7 @@ std::uint64_t ScanRows(const fs::path& path, const std::vector<std::string>& col
     ++rows;
     *good_bytes = reader.offset();
   }
+  in.ThrowIfFailed();
   return rows;
 }
 
@@ -550,28 +553,29 @@ void WriteMergedRows(const std::string& results, const std::vector<std::string>&
   const std::uint64_t count = paths.size();
   bool grid_present = false;
   const GridTexts grid = GridTexts::FromManifest(manifest, &grid_present);
-  std::vector<std::unique_ptr<std::ifstream>> streams;
+  std::vector<std::unique_ptr<InputFile>> files;
   std::vector<CsvReader> readers;
   for (const std::string& path : paths) {
     RequireRegularFile(path);
-    streams.push_back(std::make_unique<std::ifstream>(path, std::ios::binary));
-    if (!*streams.back()) throw std::runtime_error("cannot read " + path);
+    files.push_back(std::make_unique<InputFile>(path));
   }
-  for (auto& stream : streams) readers.emplace_back(*stream);
+  for (auto& file : files) readers.emplace_back(file->stream());
+  // Shard `index` ended (or was torn) where rows were expected: a failed read says so first.
+  auto ended = [&](std::uint64_t index, const std::string& what) {
+    files[index]->ThrowIfFailed();
+    return std::runtime_error(paths[index] + ": " + what);
+  };
   std::vector<std::string> fields;
   for (std::uint64_t index = 0; index < count; ++index) {
-    if (!readers[index].Next(&fields) || fields != columns) {
-      throw std::runtime_error(paths[index] + ": its header is not the manifest's columns");
-    }
+    if (!readers[index].Next(&fields)) throw ended(index, "its header is not the manifest's columns");
+    if (fields != columns) throw std::runtime_error(paths[index] + ": its header is not the manifest's columns");
   }
   WriteFileAtomically(results, [&](std::ostream& out) {
     out << CsvRecord(columns);
     for (std::uint64_t point = 0; point < points; ++point) {
       const std::uint64_t index = point % count;
       const std::string row = "row " + std::to_string(point / count + 1) + " (point " + std::to_string(point) + ")";
-      if (!readers[index].Next(&fields)) {
-        throw std::runtime_error(paths[index] + ": " + row + " is missing (a damaged shard?)");
-      }
+      if (!readers[index].Next(&fields)) throw ended(index, row + " is missing (a damaged shard?)");
       const std::string problem = RowProblem(fields, columns.size(), point,
                                              grid_present ? grid.Texts(point) : std::vector<std::string>());
       if (!problem.empty()) {
@@ -580,7 +584,9 @@ void WriteMergedRows(const std::string& results, const std::vector<std::string>&
       out << CsvRecord(fields);
     }
     for (std::uint64_t index = 0; index < count; ++index) {
-      if (readers[index].Next(&fields) || readers[index].torn()) {
+      const bool more = readers[index].Next(&fields);
+      files[index]->ThrowIfFailed();
+      if (more || readers[index].torn()) {
         throw std::runtime_error(paths[index] + ": rows beyond the sweep's points (a damaged shard?)");
       }
     }

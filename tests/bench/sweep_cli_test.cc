@@ -135,6 +135,45 @@ TEST(SweepCli, ShardsMergeToTheUnshardedFile) {
   EXPECT_FALSE(std::filesystem::exists(dir.File("m3/results.csv")));
 }
 
+// Tests that shards of one sweep file named three ways (as the unsharded run names it,
+// through "./sweeps/../", by its absolute path) merge to the unsharded results.csv and
+// manifest byte for byte, error rows located in the sweep file and in the base included:
+// the sweep's files name it by its path from the working directory, not as spelled.
+TEST(SweepCli, ShardsOfDifferentlySpelledPathsMergeToTheUnshardedFile) {
+  ScratchDir dir;
+  // Method 4 with t1 = 5 ms is valid for a 25 Hz pattern, not for 40 Hz (T/6 = 4.17 ms): an
+  // error located in the base; a -3 Hz mode is one located in the sweep file.
+  dir.Write("scenarios/base.yaml",
+            "machine:\n  modes:\n    - {frequency_hz: 25.0, damping_ratio: 0.0, gain: 1.0}\n"
+            "controller:\n  period_s: 0.001\n  feed_mm_min: 30000\n  accel_time_s: 0.3\n"
+            "  pattern: {method: 4, mode: both, frequency_hz: 25.0, k1: 0.675, t1_s: 0.005}\n"
+            "move: {distance_mm: 213}\nintegrator: {method: exact}\n");
+  dir.Write("sweeps/spelled.yaml",
+            "base: ../scenarios/base.yaml\ngrid:\n  controller.pattern.frequency_hz: [25, 40]\n"
+            "  machine.modes[0].frequency_hz: [25, -3, 26]\nmetrics: [residual_ratio]\nplots: []\n");
+  const std::string work = dir.path().string();
+  ASSERT_EQ(RunCli({"sweep", "sweeps/spelled.yaml", "--out", "whole"}, work).exit_code, 0);
+  const std::string whole = ReadText(dir.File("whole/results.csv"));
+  EXPECT_NE(whole.find(",error,sweeps/spelled.yaml:4:39: machine.modes[0].frequency_hz: "), std::string::npos)
+      << whole;
+  EXPECT_NE(whole.find(",error,\"scenarios/base.yaml:"), std::string::npos) << whole;
+
+  const std::vector<std::string> spellings = {"./sweeps/../sweeps/spelled.yaml", dir.File("sweeps/spelled.yaml")};
+  for (std::size_t shard = 0; shard < 2; ++shard) {
+    const CliResult r = RunCli({"sweep", spellings[shard], "--shard", std::to_string(shard) + "/2", "--out",
+                                "shard" + std::to_string(shard)},
+                               work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const auto& order : {std::vector<std::string>{"shard0", "shard1"}, std::vector<std::string>{"shard1", "shard0"}}) {
+    const std::string out = "merged_" + order.front();
+    const CliResult merged = RunCli({"merge", out, order[0], order[1]}, work);
+    ASSERT_EQ(merged.exit_code, 0) << merged.err;
+    EXPECT_EQ(ReadText(dir.File(out + "/results.csv")), whole);
+    EXPECT_EQ(ReadText(dir.File(out + "/manifest.json")), ReadText(dir.File("whole/manifest.json")));
+  }
+}
+
 // Tests that a sweep killed (SIGKILL) after some rows and started again with the same
 // --out (and another --jobs) skips the rows already written and ends with the
 // uninterrupted run's results.csv byte for byte, a torn last row included.
@@ -219,6 +258,32 @@ TEST(SweepCli, RefusesAnotherSweepsDirectoryAndHugeGrids) {
   const CliResult bad_shard = RunCli({"sweep", kNaturalPeriod, "--shard", "2/2"}, kSourceDir);
   EXPECT_EQ(bad_shard.exit_code, 2);
   EXPECT_NE(bad_shard.err.find("--shard: expected I/N"), std::string::npos) << bad_shard.err;
+}
+
+// Tests that `check` takes --force as `sweep` does: without it a grid over the limit is
+// refused naming --force; with it the grid loads, so the load goes on to the next file
+// (here a scenario without checks, so nothing runs and the 3,000,000 points stay unrun).
+TEST(SweepCli, CheckTakesForceForHugeGrids) {
+  ScratchDir dir;
+  const std::string big = dir.Write("big.yaml",
+                                    "base: " + testing::DataPath("sweeps/sdof_method1.yaml") +
+                                        "\ngrid:\n  machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 3000}\n"
+                                        "  controller.accel_time_s: {from: 0.1, to: 0.4, steps: 1000}\n"
+                                        "checks: {residual_ratio: {max: 0.05}}\n");
+  const std::string no_checks = testing::DataPath("no_checks.yaml");
+  const CliResult refused = RunCli({"check", big, no_checks}, kSourceDir);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find(big + ":3:3: grid: the grid has 3,000,000 points"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("pass --force"), std::string::npos) << refused.err;
+
+  const CliResult forced = RunCli({"check", big, no_checks, "--force"}, kSourceDir);
+  EXPECT_EQ(forced.exit_code, 2);
+  EXPECT_EQ(forced.err.find("3,000,000"), std::string::npos) << forced.err;
+  EXPECT_NE(forced.err.find(no_checks + ": checks: no checks to evaluate"), std::string::npos) << forced.err;
+
+  const CliResult help = RunCli({"check", "--help"}, kSourceDir);
+  EXPECT_NE(help.out.find("--force"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("run a grid of more than 2,000,000 points"), std::string::npos) << help.out;
 }
 
 // Tests that a value with a comma and an error message with commas and quotes are quoted
