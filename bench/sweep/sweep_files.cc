@@ -1,5 +1,6 @@
 #include "bench/sweep/sweep_files.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -44,6 +45,54 @@ nlohmann::ordered_json GridJson(const Sweep& sweep) {
   return grid;
 }
 
+// A whole number >= 0 written as one: "1e9", -1 and 0.5 are not a count or an index
+// (and converting 1e30 to an integer is undefined).
+std::uint64_t WholeNumber(const nlohmann::json& value, const std::string& what) {
+  if (!value.is_number_unsigned()) throw std::runtime_error(what + ": expected a whole number >= 0 (digits only)");
+  return value.get<std::uint64_t>();
+}
+
+const std::string& Text(const nlohmann::json& object, const char* key) {
+  const nlohmann::json& value = object.at(key);
+  if (!value.is_string()) throw std::runtime_error(std::string(key) + ": expected a string");
+  return value.get_ref<const std::string&>();
+}
+
+// One key's values as the manifest's grid keeps them (GridJson), checked as the sweep
+// loader checks them (bench/sweep/sweep.cc, ReadRange): a list of at least one text, or a
+// range of at least one step (one only when from equals to), log spaced above 0.
+SweepValues GridValues(const nlohmann::json& entry) {
+  if (!entry.is_object()) throw std::runtime_error("grid: expected each key an object");
+  SweepValues values;
+  values.key = Text(entry, "key");
+  const std::string where = "grid: key " + values.key + ": ";
+  if (entry.contains("list")) {
+    const nlohmann::json& list = entry.at("list");
+    if (!list.is_array() || list.empty()) throw std::runtime_error(where + "expected a list of values");
+    for (const auto& text : list) {
+      if (!text.is_string()) throw std::runtime_error(where + "expected the list's values as strings");
+      values.texts.push_back(text.get<std::string>());
+    }
+    return values;
+  }
+  const std::string& spacing = Text(entry, "spacing");
+  if (spacing != "linear" && spacing != "log") throw std::runtime_error(where + "spacing: expected linear or log");
+  values.kind = spacing == "log" ? SweepValues::Kind::kLog : SweepValues::Kind::kLinear;
+  if (!entry.at("from").is_number() || !entry.at("to").is_number()) {
+    throw std::runtime_error(where + "expected from and to as numbers");
+  }
+  values.from = entry.at("from").get<double>();
+  values.to = entry.at("to").get<double>();
+  values.steps = WholeNumber(entry.at("steps"), where + "steps");
+  if (values.steps == 0 || (values.steps == 1 && values.from != values.to)) {
+    throw std::runtime_error(where + "steps: expected at least 1 (2 unless from equals to)");
+  }
+  if (values.log() && !(values.from > 0.0 && values.to > 0.0)) {
+    throw std::runtime_error(where + "log spacing needs from > 0 and to > 0");
+  }
+  return values;
+}
+
 }  // namespace
 
 GridTexts GridTexts::Of(const Sweep& sweep) {
@@ -57,35 +106,29 @@ GridTexts GridTexts::FromManifest(const nlohmann::json& manifest, bool* present)
   *present = manifest.contains("grid");
   if (!*present) return grid;
   const auto columns = manifest.at("columns").get<std::vector<std::string>>();
+  const std::uint64_t manifest_points = WholeNumber(manifest.at("points"), "points");
+  const nlohmann::json& axes = manifest.at("grid");
+  if (!axes.is_array()) throw std::runtime_error("grid: expected an array of axes");
   std::uint64_t points = 1;
   std::size_t column = 1;
-  for (const auto& axis : manifest.at("grid")) {
+  for (const auto& axis : axes) {
+    if (!axis.is_array() || axis.empty()) throw std::runtime_error("grid: expected each axis an array of keys");
     std::vector<SweepValues> keys;
     for (const auto& entry : axis) {
-      SweepValues values;
-      values.key = entry.at("key").get<std::string>();
-      if (entry.contains("list")) {
-        values.texts = entry.at("list").get<std::vector<std::string>>();
-      } else {
-        const std::string spacing = entry.at("spacing").get<std::string>();
-        values.kind = spacing == "log" ? SweepValues::Kind::kLog : SweepValues::Kind::kLinear;
-        values.from = entry.at("from").get<double>();
-        values.to = entry.at("to").get<double>();
-        values.steps = entry.at("steps").get<std::uint64_t>();
-      }
-      if (values.size() == 0 || (!keys.empty() && values.size() != keys.front().size()) ||
-          column >= columns.size() || columns[column++] != values.key) {
+      SweepValues values = GridValues(entry);
+      if ((!keys.empty() && values.size() != keys.front().size()) || column >= columns.size() ||
+          columns[column++] != values.key) {
         throw std::runtime_error("grid: key " + values.key + " does not fit the columns");
       }
-      keys.push_back(values);
+      keys.push_back(std::move(values));
     }
-    if (keys.empty() || keys.front().size() > manifest.at("points").get<std::uint64_t>() / points) {
+    if (keys.front().size() > manifest_points / points) {
       throw std::runtime_error("grid: its axes have more points than the manifest's count");
     }
     points *= keys.front().size();
-    grid.axes_.push_back(keys);
+    grid.axes_.push_back(std::move(keys));
   }
-  if (points != manifest.at("points").get<std::uint64_t>() || column + 2 > columns.size()) {
+  if (points != manifest_points || column + 2 > columns.size()) {
     throw std::runtime_error("grid: its points do not match the manifest's count");
   }
   return grid;
@@ -144,23 +187,94 @@ std::string DescribeManifest(const nlohmann::json& manifest) {
          std::to_string(shard.at("count").get<std::uint64_t>()) + ")";
 }
 
+namespace {
+
+// The plot layout merge draws with (bench/sweep/sweep_plot.cc reads results.csv's rows
+// with it): its keys and metrics the columns', its axes (the grid's, when kept) with as
+// many points as the manifest, and each plot's metric and keys among them, a plot's two
+// keys on two axes as the sweep loader demands. Else a hostile layout would have the
+// plotter allocate for 10^12 values of an axis from a 22-row results.csv.
+void CheckLayout(const SweepLayout& layout, const std::vector<std::string>& columns,
+                 std::uint64_t points, const GridTexts* grid) {
+  const std::vector<std::string> keys(columns.begin() + 1, columns.end() - 2);
+  std::vector<std::string> layout_columns = layout.keys;
+  layout_columns.insert(layout_columns.end(), layout.metrics.begin(), layout.metrics.end());
+  if (layout_columns != keys) throw std::runtime_error("layout: its keys and metrics are not the columns");
+  std::uint64_t product = 1;
+  for (const std::uint64_t size : layout.axis_sizes) {
+    if (size > points / product) throw std::runtime_error("layout: its axes have more points than the manifest");
+    product *= size;
+  }
+  if (product != points) throw std::runtime_error("layout: its axes do not have the manifest's points");
+  if (grid != nullptr) {
+    const SweepLayout expected = [&] {
+      Sweep sweep;
+      for (const auto& axis : grid->axes()) sweep.axes.push_back(SweepAxis{axis});
+      return SweepLayout::Of(sweep);
+    }();
+    if (layout.keys != expected.keys || layout.key_axis != expected.key_axis ||
+        layout.key_log != expected.key_log || layout.axis_sizes != expected.axis_sizes) {
+      throw std::runtime_error("layout: its axes are not the grid's");
+    }
+  }
+  const auto axis_of = [&](const std::string& key) {
+    for (std::size_t k = 0; k < layout.keys.size(); ++k) {
+      if (layout.keys[k] == key) return layout.key_axis[k];
+    }
+    throw std::runtime_error("layout: a plot of '" + key + "', not a key of the grid");
+  };
+  for (const SweepPlot& plot : layout.plots) {
+    if (std::find(layout.metrics.begin(), layout.metrics.end(), plot.metric) == layout.metrics.end()) {
+      throw std::runtime_error("layout: a plot of '" + plot.metric + "', not a kept metric");
+    }
+    const std::uint64_t x_axis = axis_of(plot.heatmap() ? plot.heatmap_x : plot.x);
+    const std::string& y = plot.heatmap() ? plot.heatmap_y : plot.series;
+    if (!y.empty() && axis_of(y) == x_axis) {
+      throw std::runtime_error("layout: a plot whose two keys move together");
+    }
+  }
+}
+
+// Everything ReadManifest checks, on the parsed text.
+void CheckManifest(const nlohmann::json& json) {
+  if (!json.is_object() || !json.contains("format") || json.at("format") != kFormat) {
+    throw std::runtime_error("not a shapebench sweep manifest");
+  }
+  Text(json, "hash");
+  if (json.contains("sweep")) Text(json, "sweep");
+  const std::uint64_t points = WholeNumber(json.at("points"), "points");
+  const nlohmann::json& shard = json.at("shard");
+  if (!shard.is_object()) throw std::runtime_error("shard: expected {index, count}");
+  const std::uint64_t index = WholeNumber(shard.at("index"), "shard.index");
+  const std::uint64_t count = WholeNumber(shard.at("count"), "shard.count");
+  if (count < 1 || index >= count) {
+    throw std::runtime_error("shard: expected index in 0..count-1 and count >= 1");
+  }
+  const nlohmann::json& columns_json = json.at("columns");
+  if (!columns_json.is_array() || columns_json.size() < 3) {
+    throw std::runtime_error("columns: expected point, the keys, the metrics, status and error");
+  }
+  for (const auto& column : columns_json) {
+    if (!column.is_string()) throw std::runtime_error("columns: expected strings");
+  }
+  const auto columns = columns_json.get<std::vector<std::string>>();
+  if (columns.front() != "point" || columns[columns.size() - 2] != "status" || columns.back() != "error") {
+    throw std::runtime_error("columns: expected point first, status and error last");
+  }
+  bool grid_present = false;
+  const GridTexts grid = GridTexts::FromManifest(json, &grid_present);
+  if (json.contains("layout")) {
+    CheckLayout(SweepLayout::FromJson(json.at("layout")), columns, points, grid_present ? &grid : nullptr);
+  }
+}
+
+}  // namespace
+
 nlohmann::json ReadManifest(const std::string& path, std::string* text_out) {
   const std::string text = ReadRegularFile(path, kMaxManifestBytes);
   try {
     nlohmann::json json = nlohmann::json::parse(text);
-    if (json.value("format", std::string()) != kFormat) {
-      throw std::runtime_error("not a shapebench sweep manifest");
-    }
-    json.at("hash").get<std::string>();
-    json.at("points").get<std::uint64_t>();
-    json.at("shard").at("index").get<std::uint64_t>();
-    json.at("shard").at("count").get<std::uint64_t>();
-    const auto columns = json.at("columns").get<std::vector<std::string>>();
-    if (columns.size() < 3) throw std::runtime_error("columns: too few");
-    const std::uint64_t count = json.at("shard").at("count").get<std::uint64_t>();
-    if (count < 1 || json.at("shard").at("index").get<std::uint64_t>() >= count) {
-      throw std::runtime_error("shard: expected index in 0..count-1 and count >= 1");
-    }
+    CheckManifest(json);
     if (text_out != nullptr) *text_out = text;
     return json;
   } catch (const std::exception& error) {

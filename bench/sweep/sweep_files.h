@@ -42,6 +42,8 @@ class GridTexts {
 
   // Point p's values: the mixed-radix digits of p, the last axis varying fastest.
   std::vector<std::string> Texts(std::uint64_t point) const;
+  // Each axis' keys' values (a zip group's keys share an axis).
+  const std::vector<std::vector<SweepValues>>& axes() const { return axes_; }
 
  private:
   std::vector<std::vector<SweepValues>> axes_;
@@ -55,8 +57,11 @@ std::vector<std::string> ResultColumns(const Sweep& sweep);
 nlohmann::ordered_json ManifestJson(const Sweep& sweep, const std::vector<Override>& sets,
                                     std::uint64_t shard_index, std::uint64_t shard_count);
 
-// Reads and checks a manifest.json (a regular file of at most 64 MiB); `text`, when given,
-// receives its bytes. Throws std::runtime_error "PATH: why" for anything else.
+// Reads and checks a manifest.json (a regular file of at most 64 MiB) for everything
+// resume and merge take from it: format, hash, points, shard, columns, and when present
+// the grid (GridTexts::FromManifest) and the plot layout (one the plotter can draw from
+// the columns and points). `text`, when given, receives its bytes. Throws
+// std::runtime_error "PATH: why" for anything else.
 nlohmann::json ReadManifest(const std::string& path, std::string* text = nullptr);
 
 // The merged output's manifest.json: a shard's manifest (the text ReadManifest accepted)
