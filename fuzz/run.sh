@@ -3,9 +3,10 @@
 # working corpus in BUILD_DIR/corpus/TARGET seeded from fuzz/corpus/NAME, with a
 # dictionary of the input's words (fuzz/NAME.dict: gcode, manifest, rows; else
 # fuzz/yaml.dict); new inputs land in the working corpus, the repository's seeds stay as
-# they are. The targets' scratch files go to /dev/shm when there is one (TMPDIR): the
-# output-directory readers write and fsync files for every input. Before that it replays
-# fuzz/regressions/NAME. A crash, a hang (-timeout, 10 s an input), a memory blow-up
+# they are. The targets' scratch directories go into one of this run (TMPDIR), removed at
+# the end (libFuzzer's exits skip the targets' own clean-up), on /dev/shm when there is
+# one: the output-directory readers write and fsync files for every input. Before that
+# it replays fuzz/regressions/NAME. A crash, a hang (-timeout, 10 s an input), a memory blow-up
 # (-rss_limit_mb) or a sanitizer report stops the target with its input in
 # BUILD_DIR/artifacts/ and makes this script fail. Prints the executions of each target.
 set -euo pipefail
@@ -13,7 +14,11 @@ cd "$(dirname "$0")/.."
 build=$1 seconds=$2
 shift 2
 mkdir -p "$build/artifacts"
-[ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ] && export TMPDIR=/dev/shm
+tmp_root=${TMPDIR:-/tmp}
+[ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ] && tmp_root=/dev/shm
+scratch=$(mktemp -d "$tmp_root/shapebench_fuzz_run.XXXXXX")
+trap 'rm -rf "$scratch"' EXIT
+export TMPDIR=$scratch
 summary=()
 status=0
 for target in "$@"; do
