@@ -31,13 +31,18 @@ inline const std::filesystem::path& ScratchDir() {
   return dir;
 }
 
-// Writes the bytes to `name` in the scratch directory and returns its path.
-inline std::string WriteInput(const std::string& name, const std::string& bytes) {
-  const std::string path = (ScratchDir() / name).string();
+// Writes the bytes to the file `path` (replacing it).
+inline void WriteBytes(const std::string& path, const std::string& bytes) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) std::abort();
   if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) std::abort();
   std::fclose(file);
+}
+
+// Writes the bytes to `name` in the scratch directory and returns its path.
+inline std::string WriteInput(const std::string& name, const std::string& bytes) {
+  const std::string path = (ScratchDir() / name).string();
+  WriteBytes(path, bytes);
   return path;
 }
 

@@ -8,8 +8,16 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "bench/config/config_error.h"
 #include "bench/config/override.h"
@@ -17,7 +25,10 @@
 #include "bench/config/scenario_loader.h"
 #include "bench/config/structure_numbers.h"
 #include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_files.h"
+#include "bench/sweep/sweep_plot.h"
 #include "bench/sweep/sweep_runner.h"
+#include "common/csv.h"
 #include "common/validation_error.h"
 #include "controller/controller.h"
 #include "controller/gcode_parser.h"
@@ -184,6 +195,243 @@ inline void SweepTarget(const std::string& bytes) {
     }
   } catch (const bench::ConfigError& error) {
     if (error.file().empty()) throw Violation{"unlocated: " + std::string(error.what())};
+  }
+}
+
+// The readers of a sweep's output directory (bench/sweep/sweep_files.h) refuse what they
+// cannot use with a std::runtime_error (exactly that type) naming the file or directory.
+// Returns whether `read` refused; anything else it throws goes on (a finding).
+template <typename Read>
+bool RefusedNaming(const std::vector<std::string>& places, Read&& read) {
+  try {
+    read();
+    return false;
+  } catch (const std::runtime_error& error) {
+    if (typeid(error) != typeid(std::runtime_error)) {
+      throw Violation{std::string("a ") + typeid(error).name() + ": " + error.what()};
+    }
+    const std::string what = error.what();
+    for (const std::string& place : places) {
+      if (what.find(place) != std::string::npos) return true;
+    }
+    throw Violation{"unlocated: " + what};
+  }
+}
+
+inline std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// A sweep of the test data or the shipped configs (read in place: the files are only read).
+inline const bench::Sweep& SourceSweep(const std::string& relative) {
+  static std::map<std::string, bench::Sweep> sweeps;
+  auto found = sweeps.find(relative);
+  if (found == sweeps.end()) {
+    const std::string path = (std::filesystem::path(SHAPEBENCH_SOURCE_DIR) / relative).string();
+    found = sweeps.emplace(relative, bench::LoadSweep(path, {})).first;
+  }
+  return found->second;
+}
+
+// A results row of point p that `merge` and resume keep: the grid's key values, no
+// metrics, status error.
+inline std::string SynthesizedRow(std::size_t columns, std::uint64_t point,
+                                  const std::vector<std::string>& keys) {
+  std::vector<std::string> fields = {std::to_string(point)};
+  fields.insert(fields.end(), keys.begin(), keys.end());
+  while (fields.size() + 2 < columns) fields.emplace_back();
+  fields.emplace_back("error");
+  fields.emplace_back("no run (fuzz)");
+  return CsvRecord(fields);
+}
+
+// What `merge` derives from a manifest ReadManifest accepted must hold: the merged
+// manifest's text, the grid's key values of every point (rows made from them merge), and
+// a plot layout the plotter can draw from merged rows (bench/sweep/sweep_plot.cc,
+// ReadSlice: keys and metrics the columns', axes whose sizes multiply to the points, a
+// plot's two keys on two axes).
+inline void AcceptedManifestHolds(const nlohmann::json& manifest, const std::string& text) {
+  bench::DescribeManifest(manifest);
+  bench::MergedManifestText(text);
+  const auto columns = manifest.at("columns").get<std::vector<std::string>>();
+  const std::uint64_t points = manifest.at("points").get<std::uint64_t>();
+  if (manifest.contains("layout")) {
+    const bench::SweepLayout layout = bench::SweepLayout::FromJson(manifest.at("layout"));
+    if (layout.keys.size() + layout.metrics.size() + 3 != columns.size()) {
+      throw Violation{"a layout whose keys and metrics are not the columns"};
+    }
+    std::uint64_t product = 1;
+    for (const std::uint64_t size : layout.axis_sizes) {
+      if (size == 0 || product > points / size) throw Violation{"a layout with more points than the manifest"};
+      product *= size;
+    }
+    if (product != points) throw Violation{"a layout whose axes are not the manifest's points"};
+    const auto axis = [&](const std::string& key) -> std::uint64_t {
+      for (std::size_t k = 0; k < layout.keys.size(); ++k) {
+        if (layout.keys[k] == key) return layout.key_axis[k];
+      }
+      throw Violation{"a plot of a key '" + key + "' the layout does not have"};
+    };
+    for (const bench::SweepPlot& plot : layout.plots) {
+      bool metric = false;
+      for (const std::string& m : layout.metrics) metric = metric || m == plot.metric;
+      if (!metric) throw Violation{"a plot of a metric the layout does not have"};
+      const std::uint64_t x = axis(plot.heatmap() ? plot.heatmap_x : plot.x);
+      const std::string y = plot.heatmap() ? plot.heatmap_y : plot.series;
+      if (!y.empty() && axis(y) == x) throw Violation{"a plot whose two keys move together"};
+    }
+  }
+  bool grid_present = false;
+  const bench::GridTexts grid = bench::GridTexts::FromManifest(manifest, &grid_present);
+  if (points > 2000) return;  // rows made from the grid: small grids only (the rows target reads rows)
+  const std::string rows_path = (ScratchDir() / "manifest_rows/results.csv").string();
+  {
+    std::ofstream rows(rows_path, std::ios::binary | std::ios::trunc);
+    rows << CsvRecord(columns);
+    for (std::uint64_t point = 0; point < points; ++point) {
+      const std::vector<std::string> keys = grid_present ? grid.Texts(point) : std::vector<std::string>();
+      if (keys.size() + 3 > columns.size()) throw Violation{"a grid with more keys than columns"};
+      rows << SynthesizedRow(columns.size(), point, keys);
+    }
+  }
+  bench::WriteMergedRows((ScratchDir() / "manifest_rows/merged.csv").string(), {rows_path}, manifest);
+}
+
+// manifest.json readers (bench/sweep/sweep_files.h): any bytes as the manifest.json of a
+// directory are accepted or refused with a std::runtime_error naming it, by the reader
+// itself, by resume's check of its --out (against the test data's map.yaml sweep) and by
+// merge's check of its output directory; an accepted manifest gives merge what it needs
+// (AcceptedManifestHolds).
+inline void ManifestTarget(const std::string& bytes) {
+  static const nlohmann::ordered_json expected = [] {
+    std::filesystem::create_directories(ScratchDir() / "manifest");
+    std::filesystem::create_directories(ScratchDir() / "manifest_rows");
+    return bench::ManifestJson(SourceSweep("tests/bench/data/sweeps/map.yaml"), {}, 0, 1);
+  }();
+  const std::string dir = (ScratchDir() / "manifest").string();
+  const std::string path = WriteInput("manifest/manifest.json", bytes);
+  RefusedNaming({dir}, [&] { bench::CheckResumeDirectory(dir, expected); });
+  static const nlohmann::json expected_json = nlohmann::json::parse(expected.dump());
+  RefusedNaming({dir}, [&] { bench::CheckMergeOutput(dir, expected_json); });
+  nlohmann::json manifest;
+  std::string text;
+  if (RefusedNaming({path}, [&] { manifest = bench::ReadManifest(path, &text); })) return;
+  if (text != bytes) throw Violation{"ReadManifest's text is not the file's"};
+  const std::uint64_t count = manifest.at("shard").at("count").get<std::uint64_t>();
+  if (count < 1 || manifest.at("shard").at("index").get<std::uint64_t>() >= count) {
+    throw Violation{"an accepted manifest with a shard outside 0..count-1"};
+  }
+  AcceptedManifestHolds(manifest, text);
+}
+
+// One sweep and shard whose results rows fuzz_rows reads.
+struct RowsCase {
+  const char* sweep;
+  std::uint64_t index;
+  std::uint64_t count;
+};
+inline constexpr RowsCase kRowsCases[] = {
+    {"tests/bench/data/sweeps/map.yaml", 0, 1},          {"tests/bench/data/sweeps/map.yaml", 1, 3},
+    {"tests/bench/data/sweeps/quoting.yaml", 0, 1},      {"tests/bench/data/sweeps/failing_point.yaml", 0, 1},
+    {"tests/bench/data/sweeps/natural_period.yaml", 1, 2}, {"configs/sweeps/natural_period.yaml", 2, 4},
+    {"configs/sweeps/frequency_accel_map.yaml", 0, 8}};
+
+// A RowsCase set up once: its columns, grid and manifest (written, then read back as
+// merge reads it) and the other shards' results files (rows made from the grid).
+struct RowsSetup {
+  std::vector<std::string> columns;
+  bench::ShardPoints shard;
+  bench::GridTexts grid;
+  nlohmann::json manifest;
+  std::vector<std::string> shard_paths;  // shard i's results file; the fuzzed one at `index`
+  std::string dir;
+};
+
+inline const RowsSetup& RowsSetupOf(std::size_t which) {
+  static std::map<std::size_t, RowsSetup> setups;
+  auto found = setups.find(which);
+  if (found != setups.end()) return found->second;
+  const RowsCase& c = kRowsCases[which];
+  const bench::Sweep& sweep = SourceSweep(c.sweep);
+  RowsSetup setup;
+  setup.dir = (ScratchDir() / ("rows" + std::to_string(which))).string();
+  for (const char* sub : {"", "/done", "/partial"}) std::filesystem::create_directories(setup.dir + sub);
+  setup.columns = bench::ResultColumns(sweep);
+  setup.shard = bench::ShardPoints{sweep.points, c.index, c.count};
+  setup.grid = bench::GridTexts::Of(sweep);
+  const std::string manifest_path = setup.dir + "/manifest.json";
+  std::ofstream(manifest_path, std::ios::binary) << bench::ManifestJson(sweep, {}, c.index, c.count).dump(2) << "\n";
+  setup.manifest = bench::ReadManifest(manifest_path);
+  for (std::uint64_t i = 0; i < c.count; ++i) {
+    setup.shard_paths.push_back(setup.dir + "/shard" + std::to_string(i) + ".csv");
+    if (i == c.index) continue;
+    std::ofstream rows(setup.shard_paths.back(), std::ios::binary);
+    rows << CsvRecord(setup.columns);
+    for (std::uint64_t point = i; point < sweep.points; point += c.count) {
+      rows << SynthesizedRow(setup.columns.size(), point, setup.grid.Texts(point));
+    }
+  }
+  return setups.emplace(which, std::move(setup)).first->second;
+}
+
+// Results rows readers (bench/sweep/sweep_files.h): the first byte picks a sweep and
+// shard (kRowsCases), the rest is that shard's results file. A sweep started again
+// finds it as results.csv (all the shard's rows, or refused naming the file) and as
+// results.csv.partial (its good rows kept, the rest cut off: a prefix of the file, kept
+// again unchanged); merge joins it with the other shards (or refuses naming the file)
+// exactly when resume takes it as finished, and what it merges is a whole results.csv.
+inline void RowsTarget(const std::string& bytes) {
+  if (bytes.empty()) return;
+  const std::size_t which = static_cast<unsigned char>(bytes[0]) % (sizeof kRowsCases / sizeof kRowsCases[0]);
+  const RowsSetup& setup = RowsSetupOf(which);
+  const std::string rows = bytes.substr(1);
+  namespace fs = std::filesystem;
+  std::error_code ec;
+
+  const std::string done_dir = setup.dir + "/done";
+  fs::remove(done_dir + "/results.csv.partial", ec);
+  WriteBytes(done_dir + "/results.csv", rows);
+  bench::ResumedRows done;
+  const bool done_refused =
+      RefusedNaming({done_dir + "/results.csv"}, [&] { done = bench::KeepResumableRows(done_dir, setup.columns, setup.shard, setup.grid); });
+  if (!done_refused && (!done.finished || done.rows != setup.shard.Size() || done.errors > done.rows)) {
+    throw Violation{"a finished results.csv taken without all its rows"};
+  }
+
+  const std::string partial_dir = setup.dir + "/partial";
+  const std::string partial = partial_dir + "/results.csv.partial";
+  fs::remove(partial_dir + "/results.csv", ec);
+  WriteBytes(partial, rows);
+  const bench::ResumedRows kept = bench::KeepResumableRows(partial_dir, setup.columns, setup.shard, setup.grid);
+  const std::string after = FileBytes(partial);
+  if (kept.finished || kept.rows > setup.shard.Size() || kept.errors > kept.rows) {
+    throw Violation{"results.csv.partial kept as more than the shard's rows"};
+  }
+  if (after != CsvRecord(setup.columns) && after != rows.substr(0, after.size())) {
+    throw Violation{"results.csv.partial cut to something that is not its beginning"};
+  }
+  if (!done_refused && kept.rows != done.rows) throw Violation{"resume keeps fewer rows of a partial file"};
+  const bench::ResumedRows again = bench::KeepResumableRows(partial_dir, setup.columns, setup.shard, setup.grid);
+  if (again.rows != kept.rows || again.errors != kept.errors || FileBytes(partial) != after) {
+    throw Violation{"results.csv.partial kept again is not kept as it was"};
+  }
+
+  const std::string fuzzed = setup.shard_paths[setup.shard.index];
+  WriteBytes(fuzzed, rows);
+  const std::string merged = setup.dir + "/merged.csv";
+  const bool merge_refused =
+      RefusedNaming({fuzzed}, [&] { bench::WriteMergedRows(merged, setup.shard_paths, setup.manifest); });
+  if (merge_refused != done_refused) {
+    throw Violation{merge_refused ? "merge refuses rows a finished sweep keeps"
+                                  : "merge takes rows a finished sweep refuses"};
+  }
+  if (merge_refused) return;
+  const bench::RowScan scan = bench::ScanRows(merged, setup.columns, bench::ShardPoints{setup.shard.total, 0, 1}, setup.grid);
+  if (scan.rows != setup.shard.total || scan.good_bytes != fs::file_size(merged)) {
+    throw Violation{"merge wrote a results.csv a sweep would not keep"};
   }
 }
 

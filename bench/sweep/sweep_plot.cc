@@ -374,20 +374,31 @@ nlohmann::ordered_json SweepLayout::ToJson() const {
 }
 
 SweepLayout SweepLayout::FromJson(const nlohmann::json& json) {
+  // 1e30 or -1 as an axis or a size is no layout (and converting 1e30 is undefined).
+  const auto whole = [](const nlohmann::json& value) {
+    if (!value.is_number_unsigned()) throw std::runtime_error("malformed sweep layout: expected a whole number");
+    return value.get<std::uint64_t>();
+  };
   try {
+    for (const char* list : {"keys", "axis_sizes", "plots"}) {
+      if (!json.at(list).is_array()) {
+        throw std::runtime_error(std::string("malformed sweep layout: ") + list + ": expected an array");
+      }
+    }
     SweepLayout layout;
     layout.name = json.at("name").get<std::string>();
     for (const auto& key : json.at("keys")) {
       layout.keys.push_back(key.at("key").get<std::string>());
-      layout.key_axis.push_back(key.at("axis").get<std::uint64_t>());
+      layout.key_axis.push_back(whole(key.at("axis")));
       layout.key_log.push_back(key.at("log").get<bool>());
     }
-    layout.axis_sizes = json.at("axis_sizes").get<std::vector<std::uint64_t>>();
+    for (const auto& size : json.at("axis_sizes")) layout.axis_sizes.push_back(whole(size));
     layout.metrics = json.at("metrics").get<std::vector<std::string>>();
     for (const auto& entry : json.at("plots")) {
       SweepPlot plot;
       plot.metric = entry.at("metric").get<std::string>();
       if (entry.contains("heatmap")) {
+        if (entry.at("heatmap").size() != 2) throw std::runtime_error("malformed sweep layout: heatmap: expected two keys");
         plot.heatmap_x = entry.at("heatmap").at(0).get<std::string>();
         plot.heatmap_y = entry.at("heatmap").at(1).get<std::string>();
       } else {

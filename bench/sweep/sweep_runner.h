@@ -30,6 +30,7 @@
 #include "bench/config/override.h"
 #include "bench/sim/checks.h"
 #include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_files.h"  // ResultColumns, the readers of resume and merge
 
 namespace shapebench::bench {
 
@@ -51,9 +52,6 @@ struct SweepRunSummary {
   std::vector<std::string> plots;
   double seconds = 0.0;
 };
-
-// The header of results.csv.
-std::vector<std::string> ResultColumns(const Sweep& sweep);
 
 // Runs the sweep (this shard of it) into options.out_dir (created), resuming what a
 // previous run with the same directory left. Throws std::runtime_error (exit 2) for a

@@ -49,6 +49,12 @@ TEST(FuzzRegressions, Set) { Replay("set", SetTarget); }
 TEST(FuzzRegressions, Sweep) { Replay("sweep", SweepTarget); }
 // Tests that the G-code parser's findings parse or fail with a located ProgramError.
 TEST(FuzzRegressions, Gcode) { Replay("gcode", GcodeTarget); }
+// Tests that the manifest.json readers of resume and merge take the manifest findings or
+// refuse them naming the file, and that what they take is what merge needs.
+TEST(FuzzRegressions, Manifest) { Replay("manifest", ManifestTarget); }
+// Tests that the results rows readers of resume and merge keep the rows findings' good
+// rows or refuse them naming the file, and agree with each other.
+TEST(FuzzRegressions, Rows) { Replay("rows", RowsTarget); }
 
 }  // namespace
 }  // namespace shapebench::fuzz
