@@ -13,6 +13,7 @@
 #include "common/validation_error.h"
 #include "model/lumped_matrices.h"
 #include "model/machine.h"
+#include "model/servo_drive.h"
 
 namespace shapebench::model {
 namespace {
@@ -171,6 +172,30 @@ TEST(LumpedDamping, DashpotBesideBlockAndBadNumbersAreRefused) {
   EXPECT_EQ(field_of(config).rfind("damping.modal[1]: ", 0), 0u) << field_of(config);
   config.damping.modal = {};
   EXPECT_EQ(field_of(config).rfind("damping.modal: ", 0), 0u) << field_of(config);
+}
+
+// Tests that stiffness-proportional Rayleigh damping (alpha 0) is the same structure as a
+// dashpot c = beta k on every element: the same kinematic plant and, through the drive's
+// reaction, the same servo plant, to rounding.
+TEST(LumpedDamping, BetaOnlyRayleighEqualsDashpotsAlongTheSprings) {
+  const double beta = 3e-5;
+  LumpedMachineConfig dashpots = UndampedChain();
+  for (LumpedElement& e : dashpots.elements) e.damping_n_s_m = beta * e.stiffness_n_m;
+  LumpedMachineConfig block = UndampedChain();
+  block.damping.kind = LumpedDampingKind::kRayleigh;
+  block.damping.rayleigh = {0.0, beta};
+  const MachineConfig a = Machine(dashpots);
+  const MachineConfig b = Machine(block);
+  const LinearPlant x = BuildPlant(a);
+  const LinearPlant y = BuildPlant(b);
+  EXPECT_LT((x.A - y.A).norm(), 1e-12 * x.A.norm());
+  EXPECT_LT((x.B_accel - y.B_accel).norm(), 1e-12 * x.B_accel.norm());
+  EXPECT_LT((x.B_vel - y.B_vel).norm(), 1e-9);  // both 0 up to rounding: free following
+  const ServoConfig servo;  // a finite velocity loop: the reaction C_u enters the motor
+  const LinearPlant xs = BuildServoAxisPlant(&a, servo);
+  const LinearPlant ys = BuildServoAxisPlant(&b, servo);
+  ASSERT_EQ(xs.A.rows(), ys.A.rows());
+  EXPECT_LT((xs.A - ys.A).norm(), 1e-12 * xs.A.norm());
 }
 
 // Tests that a block of zeros conserves energy and any nonzero ratio does not.
