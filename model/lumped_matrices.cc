@@ -1,7 +1,11 @@
 #include "model/lumped_matrices.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <unordered_map>
+
+#include <Eigen/Eigenvalues>
 
 namespace shapebench::model {
 namespace {
@@ -34,6 +38,31 @@ class EndpointMapper {
   EndpointMap driven_ref_;
 };
 
+// C of a `damping:` block (machine.h, LumpedDamping) from M and K. K is positive definite
+// (validate(): every body is tied to ground or the held driven point), so there is no
+// rigid-body mode; a zero-frequency mode would still get no damping from the modal list.
+Eigen::MatrixXd BlockDamping(const LumpedDamping& damping, const Eigen::VectorXd& mass_kg,
+                             const Eigen::MatrixXd& K) {
+  const Eigen::MatrixXd M = mass_kg.asDiagonal();
+  if (damping.kind == LumpedDampingKind::kRayleigh) {
+    return damping.rayleigh.alpha * M + damping.rayleigh.beta * K;
+  }
+  // Ascending eigenvalues; eigenvectors mass-normalised (Phi^T M Phi = I), so
+  // Phi^T C Phi = diag(2 zeta_i w_i) exactly: every mode keeps its shape and gets its zeta.
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K, M);
+  const Eigen::VectorXd& w2 = solver.eigenvalues();
+  const int n = static_cast<int>(w2.size());
+  Eigen::VectorXd modal_c = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    if (!(w2(i) > 1e-12 * w2(n - 1))) continue;  // rigid: no damping
+    const std::size_t entry = std::min<std::size_t>(static_cast<std::size_t>(i), damping.modal.size() - 1);
+    modal_c(i) = 2.0 * damping.modal[entry] * std::sqrt(w2(i));
+  }
+  const Eigen::MatrixXd MPhi = M * solver.eigenvectors();
+  const Eigen::MatrixXd C = MPhi * modal_c.asDiagonal() * MPhi.transpose();
+  return 0.5 * (C + C.transpose());  // symmetric to the last bit
+}
+
 }  // namespace
 
 LumpedMatrices AssembleLumped(const LumpedMachineConfig& config) {
@@ -59,7 +88,15 @@ LumpedMatrices AssembleLumped(const LumpedMachineConfig& config) {
   }
   m.g = m.K.llt().solve(-m.K_u);
   m.force_per_accel = -m.mass_kg.cwiseProduct(m.g);
-  m.velocity_load = m.C * m.g + m.C_u;
+  if (config.damping.kind == LumpedDampingKind::kElements) {
+    m.velocity_load = m.C * m.g + m.C_u;
+  } else {
+    // Dissipation 0.5 y'^T C y' with y = q - g u: by q' it is C q' - C g u', so C_u = -C g,
+    // and by u' the drive's reaction -g^T C y' = C_u^T y'. The rigid motion is not damped.
+    m.C = BlockDamping(config.damping, m.mass_kg, m.K);
+    m.C_u = -(m.C * m.g);
+    m.velocity_load = Eigen::VectorXd::Zero(n);
+  }
   m.rigid_stretch.resize(static_cast<Eigen::Index>(config.elements.size()));
   for (std::size_t i = 0; i < config.elements.size(); ++i) {
     const LumpedElement& e = config.elements[i];

@@ -14,6 +14,8 @@ namespace shapebench::model {
 //   M q'' + C q' + K q = -K_u u - C_u u'.
 // Relative coordinates y = q - g u (g: the rigid motion the held command imposes) give
 //   M y'' + C y' + K y = f a - (C g + C_u) v,   f = -M g,  a = u'', v = u'.
+// With a `damping:` block (machine.h, LumpedDamping) C comes from M and K instead of the
+// dashpots and acts on y alone: C_u = -C g, so C g + C_u = 0.
 struct LumpedMatrices {
   Eigen::VectorXd mass_kg;  // M = diag(mass_kg)
   Eigen::MatrixXd K;

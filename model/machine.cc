@@ -119,6 +119,15 @@ bool FormConservesEnergy(const LumpedMachineConfig& config) {
   for (const LumpedElement& element : config.elements) {
     if (element.damping_n_s_m != 0.0) return false;
   }
+  const LumpedDamping& damping = config.damping;
+  switch (damping.kind) {
+    case LumpedDampingKind::kElements: return true;
+    case LumpedDampingKind::kRayleigh:
+      return damping.rayleigh.alpha == 0.0 && damping.rayleigh.beta == 0.0;
+    case LumpedDampingKind::kModal:
+      return std::all_of(damping.modal.begin(), damping.modal.end(),
+                         [](double zeta) { return zeta == 0.0; });
+  }
   return true;
 }
 

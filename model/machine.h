@@ -71,6 +71,39 @@ struct LumpedElement {
   }
 };
 
+// C = alpha M + beta K: zeta_i = alpha / (2 w_i) + beta w_i / 2 at each undamped mode w_i.
+struct RayleighDamping {
+  double alpha = 0.0;  // 1/s, the mass-proportional part
+  double beta = 0.0;   // s, the stiffness-proportional part
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("alpha", &alpha);
+    a->Visit("beta", &beta);
+  }
+};
+
+// Where a lumped axis' damping comes from: its elements' dashpots (damping_n_s_m), or a
+// `damping:` block that sets it per undamped mode instead (then every damping_n_s_m is 0).
+enum class LumpedDampingKind { kElements, kModal, kRayleigh };
+
+// The `damping:` block of a lumped axis. Its C acts on the deflection y = q - g u, not on
+// the rigid motion the command imposes (lumped_matrices.h): like a dashpot across the
+// guides, it does not brake a carriage moving at constant speed.
+struct LumpedDamping {
+  // The YAML keys (the reader, messages and the sweep's fast path spell them from here).
+  static constexpr const char* kKey = "damping";
+  static constexpr const char* kModalKey = "modal";
+  static constexpr const char* kRayleighKey = "rayleigh";
+
+  LumpedDampingKind kind = LumpedDampingKind::kElements;
+  // kModal: zeta of the undamped modes in ascending frequency; a list shorter than the
+  // modes repeats its last entry for the higher ones (`modal: [0.03]`: 3 % on every mode).
+  // C = M Phi diag(2 zeta_i w_i) Phi^T M with Phi^T M Phi = I.
+  std::vector<double> modal;
+  RayleighDamping rayleigh;  // kRayleigh
+};
+
 struct LumpedMachineConfig {
   std::vector<LumpedBody> bodies;
   std::vector<LumpedElement> elements;
@@ -81,9 +114,11 @@ struct LumpedMachineConfig {
   // "ground"), less the relative motion the command itself imposes.
   std::string output_body;
   std::string output_relative_to = "ground";
+  LumpedDamping damping;
   void validate() const;
 
-  // `output: {body, relative_to}` is a nested mapping the machine reader reads itself.
+  // `output: {body, relative_to}` and `damping: {modal: [...]}` | `{rayleigh: {alpha,
+  // beta}}` are nested mappings the machine reader reads itself.
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("bodies", &bodies, kMaxModelEntries);
@@ -128,7 +163,7 @@ struct ModalAnalysis {
 ModalAnalysis AnalyzeModes(const MachineConfig& machine);
 
 // True when the structure has no damping at all (every modal damping_ratio, every lumped
-// element's damping_n_s_m exactly 0): the vibration a motion leaves in it stays for ever.
+// element's damping_n_s_m, every entry of a lumped `damping:` block exactly 0): the vibration a motion leaves in it stays for ever.
 bool ConservesEnergy(const MachineConfig& machine);
 
 }  // namespace shapebench::model

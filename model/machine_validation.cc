@@ -157,6 +157,51 @@ void ValidateReferences(const LumpedMachineConfig& config,
   }
 }
 
+// "damping.modal" | "damping.rayleigh": the block as the YAML spells it.
+std::string DampingBlockName(LumpedDampingKind kind) {
+  return std::string(LumpedDamping::kKey) + "." +
+         (kind == LumpedDampingKind::kModal ? LumpedDamping::kModalKey : LumpedDamping::kRayleighKey);
+}
+
+// The `damping:` block: its numbers, and no dashpot beside it (one source of damping).
+void ValidateDamping(const LumpedMachineConfig& config) {
+  const LumpedDamping& damping = config.damping;
+  if (damping.kind == LumpedDampingKind::kElements) return;
+  const std::string block = DampingBlockName(damping.kind);
+  for (size_t i = 0; i < config.elements.size(); ++i) {
+    const LumpedElement& e = config.elements[i];
+    if (e.damping_n_s_m == 0.0) continue;
+    throw ValidationError(Indexed(kElements, i, &LumpedElement::damping_n_s_m),
+                          "element \"" + e.name + "\" has a dashpot" + Got(e.damping_n_s_m) +
+                              " and the axis has '" + block +
+                              "': damp the axis one way, set every damping_n_s_m to 0 or "
+                              "remove '" + std::string(LumpedDamping::kKey) + "'");
+  }
+  if (damping.kind == LumpedDampingKind::kRayleigh) {
+      for (double RayleighDamping::*field : {&RayleighDamping::alpha, &RayleighDamping::beta}) {
+      const double value = damping.rayleigh.*field;
+      if (!(value >= 0.0) || !std::isfinite(value)) {
+        throw ValidationError(block + "." + FieldName(field), "must be finite and >= 0" + Got(value));
+      }
+    }
+    return;
+  }
+  if (damping.modal.empty()) throw ValidationError(block, "must list at least one damping ratio");
+  if (damping.modal.size() > config.bodies.size()) {
+    throw ValidationError(block, "lists " + std::to_string(damping.modal.size()) +
+                                     " damping ratios; the axis has " +
+                                     std::to_string(config.bodies.size()) +
+                                     " modes (one per body)");
+  }
+  for (size_t i = 0; i < damping.modal.size(); ++i) {
+    const double zeta = damping.modal[i];
+    if (!(zeta >= 0.0 && zeta < 1.0)) {
+      throw ValidationError(block + "[" + std::to_string(i) + "]",
+                            "must be in [0, 1) (underdamped)" + Got(zeta));
+    }
+  }
+}
+
 }  // namespace
 
 void ModalMachineConfig::validate() const {
@@ -181,6 +226,7 @@ void LumpedMachineConfig::validate() const {
   std::unordered_map<std::string, int> index;
   ValidateBodies(*this, index);
   ValidateElements(*this, index);
+  ValidateDamping(*this);
   ValidateReferences(*this, index);
   const std::vector<bool> restrained = RestrainedBodies(*this, index);
   for (size_t i = 0; i < bodies.size(); ++i) {

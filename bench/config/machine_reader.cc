@@ -9,10 +9,11 @@
 namespace shapebench::bench {
 namespace {
 
-// The lumped form's keys: its field list and the nested `output` mapping.
+// The lumped form's keys: its field list and the nested `output` and `damping` mappings.
 std::vector<std::string> LumpedKeys() {
   std::vector<std::string> keys = FieldNames<model::LumpedMachineConfig>();
   keys.push_back("output");
+  keys.push_back(model::LumpedDamping::kKey);
   return keys;
 }
 
@@ -28,6 +29,55 @@ model::ModalMachineConfig ReadModal(const NodeReader& machine) {
   return modal;
 }
 
+// "FILE:LINE:COL" of a node, for a message located elsewhere that names it.
+std::string Where(const NodeReader& node) {
+  const ConfigError at = node.Error("");
+  return at.file() + ":" + std::to_string(at.line()) + ":" + std::to_string(at.column());
+}
+
+// `damping: {modal: [zeta, ...]}` or `damping: {rayleigh: {alpha, beta}}` (machine.h,
+// LumpedDamping); numbers are checked by validate(), a dashpot beside it here, where both
+// places are known.
+void ReadDamping(const NodeReader& machine, model::LumpedMachineConfig* lumped) {
+  using model::LumpedDamping;
+  const auto damping = machine.Child(LumpedDamping::kKey);
+  if (!damping) return;
+  damping->ExpectMap({LumpedDamping::kModalKey, LumpedDamping::kRayleighKey});
+  const auto modal = damping->Child(LumpedDamping::kModalKey);
+  const auto rayleigh = damping->Child(LumpedDamping::kRayleighKey);
+  if (modal && rayleigh) {
+    throw rayleigh->Error("'rayleigh' and 'modal' (at " + Where(*modal) +
+                          ") both set this axis' damping; keep one");
+  }
+  if (modal) {
+    const std::vector<NodeReader> ratios = modal->Elements();
+    if (ratios.empty()) throw modal->Error("expected a list of damping ratios, one per mode");
+    if (ratios.size() > model::kMaxModelEntries) {
+      throw modal->Error("at most " + std::to_string(model::kMaxModelEntries) +
+                         " damping ratios per axis (got " + std::to_string(ratios.size()) + ")");
+    }
+    lumped->damping.kind = model::LumpedDampingKind::kModal;
+    for (const NodeReader& ratio : ratios) lumped->damping.modal.push_back(ratio.AsNumber());
+  } else if (rayleigh) {
+    lumped->damping.kind = model::LumpedDampingKind::kRayleigh;
+    ReadFields(*rayleigh, &lumped->damping.rayleigh);
+  } else {
+    throw damping->Error("expected 'modal: [zeta, ...]' or 'rayleigh: {alpha, beta}'");
+  }
+  const std::string block = std::string(LumpedDamping::kKey) + "." +
+                            (modal ? LumpedDamping::kModalKey : LumpedDamping::kRayleighKey);
+  for (std::size_t i = 0; i < lumped->elements.size(); ++i) {
+    if (lumped->elements[i].damping_n_s_m == 0.0) continue;
+    const NodeReader element =
+        machine.Child(FieldName(&model::LumpedMachineConfig::elements))->Elements()[i];
+    throw element.Child(FieldName(&model::LumpedElement::damping_n_s_m))
+        ->Error("element \"" + lumped->elements[i].name + "\" has a dashpot and the axis has '" +
+                block + "' (at " + Where(modal ? *modal : *rayleigh) +
+                "): damp the axis one way, set every damping_n_s_m to 0 or remove '" +
+                LumpedDamping::kKey + "'");
+  }
+}
+
 model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
   model::LumpedMachineConfig lumped;
   FieldReader reader(machine);
@@ -37,6 +87,7 @@ model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
     output->Read("body", &lumped.output_body);
     output->Read("relative_to", &lumped.output_relative_to);
   }
+  ReadDamping(machine, &lumped);
   return lumped;
 }
 

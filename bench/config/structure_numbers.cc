@@ -16,13 +16,37 @@ namespace shapebench::bench {
 namespace {
 
 // Where a structure number lives: the axis' form (-1: the single form's axis), the list,
-// the entry and the field.
+// the entry and the field; or a number of a lumped axis' `damping:` block (block set).
 struct StructureKey {
   int axis = -1;
   std::string list;   // "modes", "bodies", "elements"
   std::size_t index = 0;
   std::string field;  // "frequency_hz", ...
+  // kModal: damping.modal[index]; kRayleigh: damping.rayleigh.FIELD.
+  std::optional<model::LumpedDampingKind> block;
 };
+
+// `damping.modal[i]` or `damping.rayleigh.alpha|beta` (machine.h, LumpedDamping) from
+// `path[at]` on (three elements); nullopt for anything else.
+std::optional<StructureKey> ParseDampingKey(const std::vector<PathElement>& path, std::size_t at,
+                                            StructureKey key) {
+  using model::LumpedDamping;
+  const PathElement& block = path[at + 1];
+  const PathElement& last = path[at + 2];
+  if (path[at].key != LumpedDamping::kKey || path[at].index || block.index) return std::nullopt;
+  if (block.key == LumpedDamping::kModalKey && last.index && last.key.empty()) {
+    key.block = model::LumpedDampingKind::kModal;
+    key.index = *last.index;
+    return key;
+  }
+  model::RayleighDamping rayleigh;
+  if (block.key == LumpedDamping::kRayleighKey && !last.index && NumberField(&rayleigh, last.key)) {
+    key.block = model::LumpedDampingKind::kRayleigh;
+    key.field = last.key;
+    return key;
+  }
+  return std::nullopt;
+}
 
 bool IsField(const std::string& list, const std::string& field) {
   // A number field of an entry of one of the forms' lists (their field lists say which).
@@ -48,6 +72,7 @@ std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
     return std::nullopt;
   }
   // LIST, then [i] (ParseKeyPath gives the index as its own element), then FIELD.
+  if (auto damping = ParseDampingKey(*path, at, key)) return damping;
   const PathElement& list = (*path)[at];
   const PathElement& entry = (*path)[at + 1];
   const PathElement& field = (*path)[at + 2];
@@ -68,8 +93,22 @@ std::optional<double> PlainNumber(const std::string& text) {
   return value;
 }
 
+// A number of the axis' `damping:` block; nullptr unless the axis is lumped and has that
+// very block (a point that adds, removes or switches a block is loaded from its sources,
+// which also locates a dashpot beside it).
+double* DampingFieldOf(model::MachineConfig& machine, const StructureKey& key) {
+  auto* lumped = std::get_if<model::LumpedMachineConfig>(&machine.form);
+  if (lumped == nullptr || lumped->damping.kind != *key.block) return nullptr;
+  if (*key.block == model::LumpedDampingKind::kRayleigh) {
+    return NumberField(&lumped->damping.rayleigh, key.field);
+  }
+  std::vector<double>& modal = lumped->damping.modal;
+  return key.index < modal.size() ? &modal[key.index] : nullptr;
+}
+
 // The field, whichever form the axis has; nullptr when the key does not fit it.
 double* FieldOf(model::MachineConfig& machine, const StructureKey& key) {
+  if (key.block) return DampingFieldOf(machine, key);
   return std::visit([&](auto& form) { return ListNumberField(&form, key.list, key.index, key.field); },
                     machine.form);
 }

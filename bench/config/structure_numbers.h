@@ -19,6 +19,10 @@ namespace shapebench::bench {
 //   machine[.axes.AXIS].modes[i].frequency_hz | damping_ratio | gain
 //   machine[.axes.AXIS].bodies[i].mass_kg
 //   machine[.axes.AXIS].elements[i].stiffness_n_m | damping_n_s_m
+//   machine[.axes.AXIS].damping.modal[i]
+//   machine[.axes.AXIS].damping.rayleigh.alpha | beta
+// A `damping:` number is set only where the axis already has that block (modal, rayleigh)
+// and, for modal, the entry; otherwise the point is loaded from its sources.
 bool IsStructureNumberKey(const std::string& key_path);
 
 // Sets each of `values` (IsStructureNumberKey keys) on `scenario`. False, with `scenario`

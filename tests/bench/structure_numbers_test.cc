@@ -80,7 +80,15 @@ INSTANTIATE_TEST_SUITE_P(
                        {"machine.axes.z.elements[0].damping_n_s_m", "2.7e5"}},
                       {{"machine.axes.y.bodies[1].mass_kg", "+2000.5"},
                        {"machine.axes.x.elements[1].stiffness_n_m", "9.5E7"},
-                       {"machine.axes.z.elements[0].damping_n_s_m", "1000"}}}),
+                       {"machine.axes.z.elements[0].damping_n_s_m", "1000"}}},
+        StructureCase{"lumped_modal_damping", DataPath("sweeps/damped_chain.yaml"),
+                      {{"machine.damping.modal[1]", "0.045"}, {"machine.bodies[2].mass_kg", "40"}},
+                      {{"machine.damping.modal[1]", "0.0731"}, {"machine.bodies[2].mass_kg", "35"},
+                       {"machine.damping.modal[0]", "1e-3"}}},
+        StructureCase{"lumped_rayleigh_damping", DataPath("sweeps/rayleigh_chain.yaml"),
+                      {{"machine.damping.rayleigh.alpha", "12"}},
+                      {{"machine.damping.rayleigh.alpha", "7.25"},
+                       {"machine.damping.rayleigh.beta", "1.5e-5"}}}),
     [](const ::testing::TestParamInfo<StructureCase>& info) { return info.param.name; });
 
 // Tests which keys are structure numbers: the three modal fields, a body's mass, an
@@ -90,14 +98,19 @@ TEST(StructureNumbers, KnowsItsKeys) {
        {"machine.modes[0].frequency_hz", "machine.modes[12].damping_ratio", "machine.modes[0].gain",
         "machine.bodies[3].mass_kg", "machine.elements[0].stiffness_n_m",
         "machine.elements[1].damping_n_s_m", "machine.axes.x.modes[0].frequency_hz",
-        "machine.axes.z.bodies[0].mass_kg", "machine.axes.y.elements[2].damping_n_s_m"}) {
+        "machine.axes.z.bodies[0].mass_kg", "machine.axes.y.elements[2].damping_n_s_m",
+        "machine.damping.modal[0]", "machine.axes.x.damping.modal[2]",
+        "machine.damping.rayleigh.alpha", "machine.axes.z.damping.rayleigh.beta"}) {
     EXPECT_TRUE(IsStructureNumberKey(key)) << key;
   }
   for (const char* key :
        {"controller.feed_mm_min", "machine.modes[0]", "machine.modes.frequency_hz",
         "machine.modes[0].frequency_hz.x", "machine.bodies[0].name", "machine.elements[0].from",
         "machine.stroke.x", "machine.axes.w.modes[0].gain", "machine.axes.x.modes.gain",
-        "machine.axes.x", "machine.modes[0].mass_kg", "drive.position_gain", "machine"}) {
+        "machine.axes.x", "machine.modes[0].mass_kg", "drive.position_gain", "machine",
+        "machine.damping.modal", "machine.damping.rayleigh", "machine.damping.rayleigh.gamma",
+        "machine.damping.rayleigh[0]", "machine.damping.modal.alpha", "machine.damping[0].modal",
+        "machine.damping.modal[0].x", "machine.axes.x.damping.rayleigh[1]"}) {
     EXPECT_FALSE(IsStructureNumberKey(key)) << key;
   }
 }
@@ -123,6 +136,32 @@ TEST(StructureNumbers, LeavesWhatTheLoaderRefusesToIt) {
   }
 }
 
+// Tests that a damping-block number is set only where the axis has that very block and
+// entry: switching, adding or extending a block, and a ratio validate() refuses, go to the
+// loader.
+TEST(StructureNumbers, DampingBlockNumbersOnlyWhereTheBlockIs) {
+  const Scenario modal = LoadScenario(DataPath("sweeps/damped_chain.yaml"), {});
+  for (const Override& bad : std::vector<Override>{
+           {"machine.damping.rayleigh.alpha", "1"},  // the other block
+           {"machine.damping.modal[3]", "0.01"},     // no fourth entry
+           {"machine.damping.modal[0]", "1.5"},      // validate(): in [0, 1)
+           {"machine.axes.y.damping.modal[0]", "0.01"}}) {  // the other form
+    Scenario scenario = modal;
+    EXPECT_FALSE(SetStructureNumbers(&scenario, {bad})) << bad.key_path << "=" << bad.value_yaml;
+  }
+  const Scenario rayleigh = LoadScenario(DataPath("sweeps/rayleigh_chain.yaml"), {});
+  Scenario scenario = rayleigh;
+  EXPECT_FALSE(SetStructureNumbers(&scenario, {{"machine.damping.modal[0]", "0.01"}}));
+  scenario = rayleigh;
+  EXPECT_FALSE(SetStructureNumbers(&scenario, {{"machine.damping.rayleigh.beta", "-1"}}));
+  // A dashpot beside the block: validate() refuses it, the loader locates it.
+  scenario = rayleigh;
+  EXPECT_FALSE(SetStructureNumbers(&scenario, {{"machine.elements[1].damping_n_s_m", "10"}}));
+  const Scenario lumped = LoadScenario(kSource + "/configs/scenarios/pocket_corner.yaml", {});
+  scenario = lumped;
+  EXPECT_FALSE(SetStructureNumbers(&scenario, {{"machine.axes.y.damping.modal[0]", "0.01"}}));
+}
+
 // Tests a natural-period sweep with a bad value among good ones: the good points equal
 // independent runs, the bad one reports its value's place in the sweep file.
 TEST(StructureNumbers, SweepPointsStayExactAndErrorsLocated) {
@@ -137,6 +176,34 @@ TEST(StructureNumbers, SweepPointsStayExactAndErrorsLocated) {
       ASSERT_FALSE(outcome.ok());
       EXPECT_EQ(outcome.error.rfind(path + ":3:", 0), 0u) << outcome.error;
       EXPECT_NE(outcome.error.find("frequency_hz"), std::string::npos) << outcome.error;
+      continue;
+    }
+    ASSERT_TRUE(outcome.ok()) << outcome.error;
+    const auto alone =
+        RunScenario(LoadScenario(sweep.base, MakePoint(sweep, p, {}).overrides)).metrics.Named();
+    const auto x = outcome.metrics.Named();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&x[i].second, &alone[i].second, sizeof(double)), 0)
+          << "point " << p << " " << x[i].first;
+    }
+  }
+}
+
+// Tests a sweep over a modal damping ratio of a lumped axis with a bad value among good
+// ones: the good points equal independent runs bit for bit, the bad one reports its
+// value's place in the sweep file.
+TEST(StructureNumbers, DampingSweepPointsStayExactAndErrorsLocated) {
+  ScratchDir dir;
+  const std::string path = dir.Write(
+      "sweep.yaml", "base: " + DataPath("sweeps/damped_chain.yaml") +
+                        "\ngrid:\n  machine.damping.modal[0]: [0.0, 0.02, 1.2, 0.08]\n");
+  const Sweep sweep = LoadSweep(path, {});
+  for (const std::uint64_t p : {0u, 1u, 2u, 3u, 1u}) {
+    const PointOutcome outcome = RunPoint(sweep, {}, p);
+    if (p == 2) {
+      ASSERT_FALSE(outcome.ok());
+      EXPECT_EQ(outcome.error.rfind(path + ":3:", 0), 0u) << outcome.error;
+      EXPECT_NE(outcome.error.find("damping.modal[0]"), std::string::npos) << outcome.error;
       continue;
     }
     ASSERT_TRUE(outcome.ok()) << outcome.error;
