@@ -169,6 +169,7 @@ int CheckCommand(const CheckArgs& args) {
   for (const std::string& file : args.files) {
     const bool sweep = IsSweepFile(file);
     sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides)) : std::nullopt);
+    if (sweep && !sweeps.back()->note.empty()) std::cerr << sweeps.back()->note << "\n";
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
     if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
@@ -314,6 +315,7 @@ int SweepCommand(const SweepArgs& args) {
   SweepLoadOptions load;
   load.force = args.force;
   const Sweep sweep = LoadSweep(args.file, overrides, load);
+  if (!sweep.note.empty()) std::cerr << sweep.note << "\n";
   options.out_dir = args.out_dir.empty()
                         ? (std::filesystem::path("sweep_out") / sweep.name).string()
                         : args.out_dir;
