@@ -401,7 +401,7 @@ std::string MachineDefaultsNote(const Sweep& sweep, const Scenario& base) {
   std::string design;
   for (const double f : pattern.DesignFrequencies()) design += (design.empty() ? "" : ", ") + ShortestDouble(f);
   return "note: " + sweep.file + ": the pattern's design is left to the machine; every point takes the "
-         "base scenario's (" + design + " Hz, its participating modes along " + sweep.design_modes->axes +
+         "base scenario's (" + design + " Hz, from its participating modes along " + sweep.design_modes->axes +
          "), not its own: the swept keys " + keys + " move the plant, not the pattern "
          "(give controller.pattern.frequency_hz to choose it)";
 }

@@ -38,16 +38,16 @@ const std::string kZvdMove =
     "move: {distance_mm: 100}\nintegrator: {method: exact}\n";
 
 // Tests that a mode carrying less than 1% of the static deflection does not count: the
-// 5 Hz mode of gain 0.001 carries 0.001/25 against 1/400 of the 20 Hz one (0.16%), so
-// the pattern is designed for 20 Hz, and with gain 0.01 (1.6%) for 5 Hz.
+// 5 Hz mode of gain 0.0001 contributes 0.0001/5^2 against 1/20^2 of the 20 Hz one (0.16%),
+// so the pattern is designed for 20 Hz; with gain 0.001 (1.6%) for 5 Hz.
 TEST(PatternDefaults, LowestModeBelowOnePercentDoesNotParticipate) {
   ScratchDir dir;
   const Scenario low = LoadScenario(
-      dir.Write("low.yaml", Modes({{5.0, 0.0, 0.001}, {20.0, 0.0, 1.0}}) + kZvdMove), {});
+      dir.Write("low.yaml", Modes({{5.0, 0.0, 0.0001}, {20.0, 0.0, 1.0}}) + kZvdMove), {});
   EXPECT_EQ(low.controller.pattern.frequency_hz, 20.0);
   EXPECT_TRUE(low.controller.pattern.frequency_from_machine);
   const Scenario participating = LoadScenario(
-      dir.Write("part.yaml", Modes({{5.0, 0.0, 0.01}, {20.0, 0.0, 1.0}}) + kZvdMove), {});
+      dir.Write("part.yaml", Modes({{5.0, 0.0, 0.001}, {20.0, 0.0, 1.0}}) + kZvdMove), {});
   EXPECT_EQ(participating.controller.pattern.frequency_hz, 5.0);
 }
 
