@@ -160,5 +160,25 @@ TEST(PatternDefaults, SweepKeepsTheBaseDesign) {
   EXPECT_TRUE(LoadSweep(path, fixed).note.empty());
 }
 
+// Tests that `sweep` says once on stderr that the points keep the base's design, and that
+// results.csv's pattern_frequency_hz column holds it for every point.
+TEST(PatternDefaults, SweepCommandNotesOnce) {
+  ScratchDir dir;
+  const std::string path = dir.Write(
+      "sweep.yaml", "base: " + Configs("scenarios/gantry_zvd.yaml") +
+                        "\ngrid:\n  machine.modes[0].frequency_hz: [15, 21]\n"
+                        "metrics: [residual_ratio, pattern_frequency_hz]\n");
+  const testing::CliResult r =
+      testing::RunCli({"sweep", path, "--jobs", "2", "--out", dir.File("out")}, dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string note = "note: " + path + ": the pattern's design is left to the machine";
+  const std::size_t at = r.err.find(note);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(note, at + 1), std::string::npos) << r.err;
+  const std::string csv = testing::ReadText(dir.File("out/results.csv"));
+  EXPECT_NE(csv.find("\n0,15,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",18,ok,\n1,21,"), std::string::npos) << csv;
+}
+
 }  // namespace
 }  // namespace shapebench::bench
