@@ -304,6 +304,10 @@ void ResolveDesignDefaults(const ConfigDocument& document, const LoadOptions& op
     } catch (const ValidationError&) {
       return;  // a move that makes no program: its own validation below says why
     }
+    for (const model::ModeInfo& mode : modes.modes) {
+      // A degenerate model (CheckPlantFinite below says so) designs for nothing.
+      if (!std::isfinite(mode.frequency_hz) || !std::isfinite(mode.damping_ratio)) return;
+    }
   }
   Validated(document, "controller.pattern", [&] { ResolvePatternDefaults(modes, &pattern); });
 }
