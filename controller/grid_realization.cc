@@ -77,7 +77,7 @@ struct GroupPhasor {
   double period_s;
 
   std::complex<double> operator()(std::size_t j, double t_s) const {
-    const double zeta = design.damping_ratio;
+    const double zeta = design.DampingAt(j);
     const double w = RadPerS(design.frequencies_hz[j]);
     const double dt = t_s - first_tick * period_s;
     if (zeta == 0.0) return std::polar(1.0, w * dt);

@@ -11,7 +11,7 @@
 namespace shapebench::controller {
 
 // The design point(s) whose vibration the grid realization keeps: one or several
-// natural frequencies of modes with one damping ratio. A single frequency converts
+// natural frequencies of modes with one damping ratio, or one each. A single frequency converts
 // implicitly (seed 004's case: one undamped mode).
 struct GridDesign {
   GridDesign() = default;
@@ -20,6 +20,9 @@ struct GridDesign {
       : frequencies_hz(std::move(frequencies)), damping_ratio(damping) {}
   std::vector<double> frequencies_hz;
   double damping_ratio = 0.0;
+  // One damping ratio per frequency (modes of their own damping); empty: damping_ratio.
+  std::vector<double> damping_ratios;
+  double DampingAt(std::size_t j) const { return damping_ratios.empty() ? damping_ratio : damping_ratios[j]; }
 };
 
 struct GridImpulse {

@@ -25,10 +25,71 @@ std::string KeysOfKind(ShaperKind kind, ShaperKind other) {
   return keys;
 }
 
+// `damping_ratios`: one per design frequency, each like design_damping_ratio.
+void ValidateDampingRatios(const PatternConfig& config, const ShaperEntry& entry) {
+  if (config.damping_ratios.empty()) return;
+  if (config.damping_ratios.size() != config.frequencies_hz.size()) {
+    throw ValidationError("damping_ratios",
+                          "needs one ratio per design frequency: " +
+                              std::to_string(config.damping_ratios.size()) + " given, " +
+                              std::to_string(config.frequencies_hz.size()) + " in frequencies_hz" +
+                              (config.frequencies_hz.empty() ? " (give frequencies_hz, or "
+                                                               "design_damping_ratio for one mode)"
+                                                             : ""));
+  }
+  if (config.design_damping_ratio != 0.0) {
+    throw ValidationError("damping_ratios", "replaces design_damping_ratio; give one of them");
+  }
+  for (std::size_t i = 0; i < config.damping_ratios.size(); ++i) {
+    const double z = config.damping_ratios[i];
+    const std::string field = "damping_ratios[" + std::to_string(i) + "]";
+    if (!(Finite(z) && z >= 0.0 && z < 1.0)) {
+      throw ValidationError(field, "must be in [0, 1) (got " + Num(z) + ")");
+    }
+    if (z > 0.0 && entry.kind == ShaperKind::kPatentStep) {
+      throw ValidationError(field, "the patent's methods (" +
+                                       KeysOfKind(ShaperKind::kPatentStep, ShaperKind::kPatentStep) +
+                                       ") are designed for an undamped mode (got " + Num(z) + ")");
+    }
+  }
+}
+
+// The entry's own checks; with a damping ratio per mode, mode by mode (the design of
+// each reads its own ratio), a complaint about the ratio naming that mode's.
+void ValidateEntry(const PatternConfig& config, const ShaperEntry& entry) {
+  if (!entry.validate) return;
+  if (config.damping_ratios.empty()) {
+    entry.validate(config);
+    return;
+  }
+  for (std::size_t i = 0; i < config.damping_ratios.size(); ++i) {
+    try {
+      entry.validate(config.ForMode(i));
+    } catch (const ValidationError& error) {
+      if (error.field() != "design_damping_ratio") throw;
+      throw ValidationError("damping_ratios[" + std::to_string(i) + "]", error.message());
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<double> PatternConfig::DesignFrequencies() const {
   return frequencies_hz.empty() ? std::vector<double>{frequency_hz} : frequencies_hz;
+}
+
+std::vector<double> PatternConfig::DesignDampingRatios() const {
+  if (!damping_ratios.empty()) return damping_ratios;
+  return std::vector<double>(DesignFrequencies().size(), design_damping_ratio);
+}
+
+PatternConfig PatternConfig::ForMode(std::size_t i) const {
+  PatternConfig mode = *this;
+  mode.frequency_hz = DesignFrequencies().at(i);
+  mode.design_damping_ratio = DesignDampingRatios().at(i);
+  mode.frequencies_hz.clear();
+  mode.damping_ratios.clear();
+  return mode;
 }
 
 void PatternConfig::validate() const {
@@ -55,6 +116,7 @@ void PatternConfig::validate() const {
                               KeysOfKind(ShaperKind::kPatentStep, ShaperKind::kPatentStep) +
                               ") are designed for an undamped mode (got " + Num(z) + ")");
   }
+  ValidateDampingRatios(*this, entry);
   const double v = vibration_tolerance;
   if (!(Finite(v) && v > 0.0 && v < 1.0)) {
     throw ValidationError("vibration_tolerance", "must be in (0, 1) (a fraction of the unshaped "
@@ -64,7 +126,7 @@ void PatternConfig::validate() const {
     throw ValidationError("impulses", "is for method " + KeysOfKind(ShaperKind::kCustom, ShaperKind::kCustom) +
                                           " only (method is " + method + ")");
   }
-  if (entry.validate) entry.validate(*this);
+  ValidateEntry(*this, entry);
   if (entry.kind == ShaperKind::kImpulse || entry.kind == ShaperKind::kPatentStep) {
     // Guard rail (docs/reliability.md): the convolved shaper has the product of the
     // designs' impulse counts; at most ZVDD's at 8 frequencies, 4^8.

@@ -32,6 +32,17 @@ struct PatternConfig {
   std::vector<double> frequencies_hz;
   // Library shapers: the damping ratio of the mode(s) they are designed for, in [0, 1).
   double design_damping_ratio = 0.0;
+  // Several modes of their own damping: one ratio per design frequency (as many as
+  // frequencies_hz), each in [0, 1); it replaces design_damping_ratio. Empty: every mode
+  // is designed with design_damping_ratio.
+  std::vector<double> damping_ratios;
+  // What the scenario leaves to the machine (frequency_hz not given or `machine`,
+  // `frequencies_hz: machine`, `design_damping_ratio: machine`). The controller designs
+  // for the numbers above as they stand; the scenario loader first replaces them with
+  // the machine's participating modes (bench/config/pattern_defaults.h).
+  bool frequency_from_machine = false;
+  bool frequencies_from_machine = false;
+  bool damping_from_machine = false;
   double vibration_tolerance = 0.05;  // ei*: the residual allowed in each hump
   int impulse_count = 3;                  // mzv_n: the number of impulses, 3..16
   double impulse_spacing_periods = 0.375;  // mzv_n: their spacing in damped periods, (1/4, 1/2]
@@ -48,6 +59,12 @@ struct PatternConfig {
   void validate() const;
   // The frequencies the pattern is designed for: frequencies_hz, else {frequency_hz}.
   std::vector<double> DesignFrequencies() const;
+  // The damping ratio of each design frequency: damping_ratios, else design_damping_ratio
+  // for every one.
+  std::vector<double> DesignDampingRatios() const;
+  // The pattern for design mode `i` alone (DesignFrequencies()[i] with its damping ratio),
+  // the rest of the config kept: how a multi-mode shaper is designed mode by mode.
+  PatternConfig ForMode(std::size_t i) const;
 };
 
 }  // namespace shapebench::controller

@@ -121,13 +121,20 @@ std::vector<Impulse> ShaperImpulses(const PatternConfig& config) {
     return entry.design(config, frequencies.front());
   }
   std::vector<Impulse> result = {{0.0, 1.0}};
-  for (const double f : frequencies) result = ConvolveImpulses(result, entry.design(config, f));
+  for (std::size_t i = 0; i < frequencies.size(); ++i) {
+    // A damping ratio per mode: each design reads its own (ForMode).
+    result = ConvolveImpulses(result, config.damping_ratios.empty()
+                                          ? entry.design(config, frequencies[i])
+                                          : entry.design(config.ForMode(i), frequencies[i]));
+  }
   return result;
 }
 
 GridDesign ShaperGridDesign(const PatternConfig& config) {
   const bool patent = FindShaper(config.method).kind == ShaperKind::kPatentStep;
-  return GridDesign(config.DesignFrequencies(), patent ? 0.0 : config.design_damping_ratio);
+  GridDesign design(config.DesignFrequencies(), patent ? 0.0 : config.design_damping_ratio);
+  if (!patent) design.damping_ratios = config.damping_ratios;
+  return design;
 }
 
 }  // namespace shapebench::controller

@@ -218,6 +218,7 @@ int CheckCommand(const CheckArgs& args) {
     Doing("loading " + file);
     const bool sweep = IsSweepFile(file);
     sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides, load)) : std::nullopt);
+    if (sweep && !sweeps.back()->note.empty()) std::cerr << sweeps.back()->note << "\n";
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
     if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
@@ -376,6 +377,7 @@ int SweepCommand(const SweepArgs& args) {
   load.force = args.force;
   Doing("loading " + args.file);
   const Sweep sweep = LoadSweep(args.file, overrides, load);
+  if (!sweep.note.empty()) std::cerr << sweep.note << "\n";
   options.out_dir = args.out_dir.empty()
                         ? (std::filesystem::path("sweep_out") / sweep.name).string()
                         : args.out_dir;

@@ -63,7 +63,7 @@ std::string_view VerdictName(Verdict verdict) {
 
 double RelativeFloor(std::string_view unit) {
   if (unit == "m") return 1e-9;
-  if (unit == "s" || unit == "1") return 1e-6;
+  if (unit == "s" || unit == "1" || unit == "Hz") return 1e-6;
   return 1.0;  // "count", "bool"
 }
 

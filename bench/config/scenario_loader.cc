@@ -13,6 +13,7 @@
 #include "bench/config/field_reader.h"
 #include "bench/config/key_path.h"
 #include "bench/config/machine_reader.h"
+#include "bench/config/pattern_defaults.h"
 #include "bench/sim/metrics.h"
 #include "bench/sim/run_memory.h"
 #include "bench/config/node_reader.h"
@@ -287,6 +288,30 @@ controller::GcodeLimits ParseLimits(const Scenario& scenario) {
   return parse;
 }
 
+// The pattern's values left to the machine (pattern_defaults.h), before it is validated.
+void ResolveDesignDefaults(const ConfigDocument& document, const LoadOptions& options,
+                           Scenario* scenario) {
+  controller::PatternConfig& pattern = scenario->controller.pattern;
+  if (!pattern.frequency_from_machine && !pattern.frequencies_from_machine && !pattern.damping_from_machine) {
+    return;
+  }
+  DesignModes modes;
+  if (options.design_modes) {
+    modes = *options.design_modes;
+  } else {
+    try {
+      modes = FindDesignModes(scenario->machine, scenario->RunProgram());
+    } catch (const ValidationError&) {
+      return;  // a move that makes no program: its own validation below says why
+    }
+    for (const model::ModeInfo& mode : modes.modes) {
+      // A degenerate model (CheckPlantFinite below says so) designs for nothing.
+      if (!std::isfinite(mode.frequency_hz) || !std::isfinite(mode.damping_ratio)) return;
+    }
+  }
+  Validated(document, "controller.pattern", [&] { ResolvePatternDefaults(modes, &pattern); });
+}
+
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                       const LoadOptions& options) {
   NodeReader top(document, document.root(), "");
@@ -335,6 +360,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
 
   Validated(document, "machine", [&] { scenario.machine.validate(); });
+  ResolveDesignDefaults(document, options, &scenario);
   Validated(document, "controller", [&] { scenario.controller.validate(); });
   Validated(document, "move", [&] { scenario.move.validate(); });
   Validated(document, "integrator", [&] { scenario.integrator.validate(); });

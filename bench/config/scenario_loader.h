@@ -3,6 +3,7 @@
 // path, e.g. "scen.yaml:7:19: controller.pattern.k1: must be in [0.5, 1]".
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "bench/config/config_error.h"
 #include "bench/config/node_reader.h"
 #include "bench/config/override.h"
+#include "bench/config/pattern_defaults.h"
 #include "bench/sim/scenario.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
@@ -22,6 +24,10 @@ struct LoadOptions {
   // Plan the move (controller::GenerateCommand) so that a move too short for its pattern
   // is a load error. `pattern` turns it off: it shows the pattern whatever the move.
   bool plan_move = true;
+  // What the pattern's values left to the machine (pattern_defaults.h) are taken from;
+  // nullopt: the scenario's own machine and program. A sweep's points take its base
+  // scenario's, so the pattern stays fixed while a swept key moves the plant.
+  std::optional<DesignModes> design_modes;
 };
 
 // Reads, overrides (in order) and validates a scenario. `machine:` may be a mapping or a

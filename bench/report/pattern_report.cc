@@ -66,15 +66,22 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
   const controller::GridDesign design = controller::ShaperGridDesign(config);
   out << "pattern\n"
       << "  method " << MethodText(config) << "\n";
+  const bool from_machine = frequencies.size() == 1 ? config.frequency_from_machine : config.frequencies_from_machine;
+  const char* machine_note = from_machine ? ", the machine's participating mode" : "";
   if (frequencies.size() == 1) {
     out << "  design frequency " << Num(frequencies.front()) << " Hz (T = "
-        << Num(1.0 / frequencies.front()) << " s)\n";
+        << Num(1.0 / frequencies.front()) << " s" << machine_note << ")\n";
   } else {
     out << "  design frequencies " << FrequencyList(frequencies)
-        << " Hz (one shaper per frequency, convolved)\n";
+        << " Hz (one shaper per frequency, convolved" << (from_machine ? "; the machine's participating modes" : "")
+        << ")\n";
   }
-  if (design.damping_ratio > 0.0) {
-    out << "  design damping ratio " << Num(design.damping_ratio) << "\n";
+  if (!design.damping_ratios.empty()) {
+    out << "  design damping ratios " << FrequencyList(design.damping_ratios) << " (one per frequency"
+        << (config.damping_from_machine ? ", the modes' own" : "") << ")\n";
+  } else if (design.damping_ratio > 0.0) {
+    out << "  design damping ratio " << Num(design.damping_ratio)
+        << (config.damping_from_machine ? " (the mode's own)" : "") << "\n";
   }
   out
       << "  steady acceleration a = " << Num(steady_accel_m_s2) << " m/s^2 (feed "
@@ -212,6 +219,7 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
     unshaped.pattern.frequencies_hz.clear();
     unshaped.pattern.impulses.clear();
     unshaped.pattern.design_damping_ratio = 0.0;
+    unshaped.pattern.damping_ratios.clear();
     const double shaped_s = MotionTimeS(scenario, controller);
     const double unshaped_s = MotionTimeS(scenario, unshaped);
     out << "  motion time added           " << Num(shaped_s - unshaped_s) << " s (" << what << ": "

@@ -15,6 +15,7 @@
 #include "bench/sim/run_memory.h"
 #include "bench/sim/run_window.h"
 #include "controller/path_geometry.h"
+#include "controller/shaper_registry.h"
 #include "controller/stroke_end.h"
 #include "model/cvode_cross_check.h"
 #include "model/multi_axis_machine.h"
@@ -464,6 +465,23 @@ void CoSimulation::Finish(std::size_t last_tick, bool settled) {
   }
 }
 
+// What the pattern was designed for: its lowest design frequency and that mode's damping
+// ratio (methods 1-4: undamped). NaN for a pattern that does not shape for a frequency
+// (none, custom, mode off).
+void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
+  const controller::ShaperKind kind = controller::FindShaper(pattern.method).kind;
+  if (pattern.mode == controller::PatternMode::kOff ||
+      (kind != controller::ShaperKind::kPatentStep && kind != controller::ShaperKind::kImpulse)) {
+    return;
+  }
+  const std::vector<double> frequencies = pattern.DesignFrequencies();
+  const std::size_t lowest = static_cast<std::size_t>(
+      std::min_element(frequencies.begin(), frequencies.end()) - frequencies.begin());
+  m->pattern_frequency_hz = frequencies[lowest];
+  m->pattern_damping_ratio =
+      kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
+}
+
 void CoSimulation::FinishMetrics(Metrics* m) const {
   Eigen::Vector3d peak_axes = peak_axes_;
   if (single_.axis >= 0) peak_axes(single_.axis) = std::max(peak_axes(single_.axis), acc_.peak);
@@ -485,6 +503,7 @@ void CoSimulation::FinishMetrics(Metrics* m) const {
   m->short_block_clamps = command_.short_block_clamps;
   m->stroke_overshoot_m = overshoot_;
   m->stroke_alarm = command_.stroke_alarm ? 1.0 : 0.0;
+  SetPatternMetrics(scenario_.controller.pattern, m);
 }
 
 // A metric that overflowed is a degenerate model, never a number (NaN is "undefined").

@@ -50,6 +50,14 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
       {"stroke_alarm", "bool", Better::kLower,
        "true when the stroke check stopped the tool before the program's end",
        &M::stroke_alarm},
+      {"pattern_frequency_hz", "Hz", Better::kLower,
+       "the natural frequency the pattern was designed for (the lowest of several; given, or the "
+       "machine's lowest participating mode); n/a for a pattern without one (none, custom, mode off)",
+       &M::pattern_frequency_hz},
+      {"pattern_damping_ratio", "1", Better::kLower,
+       "the damping ratio that design frequency's shaper was designed for (methods 1-4: 0); n/a "
+       "as pattern_frequency_hz",
+       &M::pattern_damping_ratio},
   }};
   return table;
 }

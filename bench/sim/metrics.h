@@ -30,6 +30,8 @@ struct Metrics {
   double short_block_clamps = NAN;
   double stroke_overshoot_m = NAN;
   double stroke_alarm = NAN;  // 1 or 0; written as a bool
+  double pattern_frequency_hz = NAN;
+  double pattern_damping_ratio = NAN;
 
   // (name, value) in MetricTable() order.
   std::vector<std::pair<std::string, double>> Named() const;
@@ -41,18 +43,18 @@ enum class Better { kLower, kHigher };
 // One row of the metric table.
 struct MetricInfo {
   std::string_view name;
-  // "m", "s", "1" (a ratio), "count" or "bool" (a 0/1 value written as false/true).
+  // "m", "s", "Hz", "1" (a ratio), "count" or "bool" (a 0/1 value written as false/true).
   std::string_view unit;
   Better better;
   std::string_view description;
   double Metrics::*field;
 
   bool is_bool() const { return unit == "bool"; }
-  // The unit a table prints after the number: "m" or "s", else nothing.
-  std::string_view shown_unit() const { return unit == "m" || unit == "s" ? unit : ""; }
+  // The unit a table prints after the number: "m", "s" or "Hz", else nothing.
+  std::string_view shown_unit() const { return unit == "m" || unit == "s" || unit == "Hz" ? unit : ""; }
 };
 
-inline constexpr std::size_t kNumMetrics = 16;
+inline constexpr std::size_t kNumMetrics = 18;
 
 // Every metric, in the order JSON, tables and results.csv list them.
 const std::array<MetricInfo, kNumMetrics>& MetricTable();

@@ -44,6 +44,11 @@ std::string AutoLabel(const controller::PatternConfig& p) {
   for (const double f : p.DesignFrequencies()) frequencies += (frequencies.empty() ? "" : "+") + Num(f);
   label += " " + frequencies + " Hz";
   if (p.design_damping_ratio > 0.0) label += " zeta_d=" + Num(p.design_damping_ratio);
+  if (!p.damping_ratios.empty()) {
+    std::string ratios;
+    for (const double z : p.damping_ratios) ratios += (ratios.empty() ? "" : "+") + Num(z);
+    label += " zeta_d=" + ratios;
+  }
   for (const std::string& key : entry.parameters) label += ParameterText(key, p);
   return label;
 }
@@ -146,6 +151,13 @@ SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Overr
     SensitivityShaper shaper;
     shaper.pattern = ReadPattern(entry, {"label"});
     entry.Read("label", &shaper.label);
+    // A curve has no machine: `machine` is refused; a frequency not given stays 25 Hz.
+    for (const char* key : {"frequency_hz", "frequencies_hz", "design_damping_ratio"}) {
+      const auto value = entry.Child(key);
+      if (value && value->IsScalar() && value->node().Scalar() == "machine") {
+        throw value->Error("a sensitivity curve has no machine to take it from; give a number");
+      }
+    }
     try {
       shaper.pattern.validate();
     } catch (const ValidationError& error) {

@@ -22,6 +22,7 @@
 #include "bench/config/node_reader.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/config/structure_numbers.h"
+#include "controller/shaper_registry.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 
@@ -367,7 +368,9 @@ void CheckGridAgainstBase(const Sweep& sweep, const std::vector<Override>& sets)
     throw;
   }
   try {
-    LoadScenario(sweep.base, point.overrides);
+    LoadOptions options;
+    options.design_modes = sweep.design_modes;
+    LoadScenario(sweep.base, point.overrides, options);
   } catch (const ConfigError& error) {
     const std::string unknown = "unknown key";
     if (IsGridOverrideError(point, error) &&
@@ -376,6 +379,30 @@ void CheckGridAgainstBase(const Sweep& sweep, const std::vector<Override>& sets)
       throw Relocated(sweep, point, error);
     }
   }
+}
+
+// The note of a sweep whose pattern is left to the machine while grid keys change the
+// machine: the points keep the base's design (Sweep::design_modes); empty otherwise.
+std::string MachineDefaultsNote(const Sweep& sweep, const Scenario& base) {
+  const controller::PatternConfig& pattern = base.controller.pattern;
+  std::string keys;
+  bool pattern_swept = false;
+  for (const std::string& key : sweep.Keys()) {
+    if (IsPathPrefix("machine", key)) keys += (keys.empty() ? "" : ", ") + key;
+    pattern_swept = pattern_swept || IsPathPrefix("controller.pattern", key) || IsPathPrefix(key, "controller.pattern");
+  }
+  const bool defaulted = pattern.frequency_from_machine || pattern.frequencies_from_machine || pattern.damping_from_machine;
+  const bool shapes = controller::FindShaper(pattern.method).kind != controller::ShaperKind::kNone;
+  if (keys.empty() || !defaulted || !(shapes || pattern_swept) || !sweep.design_modes ||
+      sweep.design_modes->modes.empty()) {
+    return "";
+  }
+  std::string design;
+  for (const double f : pattern.DesignFrequencies()) design += (design.empty() ? "" : ", ") + ShortestDouble(f);
+  return "note: " + sweep.file + ": the pattern's design is left to the machine; every point takes the "
+         "base scenario's (" + design + " Hz, from its participating modes along " + sweep.design_modes->axes +
+         "), not its own: the swept keys " + keys + " move the plant, not the pattern "
+         "(give controller.pattern.frequency_hz to choose it)";
 }
 
 void CheckSetsAvoidGrid(const Sweep& sweep, const std::vector<Override>& sets) {
@@ -583,7 +610,9 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
   static std::atomic<std::uint64_t> next_id{1};
   sweep.id = next_id++;
   CheckSetsAvoidGrid(sweep, sets);
-  LoadScenario(sweep.base, sets);  // the base itself must be a valid scenario
+  const Scenario base_scenario = LoadScenario(sweep.base, sets);  // the base must be valid
+  sweep.design_modes = FindDesignModes(base_scenario.machine, base_scenario.RunProgram());
+  sweep.note = MachineDefaultsNote(sweep, base_scenario);
   CheckGridAgainstBase(sweep, sets);
   return sweep;
 }
@@ -679,11 +708,13 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
       set = SetStructureNumbers(&scenario, values);
     }
     if (!set) {
+      LoadOptions options;
+      options.design_modes = sweep.design_modes;  // the base's: the pattern stays fixed
       try {
         const ParseCacheScope parse_once;
-        scenario = LoadScenario(sweep.base, point.overrides);
+        scenario = LoadScenario(sweep.base, point.overrides, options);
       } catch (const std::exception&) {
-        scenario = LoadScenario(sweep.base, point.overrides);
+        scenario = LoadScenario(sweep.base, point.overrides, options);
       }
       if (structure_only) loaded = {sweep.id, sets_key, scenario};
     }

@@ -28,10 +28,13 @@
 // scalar text; a mapping or list value in flow style).
 // Each point is the base scenario with the point's values applied as --set overrides
 // (keys inside a machine file referenced by `machine:` included), then the command
-// line's --set options; a --set may not touch a swept key.
+// line's --set options; a --set may not touch a swept key. Pattern values left to the
+// machine (no frequency_hz, `machine`) come from the base scenario's machine, not the
+// point's (Sweep::design_modes).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +42,7 @@
 #include "bench/config/config_error.h"
 #include "bench/sim/metrics.h"
 #include "bench/config/override.h"
+#include "bench/config/pattern_defaults.h"
 #include "bench/sim/scenario.h"
 
 namespace shapebench::bench {
@@ -94,6 +98,14 @@ struct Sweep {
   std::vector<Check> checks;
   std::uint64_t points = 0;
   std::uint64_t id = 0;  // unique to this load of the sweep (RunPoint's shared commands)
+  // The base scenario's participating modes (pattern_defaults.h): every point's pattern
+  // values left to the machine are taken from them, not from the point's own machine, so
+  // a sweep of the plant (the natural-period sweep) keeps the pattern fixed. nullopt (a
+  // Sweep built by hand): each point's own.
+  std::optional<DesignModes> design_modes;
+  // Said once on stderr by the commands that run the sweep: the pattern is left to the
+  // machine while swept keys change the machine (empty when not).
+  std::string note;
 
   // Every swept key in column order (axes in order, a zip group's keys as written).
   std::vector<std::string> Keys() const;
