@@ -72,6 +72,11 @@ void WritePathPlot(const std::string& path_png, const RunResult& result,
 // a point that failed to run.
 void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports);
 
+// `check --json`: {"files": [{file, name, error (null or the run's), results: [{metric,
+// point (a sweep's), value (null: undefined), bound, passed, message, band (a band check:
+// key, from, to, worst_value, worst_at, runs, text)}], point_errors: [{point, message}]}]}.
+nlohmann::ordered_json CheckReportsJson(const std::vector<ScenarioCheckReport>& reports);
+
 // Escapes text for XML attributes and content; drops what XML 1.0 cannot hold.
 std::string XmlEscape(const std::string& text);
 
