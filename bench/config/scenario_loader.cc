@@ -146,16 +146,21 @@ model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
 }
 
 // The node at a dotted key path of `root`, or an undefined node when absent.
+// Handles alias the tree: reset() moves one, operator= would overwrite the data.
 YAML::Node NodeAtPath(const YAML::Node& root, const std::vector<PathElement>& path) {
-  YAML::Node node = root;
+  YAML::Node node;
+  node.reset(root);
   for (const PathElement& step : path) {
+    const YAML::Node& parent = node;
+    YAML::Node child;
     if (step.index) {
-      if (!node.IsSequence() || *step.index >= node.size()) return YAML::Node(YAML::NodeType::Undefined);
-      node = node[*step.index];
+      if (!parent.IsSequence() || *step.index >= parent.size()) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[static_cast<int>(*step.index)]);
     } else {
-      if (!node.IsMap() || !HasKey(node, step.key)) return YAML::Node(YAML::NodeType::Undefined);
-      node = node[step.key];
+      if (!parent.IsMap() || !HasKey(parent, step.key)) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[step.key]);
     }
+    node.reset(child);
   }
   return node;
 }

@@ -21,7 +21,7 @@ struct CheckResult {
   std::string point;    // a sweep's point, "key=value, ..."; empty for a scenario
   // A band check (Check::band): `value` is the worst over the band, found at
   // band_key = worst_at (NaN when no point ran), after `band_runs` runs.
-  std::string band_key;
+  std::string band_key = {};  // (initialised: the brace-initialised results of tests stay warning-free)
   double band_from = NAN;
   double band_to = NAN;
   double worst_at = NAN;

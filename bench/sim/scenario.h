@@ -14,7 +14,7 @@
 namespace shapebench::bench {
 
 // A band check's range: the metric's worst value over `key` in [from, to]
-// (bench/sweep/band_check.h), e.g. band: {key: machine.modes[0].frequency_hz, from: 24, to: 26}.
+// (bench/sweep/band_check.h), e.g. band: {key: "machine.modes[0].frequency_hz", from: 24, to: 26}.
 struct CheckBand {
   std::string key;  // a dotted key path of a number, as in --set
   double from = 0.0;
@@ -33,7 +33,7 @@ struct Check {
   std::string metric;
   std::optional<double> min;
   std::optional<double> max;
-  std::optional<CheckBand> band;
+  std::optional<CheckBand> band = std::nullopt;
 };
 
 // Which scalar the deflection metrics (peak, residual, ...) and the plot use:

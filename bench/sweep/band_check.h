@@ -1,7 +1,7 @@
 // Band checks: a check with `band: {key: KEY, from: A, to: B}` bounds the worst value of
 // its metric while KEY spans [A, B] (docs/scenario-reference.md, checks), e.g.
 //   checks:
-//     residual_ratio: {max: 0.05, band: {key: machine.modes[0].frequency_hz, from: 24, to: 26}}
+//     residual_ratio: {max: 0.05, band: {key: "machine.modes[0].frequency_hz", from: 24, to: 26}}
 // The worst is the maximum for a max bound, the minimum for a min bound; with both, each
 // is searched and the one further on the wrong side of its bound (Violation) is reported.
 // The search (common/interval_search.h): 64 evenly spaced points, then golden-section on

@@ -86,9 +86,10 @@ double WalkToEdge(const std::function<double(double)>& residual, double level, d
       const double behind = std::max(0.5 * std::min(r, next), r - direction * step);
       const IntervalPoint hump = GoldenSection(residual, std::min(behind, next),
                                                std::max(behind, next), Extreme::kMaximum, 1e-9);
-      // Only a hump at or ahead of r is this walk's (one behind is the other walk's).
-      if (!Inside(hump.value, level) && direction * (hump.x - r) >= 0.0) {
-        return Edge(residual, level, r, hump.x);
+      // A hump behind the start is the other walk's.
+      if (!Inside(hump.value, level) && direction * (hump.x - start) >= 0.0) {
+        // From the last sample before the hump (inside: the walk passed it).
+        return Edge(residual, level, direction * (hump.x - r) >= 0.0 ? r : behind, hump.x);
       }
     }
     v_behind = v;

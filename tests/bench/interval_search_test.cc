@@ -44,7 +44,7 @@ TEST(IntervalSearch, NearTieAndEndMaximum) {
   };
   const ExtremumResult result = FindExtremum(f, 0.0, 3.0, Extreme::kMaximum);
   EXPECT_NEAR(result.worst.x, 2.5, 1e-3);
-  EXPECT_GT(result.worst.value, 1.0 - 1e-6);
+  EXPECT_GT(result.worst.value, 1.0 - 1e-4);  // within 1.5e-4 of the peak's x
   const ExtremumResult end = FindExtremum([](double x) { return x * x; }, -1.0, 2.0, Extreme::kMaximum);
   EXPECT_DOUBLE_EQ(end.worst.x, 2.0);
   EXPECT_DOUBLE_EQ(end.worst.value, 4.0);
