@@ -65,8 +65,8 @@ double Edge(const std::function<double(double)>& residual, double level, double 
 // Walks from `start` (inside) in `direction` (+1, -1) in steps of `step` until the residual
 // leaves the level or `limit` is reached. A local maximum of the samples is refined by
 // golden-section (to 1e-9 in r) over the two steps around it: a hump that rises above the
-// level between two samples ends the band there, one that only touches it from below (EI
-// at its design point) does not. Returns the edge; *open when `limit` was reached inside.
+// level between two samples ends the band there, one that only touches it (EI at its
+// design point; within 1e-6 relative) does not. Returns the edge; *open when `limit` was reached inside.
 double WalkToEdge(const std::function<double(double)>& residual, double level, double start,
                   double direction, double step, double limit, bool* open) {
   double r = start;
@@ -87,7 +87,9 @@ double WalkToEdge(const std::function<double(double)>& residual, double level, d
       const IntervalPoint hump = GoldenSection(residual, std::min(behind, next),
                                                std::max(behind, next), Extreme::kMaximum, 1e-9);
       // A hump behind the start is the other walk's.
-      if (!Inside(hump.value, level) && direction * (hump.x - start) >= 0.0) {
+      // A peak within 1e-6 relative of the level touches it: EI realized on a grid
+      // (period_s) overshoots its tolerance by ~1e-8 relative at its design hump.
+      if (hump.value > level * (1.0 + 1e-6) && direction * (hump.x - start) >= 0.0) {
         // From the last sample before the hump (inside: the walk passed it).
         return Edge(residual, level, direction * (hump.x - r) >= 0.0 ? r : behind, hump.x);
       }

@@ -25,8 +25,9 @@
 // high - low. Values within 1e-9 relative of the level count as inside (EI touches its
 // tolerance at r = 1 by design). A local maximum of the steps' samples is refined by
 // golden-section (common/interval_search.h, the search band checks use): a hump that
-// touches the level from below stays inside, one that rises above it between two samples
-// ends the band at its rising crossing.
+// touches the level (its peak within 1e-6 relative of it: EI's design hump, also when
+// realized on a grid) stays inside, one that rises above it between two samples ends the
+// band at its rising crossing.
 #pragma once
 
 #include <functional>

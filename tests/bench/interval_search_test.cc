@@ -78,5 +78,26 @@ TEST(IntervalSearch, SensitivityBandHumps) {
   EXPECT_TRUE(touching.open_low);
 }
 
+// Tests that EI realized on a 1 ms grid, whose design hump overshoots its tolerance by
+// about 1e-8 relative, keeps its band through the hump (the hump touches the level).
+TEST(IntervalSearch, RealizedEiHumpTouchesTheLevel) {
+  bench::SensitivitySpec spec;
+  bench::SensitivityShaper shaper;
+  shaper.pattern.method = "ei";
+  shaper.pattern.frequency_hz = 33.0;
+  shaper.pattern.vibration_tolerance = 0.1;
+  shaper.label = "ei";
+  spec.shapers = {shaper};
+  spec.level = 0.1;
+  spec.period_s = 0.001;
+  const bench::SensitivityResult result = bench::ComputeSensitivity(spec);
+  ASSERT_EQ(result.curves.size(), 2u);
+  const bench::SensitivityCurve& exact = result.curves[0];
+  const bench::SensitivityCurve& realized = result.curves[1];
+  ASSERT_TRUE(realized.realized);
+  EXPECT_GT(realized.band_level.high, 1.25);
+  EXPECT_NEAR(realized.band_level.width(), exact.band_level.width(), 0.02);
+}
+
 }  // namespace
 }  // namespace shapebench
