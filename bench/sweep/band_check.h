@@ -28,7 +28,7 @@ namespace shapebench::bench {
 // The metric of `scenario` (loaded from scenario.source_file with `overrides`) with the
 // band's key set to x: what the band search evaluates. An error caused by the band's value
 // (a key the scenario does not have, a value it refuses) is a ConfigError located at the
-// band's key; other errors (SolverError) pass through.
+// band's key; other errors (SolverError) pass through. `scenario` must outlive it.
 class BandPointRunner {
  public:
   BandPointRunner(const Scenario& scenario, const std::vector<Override>& overrides,

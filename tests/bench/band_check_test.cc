@@ -12,6 +12,7 @@
 
 #include "bench/config/scenario_loader.h"
 #include "bench/sim/metrics.h"
+#include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {
@@ -184,6 +185,21 @@ TEST(BandCheck, ConfigErrorsAreLocated) {
   const testing::CliResult cli = testing::RunCli({"check", unknown}, kSourceDir);
   EXPECT_EQ(cli.exit_code, 2);
   EXPECT_NE(cli.err.find(unknown + ":11:12: " + key_path), std::string::npos) << cli.err;
+}
+
+// Tests that a sweep's check refuses a band, located at its `band` key (its grid spans keys).
+TEST(BandCheck, SweepChecksTakeNoBand) {
+  testing::ScratchDir dir;
+  dir.Write("s.yaml", BandScenario(kKey, "22", "28"));
+  const std::string sweep = dir.Write(
+      "sweep.yaml",
+      "base: s.yaml\n"
+      "grid:\n"
+      "  controller.feed_mm_min: [20000, 30000]\n"
+      "checks:\n"
+      "  residual_ratio: {max: 0.05, band: {key: \"" + kKey + "\", from: 22, to: 28}}\n");
+  testing::ExpectError(testing::ErrorOf([&] { LoadSweep(sweep, {}); }), sweep, 5, 31,
+                       "checks.residual_ratio.band", "unknown key 'band'; allowed: min, max");
 }
 
 }  // namespace
