@@ -10,6 +10,7 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <typeinfo>
@@ -26,6 +27,7 @@
 #include "bench/compare/compare_runs.h"
 #include "bench/compare/compare_sweep.h"
 #include "bench/sim/checks.h"
+#include "bench/sweep/band_check.h"
 #include "bench/sim/cosim.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
@@ -196,6 +198,7 @@ struct CheckArgs {
   std::vector<std::string> files;
   std::vector<std::string> sets;
   std::string junit;
+  bool json = false;  // the results as one JSON object instead of the lines
   int jobs = 0;  // sweep files: worker threads (0: every hardware thread)
   bool force = false;  // sweep files: load a grid above SweepLoadOptions::max_points
 };
@@ -224,6 +227,7 @@ int CheckCommand(const CheckArgs& args) {
       throw ConfigError(file, 0, 0, "checks",
                         "no checks to evaluate; add e.g. checks: {peak_ratio: {max: 1.01}}");
     }
+    if (!sweep) ValidateBandChecks(scenarios.back(), overrides);
   }
   int exit_code = kExitOk;
   auto raise = [&](int code) {
@@ -238,7 +242,9 @@ int CheckCommand(const CheckArgs& args) {
     if (sweeps[i]) {
       Doing("checking sweep '" + sweeps[i]->name + "' (" + sweeps[i]->file + ")",
             SweepMemory(JobsOrDefault(args.jobs)));
-      raise(CheckSweep(*sweeps[i], overrides, JobsOrDefault(args.jobs), std::cout, std::cerr,
+      std::ostringstream not_shown;  // --json: the JSON replaces the lines
+      raise(CheckSweep(*sweeps[i], overrides, JobsOrDefault(args.jobs),
+                       args.json ? static_cast<std::ostream&>(not_shown) : std::cout, std::cerr,
                        &report));
       reports.push_back(report);
       continue;
@@ -249,7 +255,7 @@ int CheckCommand(const CheckArgs& args) {
     Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
     try {
       const RunResult result = RunLocated(scenario, overrides);
-      report.results = EvaluateChecks(scenario.checks, result.metrics);
+      report.results = EvaluateScenarioChecks(scenario, overrides, result.metrics);
     } catch (const ConfigError& error) {
       report.error = error.what();
       std::cerr << "error: " << Safe(error.what()) << "\n";
@@ -262,12 +268,13 @@ int CheckCommand(const CheckArgs& args) {
     report.run_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (const CheckResult& result : report.results) {
-      std::cout << Safe(FormatCheckLine(report.file, result)) << "\n";
+      if (!args.json) std::cout << Safe(FormatCheckLine(report.file, result)) << "\n";
       if (!result.passed) raise(kExitCheckFailed);
     }
     std::cout.flush();
     reports.push_back(report);
   }
+  if (args.json) std::cout << CheckReportsJson(reports).dump(2) << std::endl;
   if (!args.junit.empty()) {
     Doing("writing " + args.junit);
     const DeferInterrupts defer;
@@ -581,6 +588,8 @@ int main(int argc, char** argv) {
       ->type_name("FILE.yaml");
   AddSetOption(check, &check_args.sets);
   check->add_option("--junit", check_args.junit, "write JUnit XML")->type_name("REPORT.xml");
+  check->add_flag("--json", check_args.json,
+                  "print the results as one JSON object (band checks: worst value and where)");
   check->add_option("--jobs", check_args.jobs, "sweep files: worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096))
       ->type_name("N");

@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 
+#include "common/format.h"
 #include "common/shown_text.h"
 #include "bench/config/config_document.h"
 #include "bench/config/controller_reader.h"
@@ -145,15 +146,74 @@ model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
   return config;
 }
 
-std::vector<Check> ReadChecksEntry(const NodeReader& checks) {
+// The node at a dotted key path of `root`, or an undefined node when absent.
+// Handles alias the tree: reset() moves one, operator= would overwrite the data.
+YAML::Node NodeAtPath(const YAML::Node& root, const std::vector<PathElement>& path) {
+  YAML::Node node;
+  node.reset(root);
+  for (const PathElement& step : path) {
+    const YAML::Node& parent = node;
+    YAML::Node child;
+    if (step.index) {
+      if (!parent.IsSequence() || *step.index >= parent.size()) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[static_cast<int>(*step.index)]);
+    } else {
+      if (!parent.IsMap() || !HasKey(parent, step.key)) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[step.key]);
+    }
+    node.reset(child);
+  }
+  return node;
+}
+
+// band: {key, from, to} of a check. The key must be a key path whose value, where the
+// scenario writes one, is a plain number; whether the scenario takes the band's values
+// is tried when `check` loads it (bench/sweep/band_check.h).
+CheckBand ReadCheckBand(const NodeReader& band, const YAML::Node& root) {
+  band.ExpectMap({"key", "from", "to"});
+  CheckBand result;
+  const auto key = band.Child("key");
+  if (!key) throw band.Error("missing 'key': the dotted key path of a number, e.g. machine.modes[0].frequency_hz");
+  result.key = key->AsString();
+  const ConfigError where = key->Error("");
+  result.file = where.file();
+  result.line = where.line();
+  result.column = where.column();
+  result.path = key->path();
+  const auto path = ParseKeyPath(result.key);
+  if (!path || path->empty()) throw key->Error("not a key path like machine.modes[0].frequency_hz");
+  const YAML::Node value = NodeAtPath(root, *path);
+  if (value.IsDefined() && !(value.IsScalar() && IsNumberText(value.Scalar()))) {
+    throw key->Error(result.key + " is not a number in this scenario, so it cannot span a band");
+  }
+  for (const char* end : {"from", "to"}) {
+    const auto node = band.Child(end);
+    if (!node) throw band.Error(std::string("missing '") + end + "'");
+    (std::string(end) == "from" ? result.from : result.to) = node->AsNumber();
+  }
+  if (!(result.from < result.to)) {
+    throw band.Child("to")->Error("must be above from (" + FormatNumber(result.from) + "; got " +
+                                  FormatNumber(result.to) + ")");
+  }
+  return result;
+}
+
+// `root` is the scenario's whole tree (a band's key is looked up there); null for a
+// sweep's checks, which take no band.
+std::vector<Check> ReadChecksEntry(const NodeReader& checks, const YAML::Node* root) {
   checks.ExpectMap(MetricNames());
   std::vector<Check> result;
   for (const auto& [metric, bounds] : checks.Entries()) {
-    bounds.ExpectMap({"min", "max"});
+    if (root == nullptr) {
+      bounds.ExpectMap({"min", "max"});
+    } else {
+      bounds.ExpectMap({"min", "max", "band"});
+    }
     Check check;
     check.metric = metric;
     if (auto min = bounds.Child("min")) check.min = min->AsNumber();
     if (auto max = bounds.Child("max")) check.max = max->AsNumber();
+    if (auto band = bounds.Child("band")) check.band = ReadCheckBand(*band, *root);
     if (!check.min && !check.max) throw bounds.Error("expected min and/or max");
     if (check.min && check.max && *check.min > *check.max) {
       throw bounds.Error("min " + std::to_string(*check.min) + " is above max " +
@@ -357,7 +417,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                                   &scenario.output.direction);
   }
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
-  if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks);
+  if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks, &document.root());
 
   Validated(document, "machine", [&] { scenario.machine.validate(); });
   ResolveDesignDefaults(document, options, &scenario);
@@ -436,7 +496,7 @@ double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
   return motion_s + tail_s;
 }
 
-std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks); }
+std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks, nullptr); }
 
 YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides) {
   return BuildScenarioDocument(path, overrides).root();

@@ -42,7 +42,8 @@ Scenario LoadScenario(const std::string& path, const std::vector<Override>& over
 // through a scalar); the keys and values themselves are not validated.
 YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides);
 
-// `checks: {METRIC: {min: .., max: ..}, ...}` (MetricTable() names), in order.
+// `checks: {METRIC: {min: .., max: ..}, ...}` (MetricTable() names), in order: a sweep's,
+// which take no `band:` (a scenario's may; its grid is the sweep's way to span a key).
 std::vector<Check> ReadChecks(const NodeReader& checks);
 
 // The `machine:` entry of a scenario (a mapping; a machine file has been spliced in

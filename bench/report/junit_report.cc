@@ -1,5 +1,6 @@
 // WriteJUnit and XmlEscape (bench/report/report.h): the JUnit XML that CI systems read.
 #include <cstdio>
+#include <ostream>
 #include <string>
 
 #include "common/atomic_file.h"
@@ -38,6 +39,32 @@ std::string Seconds(double seconds) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3f", seconds);
   return text;
+}
+
+// A stable name (CI tracks a testcase by it): "METRIC @ POINT"; a band check
+// "METRIC over KEY in [FROM, TO]", its worst value and place in the message and properties.
+std::string TestcaseName(const CheckResult& result) {
+  if (result.banded()) {
+    return result.metric + " over " + result.band_key + " in [" + FormatValue(result.band_from, 15) +
+           ", " + FormatValue(result.band_to, 15) + "]";
+  }
+  return result.point.empty() ? result.metric : result.metric + " @ " + result.point;
+}
+
+}  // namespace
+
+namespace {
+
+// A band check's worst value and where, as properties (for tools) and the sentence (for
+// people): "worst residual_ratio 0.061 at machine.modes[0].frequency_hz = 24.37 in [24, 26]".
+void WriteBandDetails(std::ostream& out, const CheckResult& result) {
+  out << "      <properties>\n"
+      << "        <property name=\"band_key\" value=\"" << XmlEscape(result.band_key) << "\"/>\n"
+      << "        <property name=\"worst_value\" value=\"" << FormatValue(result.value, 17) << "\"/>\n"
+      << "        <property name=\"worst_at\" value=\"" << FormatValue(result.worst_at, 17) << "\"/>\n"
+      << "        <property name=\"runs\" value=\"" << result.band_runs << "\"/>\n"
+      << "      </properties>\n"
+      << "      <system-out>" << XmlEscape(BandText(result)) << "</system-out>\n";
 }
 
 }  // namespace
@@ -116,17 +143,21 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
             << "    </testcase>\n";
       }
       for (const auto& result : report.results) {
-        const std::string name =
-            result.point.empty() ? result.metric : result.metric + " @ " + result.point;
         out << "    <testcase classname=\"" << classname << "\" name=\""
-            << XmlEscape(name) << "\" time=\"0.000\"";
-        if (result.passed) {
+            << XmlEscape(TestcaseName(result)) << "\" time=\"0.000\"";
+        if (result.passed && !result.banded()) {
           out << "/>\n";
           continue;
         }
-        out << ">\n      <failure type=\"CheckFailed\" message=\"" << XmlEscape(result.message)
-            << "\">" << XmlEscape(FormatCheckLine(report.file, result)) << "</failure>\n"
-            << "    </testcase>\n";
+        out << ">\n";
+        if (result.banded()) WriteBandDetails(out, result);
+        if (!result.passed) {
+          const std::string message =
+              result.banded() ? BandText(result) + ": " + result.message : result.message;
+          out << "      <failure type=\"CheckFailed\" message=\"" << XmlEscape(message) << "\">"
+              << XmlEscape(FormatCheckLine(report.file, result)) << "</failure>\n";
+        }
+        out << "    </testcase>\n";
       }
       out << "  </testsuite>\n";
     }

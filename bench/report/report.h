@@ -69,8 +69,15 @@ void WritePathPlot(const std::string& path_png, const RunResult& result,
 // JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
 // is one <testcase name="run"> with an <error>. A sweep: one <testcase> per point and
 // check, named "METRIC @ KEY=VALUE, ...", and "run @ KEY=VALUE, ..." with an <error> for
-// a point that failed to run.
+// a point that failed to run. A band check: "METRIC over KEY in [FROM, TO]", with
+// band_key, worst_value, worst_at and runs properties and BandText() as its system-out (and
+// its failure's message).
 void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>& reports);
+
+// `check --json`: {"files": [{file, name, error (null or the run's), results: [{metric,
+// point (a sweep's), value (null: undefined), bound, passed, message, band (a band check:
+// key, from, to, worst_value, worst_at, runs, text)}], point_errors: [{point, message}]}]}.
+nlohmann::ordered_json CheckReportsJson(const std::vector<ScenarioCheckReport>& reports);
 
 // Escapes text for XML attributes and content; drops what XML 1.0 cannot hold.
 std::string XmlEscape(const std::string& text);

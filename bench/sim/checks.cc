@@ -1,7 +1,9 @@
 #include "bench/sim/checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 namespace shapebench::bench {
@@ -13,42 +15,76 @@ std::string FormatValue(double value, int digits) {
   return text;
 }
 
+double Violation(const Check& check, double value) {
+  if (std::isnan(value)) return std::numeric_limits<double>::infinity();
+  double violation = -std::numeric_limits<double>::infinity();
+  if (check.max) violation = std::max(violation, value - *check.max);
+  if (check.min) violation = std::max(violation, *check.min - value);
+  return violation;
+}
+
+CheckResult EvaluateCheck(const Check& check, double value, double worst_at, int band_runs) {
+  CheckResult result;
+  result.metric = check.metric;
+  result.value = value;
+  if (check.band) {
+    result.band_key = check.band->key;
+    result.band_from = check.band->from;
+    result.band_to = check.band->to;
+    result.worst_at = worst_at;
+    result.band_runs = band_runs;
+  }
+  if (check.min) result.bound = "min " + FormatValue(*check.min);
+  if (check.max) result.bound += (result.bound.empty() ? "" : ", ") + ("max " + FormatValue(*check.max));
+
+  result.value_text = FormatValue(result.value);
+  std::optional<double> violated;
+  if (std::isnan(result.value)) {
+    result.message = check.band && !std::isnan(worst_at)
+                         ? "metric not defined at " + check.band->key + " = " + FormatValue(worst_at, 7)
+                         : "metric not defined for this run";
+  } else if (check.min && result.value < *check.min) {
+    result.message = "below min " + FormatValue(*check.min);
+    violated = check.min;
+  } else if (check.max && result.value > *check.max) {
+    result.message = "above max " + FormatValue(*check.max);
+    violated = check.max;
+  } else {
+    result.passed = true;
+  }
+  // 1.01000004 must not print as "1.01 (max 1.01)" next to FAIL.
+  if (violated && result.value_text == FormatValue(*violated)) {
+    result.value_text = FormatValue(result.value, 17);
+  }
+  return result;
+}
+
 std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks,
                                         const Metrics& metrics) {
   std::vector<CheckResult> results;
   for (const Check& check : checks) {
-    CheckResult result;
-    result.metric = check.metric;
-    if (const MetricInfo* info = FindMetric(check.metric)) result.value = metrics.*info->field;
-    if (check.min) result.bound = "min " + FormatValue(*check.min);
-    if (check.max) result.bound += (result.bound.empty() ? "" : ", ") + ("max " + FormatValue(*check.max));
-
-    result.value_text = FormatValue(result.value);
-    std::optional<double> violated;
-    if (std::isnan(result.value)) {
-      result.message = "metric not defined for this run";
-    } else if (check.min && result.value < *check.min) {
-      result.message = "below min " + FormatValue(*check.min);
-      violated = check.min;
-    } else if (check.max && result.value > *check.max) {
-      result.message = "above max " + FormatValue(*check.max);
-      violated = check.max;
-    } else {
-      result.passed = true;
-    }
-    // 1.01000004 must not print as "1.01 (max 1.01)" next to FAIL.
-    if (violated && result.value_text == FormatValue(*violated)) {
-      result.value_text = FormatValue(result.value, 17);
-    }
-    results.push_back(result);
+    double value = NAN;
+    if (const MetricInfo* info = FindMetric(check.metric)) value = metrics.*info->field;
+    results.push_back(EvaluateCheck(check, value));
   }
   return results;
 }
 
+std::string BandText(const CheckResult& result) {
+  if (!result.banded()) return "";
+  // The location to 7 significant digits: finer than the search's 1e-4 of the band.
+  return "worst " + result.metric + " " + result.value_text + " at " + result.band_key + " = " +
+         FormatValue(result.worst_at, 7) + " in [" + FormatValue(result.band_from, 15) + ", " +
+         FormatValue(result.band_to, 15) + "]";
+}
+
 std::string FormatCheckLine(const std::string& file, const CheckResult& result) {
-  std::string line = std::string(result.passed ? "PASS " : "FAIL ") + file + " " + result.metric +
-                     (result.point.empty() ? "" : " @ " + result.point) + " = " +
-                     result.value_text + " (" + result.bound + ")";
+  std::string line =
+      std::string(result.passed ? "PASS " : "FAIL ") + file + " " +
+      (result.banded() ? BandText(result)
+                       : result.metric + (result.point.empty() ? "" : " @ " + result.point) +
+                             " = " + result.value_text) +
+      " (" + result.bound + ")";
   if (!result.passed) line += ": " + result.message;
   return line;
 }

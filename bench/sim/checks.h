@@ -1,6 +1,7 @@
 // Scenario::checks evaluated against a run's Metrics (the `check` command, JUnit).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,10 +19,33 @@ struct CheckResult {
   bool passed = false;
   std::string message;  // why it failed; empty when passed
   std::string point;    // a sweep's point, "key=value, ..."; empty for a scenario
+  // A band check (Check::band): `value` is the worst over the band, found at
+  // band_key = worst_at (NaN when no point ran), after `band_runs` runs.
+  std::string band_key = {};  // (initialised: the brace-initialised results of tests stay warning-free)
+  double band_from = NAN;
+  double band_to = NAN;
+  double worst_at = NAN;
+  int band_runs = 0;
+  bool banded() const { return !band_key.empty(); }
 };
 
+// The check's result for `value`, the metric's value (a band check's worst): bound,
+// pass/fail and message. A band check's result carries the band and `worst_at`.
+CheckResult EvaluateCheck(const Check& check, double value, double worst_at = NAN,
+                          int band_runs = 0);
+
+// How far a value is on the wrong side of the check's bounds (negative: inside; +inf for
+// NaN): what makes one value worse than another.
+double Violation(const Check& check, double value);
+
+// "worst residual_ratio 0.061 at machine.modes[0].frequency_hz = 24.37 in [24, 26]"
+// for a band check's result; "" for another.
+std::string BandText(const CheckResult& result);
+
 // One result per check, in the scenario's order. A NaN value fails with
-// "metric not defined for this run"; bounds are inclusive.
+// "metric not defined for this run"; bounds are inclusive. A band check is evaluated on
+// `metrics` too (its nominal point): EvaluateBandCheck (bench/sweep/band_check.h) gives
+// its worst over the band.
 std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks, const Metrics& metrics);
 
 // Everything `check` learnt about one scenario file, for the console and JUnit.
@@ -36,7 +60,8 @@ struct ScenarioCheckReport {
 };
 
 // "PASS scenarios/fig2.yaml peak_ratio = 1.9998 (max 2.01)"; a failure adds ": message";
-// a sweep's point follows the metric: "FAIL sweep.yaml residual_ratio @ key=21.5 = ...".
+// a sweep's point follows the metric: "FAIL sweep.yaml residual_ratio @ key=21.5 = ...";
+// a band check: "PASS f.yaml worst residual_ratio 0.041 at KEY = 24.37 in [24, 26] (max 0.05)".
 std::string FormatCheckLine(const std::string& file, const CheckResult& result);
 
 // Human formatting of a metric value or bound: `digits` significant digits, "n/a" for NaN.

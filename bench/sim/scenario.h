@@ -13,11 +13,27 @@
 
 namespace shapebench::bench {
 
-// A bound on one metric (MetricTable() names), e.g. peak_ratio: {max: 1.01}.
+// A band check's range: the metric's worst value over `key` in [from, to]
+// (bench/sweep/band_check.h), e.g. band: {key: "machine.modes[0].frequency_hz", from: 24, to: 26}.
+struct CheckBand {
+  std::string key;  // a dotted key path of a number, as in --set
+  double from = 0.0;
+  double to = 0.0;
+  // Where `key` is written: an error of the band's points (a key the scenario does not
+  // have, a value it refuses) is located there.
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string path;  // "checks.residual_ratio.band.key"
+};
+
+// A bound on one metric (MetricTable() names), e.g. peak_ratio: {max: 1.01}; with a band,
+// on its worst value over the band.
 struct Check {
   std::string metric;
   std::optional<double> min;
   std::optional<double> max;
+  std::optional<CheckBand> band = std::nullopt;
 };
 
 // Which scalar the deflection metrics (peak, residual, ...) and the plot use:

@@ -12,6 +12,7 @@
 #include "bench/report/gnuplot.h"
 #include "bench/config/node_reader.h"
 #include "common/format.h"
+#include "common/interval_search.h"
 #include "common/validation_error.h"
 #include "controller/profile_table.h"
 #include "controller/shaper_registry.h"
@@ -60,14 +61,48 @@ std::string Sanitized(const std::string& text) {
   return out;
 }
 
-// Bisects [inside_r, outside_r] for the band's edge.
+// The band's edge between `inside_r` and `outside_r`, bisected to 1e-12.
 double Edge(const std::function<double(double)>& residual, double level, double inside_r,
             double outside_r) {
-  for (int i = 0; i < 200 && std::abs(outside_r - inside_r) > 1e-12; ++i) {
-    const double mid = 0.5 * (inside_r + outside_r);
-    (Inside(residual(mid), level) ? inside_r : outside_r) = mid;
+  return BisectEdge([&](double r) { return Inside(residual(r), level); }, inside_r, outside_r, 1e-12);
+}
+
+// Walks from `start` (inside) in `direction` (+1, -1) in steps of `step` until the residual
+// leaves the level or `limit` is reached. A local maximum of the samples is refined by
+// golden-section (to 1e-9 in r) over the two steps around it: a hump that rises above the
+// level between two samples ends the band there, one that only touches it (EI at its
+// design point; within 1e-6 relative) does not. Returns the edge; *open when `limit` was reached inside.
+double WalkToEdge(const std::function<double(double)>& residual, double level, double start,
+                  double direction, double step, double limit, bool* open) {
+  double r = start;
+  double v = residual(r);
+  // Ratios stay positive (the behind sample of a walk starting near 0 is the start).
+  const double first_behind = r - direction * step;
+  double v_behind = first_behind > 0.0 ? residual(first_behind) : v;
+  for (;;) {
+    const double next = direction > 0 ? std::min(limit, r + step) : std::max(limit, r - step);
+    if (next == r) {
+      *open = true;
+      return r;
+    }
+    const double v_next = residual(next);
+    if (!Inside(v_next, level)) return Edge(residual, level, r, next);
+    if (v >= v_behind && v >= v_next) {
+      const double behind = std::max(0.5 * std::min(r, next), r - direction * step);
+      const IntervalPoint hump = GoldenSection(residual, std::min(behind, next),
+                                               std::max(behind, next), Extreme::kMaximum, 1e-9);
+      // A hump behind the start is the other walk's.
+      // A peak within 1e-6 relative of the level touches it: EI realized on a grid
+      // (period_s) overshoots its tolerance by ~1e-8 relative at its design hump.
+      if (hump.value > level * (1.0 + 1e-6) && direction * (hump.x - start) >= 0.0) {
+        // From the last sample before the hump (inside: the walk passed it).
+        return Edge(residual, level, direction * (hump.x - r) >= 0.0 ? r : behind, hump.x);
+      }
+    }
+    v_behind = v;
+    v = v_next;
+    r = next;
   }
-  return 0.5 * (inside_r + outside_r);
 }
 
 }  // namespace
@@ -98,37 +133,9 @@ Band BandAroundDesign(const std::function<double(double)>& residual, double leve
     start = best;
   }
   band.found = true;
-  // Downward to r -> 0.
-  double r = start;
-  for (;;) {
-    const double next = std::max(kLowest, r - kStep);
-    if (next == r) {
-      band.open_low = true;
-      band.low = r;
-      break;
-    }
-    if (!Inside(residual(next), level)) {
-      band.low = Edge(residual, level, r, next);
-      break;
-    }
-    r = next;
-  }
-  // Upward to 10 x max(1, to).
-  const double highest = 10.0 * std::max(1.0, to);
-  r = start;
-  for (;;) {
-    const double next = std::min(highest, r + kStep);
-    if (next == r) {
-      band.open_high = true;
-      band.high = r;
-      break;
-    }
-    if (!Inside(residual(next), level)) {
-      band.high = Edge(residual, level, r, next);
-      break;
-    }
-    r = next;
-  }
+  // Downward to r -> 0, upward to 10 x max(1, to).
+  band.low = WalkToEdge(residual, level, start, -1.0, kStep, kLowest, &band.open_low);
+  band.high = WalkToEdge(residual, level, start, +1.0, kStep, 10.0 * std::max(1.0, to), &band.open_high);
   return band;
 }
 

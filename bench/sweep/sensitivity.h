@@ -23,7 +23,11 @@
 // extends outward in steps of at most 1e-3 in r (beyond the plotted range if need be,
 // from r -> 0 up to 10 x max(1, to)), and each edge is bisected to 1e-12; its width is
 // high - low. Values within 1e-9 relative of the level count as inside (EI touches its
-// tolerance at r = 1 by design).
+// tolerance at r = 1 by design). A local maximum of the steps' samples is refined by
+// golden-section (common/interval_search.h, the search band checks use): a hump that
+// touches the level (its peak within 1e-6 relative of it: EI's design hump, also when
+// realized on a grid) stays inside, one that rises above it between two samples ends the
+// band at its rising crossing.
 #pragma once
 
 #include <functional>

@@ -16,15 +16,6 @@ constexpr int kExitCheckFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
-// How far a value is on the wrong side of its bounds (negative: inside).
-double Violation(const Check& check, double value) {
-  if (std::isnan(value)) return std::numeric_limits<double>::infinity();
-  double violation = -std::numeric_limits<double>::infinity();
-  if (check.max) violation = std::max(violation, value - *check.max);
-  if (check.min) violation = std::max(violation, *check.min - value);
-  return violation;
-}
-
 struct CheckTally {
   std::uint64_t passed = 0;
   std::uint64_t failed = 0;
