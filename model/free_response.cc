@@ -31,7 +31,7 @@ std::vector<FreePole> GroupPoles(const Eigen::VectorXcd& lambda) {
       FreePole pole;
       const double magnitude = std::abs(l);
       pole.frequency_hz = magnitude / kTwoPi;
-      pole.damping_ratio = magnitude > 0.0 ? -l.real() / magnitude : 0.0;
+      pole.damping_ratio = magnitude > 0.0 ? (0.0 - l.real()) / magnitude : 0.0;  // never -0
       pole.oscillatory = oscillatory;
       poles.push_back(pole);
       found = poles.end() - 1;

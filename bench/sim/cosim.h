@@ -43,9 +43,9 @@ struct RunResult {
   controller::MultiAxisCommand command;
   Trace trace;
   Metrics metrics;
-  // Per pole of the plant (ascending frequency): the free vibration at motion end in the
-  // output view, amplitude in m; they sum to metrics.residual_amplitude_m. Empty for a
-  // machine without states.
+  // Per pole of the plant the output view sees (ascending frequency): the free vibration at
+  // motion end in the view, amplitude in m; they sum to metrics.residual_amplitude_m. Empty
+  // for a machine without states.
   std::vector<model::PoleAmplitude> residual_modes;
   model::IntegratorStats stats;
   int substeps = 0;

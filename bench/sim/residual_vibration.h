@@ -21,8 +21,10 @@ class ResidualVibration {
   // `plant`: the machine plant (MachinePlant::plant, states > 0), outputs in its row layout.
   ResidualVibration(const model::LinearPlant& plant, const OutputView& view);
 
-  // Per pole of the plant, ascending frequency: the amplitude (m) in the view of the free
-  // vibration from state x about the equilibrium under drive velocity v (per axis, m/s).
+  // Per pole of the plant the view can see (ascending frequency; a pole of another axis,
+  // whose modes never reach the view's rows, is left out): the amplitude (m) in the view of
+  // the free vibration from state x about the equilibrium under drive velocity v (per
+  // axis, m/s).
   std::vector<model::PoleAmplitude> Amplitudes(const Eigen::VectorXd& x, const Eigen::Vector3d& v) const;
 
   // Their sum: a bound of the view's free vibration for all later t (the amplitude the
@@ -34,6 +36,7 @@ class ResidualVibration {
   Eigen::MatrixXcd cv_;                 // the view's deflection rows of C, times V
   Eigen::MatrixXcd z_per_velocity_;     // modal coordinates of the equilibrium per drive velocity
   bool loads_velocity_ = false;         // B_vel is not 0
+  std::vector<char> visible_;           // per pole: some member's column of cv_ is not 0
 };
 
 }  // namespace shapebench::bench

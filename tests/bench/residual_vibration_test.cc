@@ -4,6 +4,7 @@
 // response on independently computed poles, and the windowed maximum's bounds.
 #include <cmath>
 #include <complex>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct ShaperCase {
   double zeta;
   std::string method;
 };
+
+void PrintTo(const ShaperCase& c, std::ostream* os) { *os << c.method << " at zeta " << c.zeta; }
 
 class ShapedResidual : public ::testing::TestWithParam<ShaperCase> {};
 
