@@ -91,78 +91,130 @@ INSTANTIATE_TEST_SUITE_P(Shapers, ShapedResidual, ::testing::ValuesIn(ShaperCase
                                   (info.param.method == "1" ? std::string("method1") : info.param.method);
                          });
 
+constexpr double kM1 = 80.0, kM2 = 20.0, kK1 = 4.0e6, kC1 = 900.0, kK2 = 1.5e6, kC3 = 250.0;
+
 // Two masses, a spring and dashpot from the drive to the first, a spring from it to the
 // second and a dashpot from the second to the ground: damping that is not proportional
 // (complex mode shapes).
 Scenario TwoMassScenario() {
   Scenario s = testing::SdofScenario();
   model::LumpedMachineConfig lumped;
-  lumped.bodies = {{"carriage", 80.0}, {"tool", 20.0}};
-  lumped.elements = {{"screw", "driven", "carriage", 4.0e6, 900.0},
-                     {"arm", "carriage", "tool", 1.5e6, 0.0},
-                     {"air", "tool", "ground", 0.0, 250.0}};
+  lumped.bodies = {{"carriage", kM1}, {"tool", kM2}};
+  lumped.elements = {{"screw", "driven", "carriage", kK1, kC1},
+                     {"arm", "carriage", "tool", kK2, 0.0},
+                     {"air", "tool", "ground", 0.0, kC3}};
   lumped.output_body = "tool";
   s.machine.axes[s.machine.driven_axis] = model::MachineConfig{lumped};
   s.controller.pattern.method = "none";
   return s;
 }
 
-// Tests that, for the two-mass model, residual_amplitude_m is sum_k 2 |c_k| of the free
-// response y(t) = sum_k 2 Re(c_k e^{lambda_k t}) after motion end, its c_k fitted (least
-// squares) to the simulated deflection over two lowest periods, the poles lambda_k the
-// roots of det(lambda^2 M + lambda C + K) (a quartic here, not the state-space
-// eigenproblem); 1e-6 of the amplitude. The per-pole amplitudes are reported too.
-TEST(ResidualVibration, TwoMassesWithDashpotsMatchAFittedFreeResponse) {
-  const Scenario s = TwoMassScenario();
-  const RunResult result = RunScenario(s);
-  // M, C, K with the driven point held (motion has ended): x = (carriage, tool).
-  const double m1 = 80.0, m2 = 20.0, k1 = 4.0e6, c1 = 900.0, k2 = 1.5e6, c3 = 250.0;
-  // det = (m1 l^2 + c1 l + k1 + k2)(m2 l^2 + c3 l + k2) - k2^2, coefficients ascending.
-  Eigen::VectorXd poly(5);
-  poly << (k1 + k2) * k2 - k2 * k2, c1 * k2 + (k1 + k2) * c3, m1 * k2 + c1 * c3 + (k1 + k2) * m2,
-      m1 * c3 + c1 * m2, m1 * m2;
+// The two-mass model's poles with the driven point held, upper members: the roots of
+// det(lambda^2 M + lambda C + K) = (m1 l^2 + c1 l + k1 + k2)(m2 l^2 + c3 l + k2) - k2^2, a
+// quartic (not the state-space eigenproblem); `damped` false: C = 0.
+std::vector<std::complex<double>> TwoMassPoles(bool damped = true) {
+  const double c1 = damped ? kC1 : 0.0, c3 = damped ? kC3 : 0.0;
+  Eigen::VectorXd poly(5);  // ascending
+  poly << (kK1 + kK2) * kK2 - kK2 * kK2, c1 * kK2 + (kK1 + kK2) * c3, kM1 * kK2 + c1 * c3 + (kK1 + kK2) * kM2,
+      kM1 * c3 + c1 * kM2, kM1 * kM2;
   Eigen::PolynomialSolver<double, 4> solver(poly);
   std::vector<std::complex<double>> poles;
   for (const auto& root : solver.roots()) {
     if (root.imag() > 0.0) poles.push_back(root);
   }
-  ASSERT_EQ(poles.size(), 2u);
-  const double t_end = result.metrics.motion_time_s;
-  const double window_s = 2.0 * kTwoPi / std::min(std::abs(poles[0]), std::abs(poles[1]));
+  if (std::abs(poles[0]) > std::abs(poles[1])) std::swap(poles[0], poles[1]);
+  return poles;
+}
+
+// Fits y(t0 + tau) = [y0 +] sum_k 2 Re(c_k e^{lambda_k tau}) to the trace over
+// [t0, t0 + span] (least squares; `offset`: with the constant y0) and returns the c_k; the
+// fit must be exact to 1e-9 of the samples (the trace is a free response there).
+std::vector<std::complex<double>> FitFreeResponse(const Trace& trace, const std::vector<std::complex<double>>& poles,
+                                                  double t0, double span, bool offset) {
   std::vector<double> tau, y;
-  for (std::size_t i = 0; i < result.trace.time_s.size(); ++i) {
-    const double t = result.trace.time_s[i] - t_end;
-    if (t >= -1e-12 && t <= window_s) {
+  for (std::size_t i = 0; i < trace.time_s.size(); ++i) {
+    const double t = trace.time_s[i] - t0;
+    if (t >= -1e-12 && t <= span) {
       tau.push_back(t);
-      y.push_back(result.trace.deflection_m[i]);
+      y.push_back(trace.deflection_m[i]);
     }
   }
-  ASSERT_GT(tau.size(), 100u);
-  // y = sum_k 2 (Re c_k Re e - Im c_k Im e), e = e^{lambda_k tau}: four real unknowns.
-  Eigen::MatrixXd a(tau.size(), 4);
+  EXPECT_GT(tau.size(), 100u);
+  const int columns = 2 * static_cast<int>(poles.size()) + (offset ? 1 : 0);
+  Eigen::MatrixXd a(tau.size(), columns);
   for (std::size_t j = 0; j < tau.size(); ++j) {
-    for (int k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < poles.size(); ++k) {
       const std::complex<double> e = std::exp(poles[k] * tau[j]);
       a(j, 2 * k) = 2.0 * e.real();
       a(j, 2 * k + 1) = -2.0 * e.imag();
     }
+    if (offset) a(j, columns - 1) = 1.0;
   }
   const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size()));
   const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
-  ASSERT_LT((a * c - b).cwiseAbs().maxCoeff(), 1e-9 * b.cwiseAbs().maxCoeff()) << "not a free response";
-  const double oracle = 2.0 * (std::hypot(c(0), c(1)) + std::hypot(c(2), c(3)));
+  EXPECT_LT((a * c - b).cwiseAbs().maxCoeff(), 1e-9 * b.cwiseAbs().maxCoeff()) << "not a free response";
+  std::vector<std::complex<double>> coefficients;
+  for (std::size_t k = 0; k < poles.size(); ++k) coefficients.emplace_back(c(2 * k), c(2 * k + 1));
+  return coefficients;
+}
+
+// Tests that, for the two-mass model, residual_amplitude_m is sum_k 2 |c_k| of the free
+// response y(t) = sum_k 2 Re(c_k e^{lambda_k t}) after motion end, its c_k fitted (least
+// squares) to the simulated deflection over two lowest periods, the poles lambda_k from
+// the quartic (TwoMassPoles); 1e-6 of the amplitude. The per-pole amplitudes are
+// reported too.
+TEST(ResidualVibration, TwoMassesWithDashpotsMatchAFittedFreeResponse) {
+  const RunResult result = RunScenario(TwoMassScenario());
+  const std::vector<std::complex<double>> poles = TwoMassPoles();
+  const std::vector<std::complex<double>> c =
+      FitFreeResponse(result.trace, poles, result.metrics.motion_time_s, 2.0 * kTwoPi / std::abs(poles[0]), false);
+  const double oracle = 2.0 * (std::abs(c[0]) + std::abs(c[1]));
   EXPECT_NEAR(result.metrics.residual_amplitude_m, oracle, 1e-6 * oracle);
   EXPECT_NEAR(result.metrics.residual_ratio, oracle / result.metrics.static_displacement_m,
               1e-6 * oracle / result.metrics.static_displacement_m);
   ASSERT_EQ(result.residual_modes.size(), 2u);
   double sum = 0.0;
   for (std::size_t k = 0; k < 2; ++k) {
-    const std::complex<double> pole = poles[std::abs(poles[0]) < std::abs(poles[1]) ? k : 1 - k];
-    EXPECT_NEAR(result.residual_modes[k].frequency_hz, std::abs(pole) / kTwoPi, 1e-6 * std::abs(pole));
-    EXPECT_NEAR(result.residual_modes[k].damping_ratio, -pole.real() / std::abs(pole), 1e-6);
+    EXPECT_NEAR(result.residual_modes[k].frequency_hz, std::abs(poles[k]) / kTwoPi, 1e-6 * std::abs(poles[k]));
+    EXPECT_NEAR(result.residual_modes[k].damping_ratio, -poles[k].real() / std::abs(poles[k]), 1e-6);
     sum += result.residual_modes[k].amplitude;
   }
   EXPECT_DOUBLE_EQ(sum, result.metrics.residual_amplitude_m);
+}
+
+// Tests that, for the two-mass model (whose dashpot to the ground loads it in cruise: an
+// offset at constant velocity), cruise_residual_ratio is the amplitude about that offset:
+// sum_k 2 |c_k| of y = y0 + sum_k 2 Re(c_k e^{lambda_k tau}) fitted over the cruise from
+// its probe (one lowest undamped period, in whole ticks, after the acceleration's end at
+// 0.3 s), / static; 1e-6.
+TEST(ResidualVibration, TwoMassCruiseIsAboutTheVelocityLoadedEquilibrium) {
+  const RunResult result = RunScenario(TwoMassScenario());
+  const double lowest_hz = std::abs(TwoMassPoles(false)[0]) / kTwoPi;
+  const double probe_s = 0.3 + std::ceil(1.0 / lowest_hz / 0.001) * 0.001;
+  const std::vector<std::complex<double>> poles = TwoMassPoles();
+  const std::vector<std::complex<double>> c = FitFreeResponse(result.trace, poles, probe_s, 0.4 - probe_s, true);
+  const double oracle = 2.0 * (std::abs(c[0]) + std::abs(c[1])) / result.metrics.static_displacement_m;
+  ASSERT_GT(oracle, 1e-3);
+  EXPECT_NEAR(result.metrics.cruise_residual_ratio, oracle, 1e-6 * oracle);
+}
+
+// Tests that CVODE's state gives the exact integrator's residual and cruise amplitudes (to
+// 1e-5, its rtol 1e-10 and the state's interpolation), for the two-mass model under the
+// kinematic drive and under the servo with ideal inner loops (a real pole, and the
+// dashpot to the ground loading the cruise equilibrium).
+TEST(ResidualVibration, CvodeAgreesWithExact) {
+  for (model::DriveType drive : {model::DriveType::kKinematic, model::DriveType::kServo}) {
+    Scenario s = TwoMassScenario();
+    s.drive.type = drive;
+    s.drive.servo.velocity_loop_hz = 0.0;  // the dashpot to the ground needs ideal inner loops
+    s.integrator.method = model::IntegratorMethod::kExact;
+    const Metrics exact = RunScenario(s).metrics;
+    s.integrator.method = model::IntegratorMethod::kCvode;
+    const Metrics cvode = RunScenario(s).metrics;
+    ASSERT_GT(exact.residual_ratio, 1e-3);
+    EXPECT_NEAR(cvode.residual_ratio, exact.residual_ratio, 1e-5 * exact.residual_ratio);
+    EXPECT_NEAR(cvode.cruise_residual_ratio, exact.cruise_residual_ratio, 1e-5 * exact.cruise_residual_ratio);
+  }
 }
 
 // Tests that the windowed maximum survives as residual_peak_ratio and lies between the
