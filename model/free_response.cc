@@ -49,11 +49,17 @@ ModalDecomposition::ModalDecomposition(const Eigen::MatrixXd& a) {
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(a, true);
   lambda_ = solver.eigenvalues();
   v_ = solver.eigenvectors();
-  v_inv_ = v_.fullPivLu().inverse();
+  const Eigen::FullPivLU<Eigen::MatrixXcd> lu(v_);
+  v_inv_ = lu.inverse();
+  // A defective A has (numerically) parallel eigenvectors: V^{-1} is then no inverse.
+  const Eigen::Index n = v_.rows();
+  const double inverse_error = (v_ * v_inv_ - Eigen::MatrixXcd::Identity(n, n)).cwiseAbs().maxCoeff();
+  invertible_ = lu.isInvertible() && std::isfinite(inverse_error) && inverse_error <= kMaxInverseError;
   poles_ = GroupPoles(lambda_);
 }
 
 bool ModalDecomposition::WellSplit(const Eigen::VectorXcd& z) const {
+  if (!invertible_) return false;
   double parts = 0.0;
   for (Eigen::Index i = 0; i < z.size(); ++i) parts += std::abs(z(i)) * v_.col(i).norm();
   const double whole = (v_ * z).norm();

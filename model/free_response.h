@@ -53,16 +53,19 @@ class ModalDecomposition {
   std::vector<PoleAmplitude> Amplitudes(const Eigen::MatrixXcd& cv, const Eigen::VectorXcd& z) const;
 
   // False when V is too close to singular for the modal coordinates to mean anything (a
-  // defective A: a critically damped pair): the parts of a state would cancel by more than
-  // kMaxCancellation of its size.
+  // defective A: a critically damped pair): V V^{-1} is off the identity by more than
+  // kMaxInverseError, or the parts of the state would cancel by more than kMaxCancellation
+  // of its size.
   bool WellSplit(const Eigen::VectorXcd& z) const;
   static constexpr double kMaxCancellation = 1e6;
+  static constexpr double kMaxInverseError = 1e-6;
 
  private:
   Eigen::VectorXcd lambda_;
   Eigen::MatrixXcd v_;
   Eigen::MatrixXcd v_inv_;
   std::vector<FreePole> poles_;
+  bool invertible_ = false;
 };
 
 // The decomposition of `a`, computed once and handed out again for an equal matrix (the
