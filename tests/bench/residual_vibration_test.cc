@@ -73,6 +73,14 @@ TEST_P(ShapedResidual, RatioIsTheShapersResidualVibration) {
   for (const controller::Impulse& i : impulses) {
     ASSERT_NEAR(std::remainder(i.time_s, 0.001), 0.0, 1e-12) << c.method << ": not on the grid";
   }
+  if (c.method == "1") {
+    // Para. 38's a/2 for T/2, then a: jerk impulses 1/2 at 0 and 1/2 at T/2 = 20 ms (a ZV).
+    double at_0 = 0.0, at_half = 0.0;
+    for (const controller::Impulse& i : impulses) (i.time_s < 0.01 ? at_0 : at_half) += i.amplitude;
+    EXPECT_DOUBLE_EQ(at_0, 0.5);
+    EXPECT_DOUBLE_EQ(at_half, 0.5);
+    EXPECT_NEAR(impulses.back().time_s, 0.02, 1e-15);
+  }
   ASSERT_GT(r0, 0.1);
   EXPECT_NEAR(r1 / r0, ShaperResidual(impulses, 22.0, c.zeta), 1e-6) << c.method << " zeta " << c.zeta;
 }
