@@ -608,6 +608,9 @@ Eigen::VectorXd CvodeIntegrator::Output() const {
   return C_ * View(workspace_->y).head(num_states_);
 }
 
+// The state at the last output substep (Advance leaves it in y, interpolated or not).
+Eigen::VectorXd CvodeIntegrator::PlantState() const { return View(workspace_->y).head(num_states_); }
+
 double CvodeIntegrator::Time() const { return TimeAt(count_); }
 
 IntegratorStats CvodeIntegrator::Stats() const {

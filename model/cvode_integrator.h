@@ -44,6 +44,7 @@ class CvodeIntegrator final : public PlantIntegrator {
   void SetInput(const Eigen::VectorXd& drive_accel) override;
   void Step() override;
   Eigen::VectorXd Output() const override;
+  Eigen::VectorXd PlantState() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
   int num_inputs() const override { return num_inputs_; }

@@ -456,6 +456,14 @@ Eigen::VectorXd ExactIntegrator::Output() const {
   return y;
 }
 
+Eigen::VectorXd ExactIntegrator::PlantState() const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(num_states_);
+  for (int r = 0; r < kept_; ++r) {
+    if (kept_index_[r] < num_states_) x(kept_index_[r]) = z_[r];
+  }
+  return x;
+}
+
 double ExactIntegrator::Time() const { return static_cast<double>(count_) * period_s_ / substeps_; }
 
 IntegratorStats ExactIntegrator::Stats() const { return {count_, 0, 0}; }

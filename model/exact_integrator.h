@@ -30,6 +30,8 @@ class ExactIntegrator final : public PlantIntegrator {
   void SetInput(const Eigen::VectorXd& drive_accel) override;
   void Step() override;
   Eigen::VectorXd Output() const override;
+  // States it does not step (they reach no output) are given as 0: they change no output.
+  Eigen::VectorXd PlantState() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
   int num_inputs() const override { return input_map_.empty() ? num_inputs_ : full_inputs_; }

@@ -76,6 +76,7 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   }
   void Step() override { inner_->Step(); }
   Eigen::VectorXd Output() const override { return inner_->Output(); }
+  Eigen::VectorXd PlantState() const override { return inner_->PlantState(); }
   double Time() const override { return inner_->Time(); }
   IntegratorStats Stats() const override { return inner_->Stats(); }
   int num_inputs() const override { return num_inputs_; }

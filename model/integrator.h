@@ -127,6 +127,9 @@ class PlantIntegrator {
   // substep count, never accumulated.
   virtual void Step() = 0;
   virtual Eigen::VectorXd Output() const = 0;  // deflection, C x
+  // The plant's states x (LinearPlant::A's, without the drive velocity) at Time(). For the
+  // occasional look (the residual vibration at motion end), never per tick: it allocates.
+  virtual Eigen::VectorXd PlantState() const = 0;
   virtual double Time() const = 0;
   virtual IntegratorStats Stats() const { return {}; }
   virtual int num_inputs() const = 0;

@@ -143,7 +143,7 @@ void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const
   const std::filesystem::path dir(staged.path());
   try {
     WriteFileAtomically((dir / "metrics.json").string(), [&](std::ostream& out) {
-      out << MetricsJson(result.metrics).dump(2) << "\n";
+      out << RunJson(result).dump(2) << "\n";
     });
     const std::size_t stride =
         WriteTraceCsv((dir / "trace.csv").string(), result.trace, scenario.limits.max_trace_rows);
@@ -185,7 +185,7 @@ int RunCommand(const RunArgs& args) {
   }
   if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result);
   if (args.json) {
-    std::cout << MetricsJson(result.metrics).dump(2) << std::endl;
+    std::cout << RunJson(result).dump(2) << std::endl;
   } else {
     std::cout << "scenario " << Safe(scenario.name) << " (" << Safe(scenario.source_file) << ")\n";
     PrintMetricsTable(std::cout, result.metrics);

@@ -48,6 +48,20 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   return json;
 }
 
+nlohmann::ordered_json RunJson(const RunResult& result) {
+  nlohmann::ordered_json json = MetricsJson(result.metrics);
+  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
+  for (const model::PoleAmplitude& mode : result.residual_modes) {
+    nlohmann::ordered_json entry;
+    entry["frequency_hz"] = mode.frequency_hz;
+    entry["damping_ratio"] = mode.damping_ratio;
+    entry["amplitude_m"] = std::isfinite(mode.amplitude) ? nlohmann::ordered_json(mode.amplitude) : nullptr;
+    modes.push_back(entry);
+  }
+  json["residual_modes"] = modes;
+  return json;
+}
+
 std::size_t TraceStride(std::size_t samples, long max_rows) {
   const auto limit = static_cast<std::size_t>(std::max(max_rows, 2L));
   if (samples <= limit) return 1;

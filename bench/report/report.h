@@ -26,6 +26,13 @@ std::string MetricUnit(const std::string& name);
 // NaN -> null, bool metrics as false/true.
 nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 
+// `run --json` and run --out's metrics.json: MetricsJson, then "residual_modes", the free
+// vibration at motion end per pole of the plant (RunResult::residual_modes), ascending
+// frequency: [{"frequency_hz", "damping_ratio", "amplitude_m"}, ...] (the poles the output
+// view sees; empty for a machine without states; a real pole: its rate / 2 pi and damping
+// ratio 1).
+nlohmann::ordered_json RunJson(const RunResult& result);
+
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
 // deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
 // block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.

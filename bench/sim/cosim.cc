@@ -12,6 +12,7 @@
 #include "bench/sim/command_samples.h"
 #include "bench/sim/metric_accumulator.h"
 #include "bench/sim/output_view.h"
+#include "bench/sim/residual_vibration.h"
 #include "bench/sim/run_memory.h"
 #include "bench/sim/run_window.h"
 #include "controller/path_geometry.h"
@@ -164,6 +165,8 @@ class CoSimulation {
   template <RunPhase P> void SampleTick(std::size_t k, bool others_zero);
   void Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a,
               const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
+  void ProbeMotionEnd();
+  void ProbeCruise(std::size_t k);
   void FinishMetrics(Metrics* m) const;
 
   const Scenario& scenario_;
@@ -180,6 +183,13 @@ class CoSimulation {
   const bool has_stroke_;
   int substeps_ = 1;
   std::unique_ptr<model::PlantIntegrator> integrator_;
+  // The free vibration of the plant's state (residual_ratio, cruise_residual_ratio), read at
+  // motion end and at the cruise probes (RunWindow::cruise_probe_ticks), never per tick.
+  std::unique_ptr<ResidualVibration> residual_vibration_;
+  std::size_t next_probe_ = 0;  // index into cruise_probe_ticks
+  std::size_t next_probe_tick_ = std::numeric_limits<std::size_t>::max();
+  double residual_m_ = 0.0;     // at rest, or a rigid machine: none
+  double cruise_m_ = NAN;       // NaN until a cruise probe
   int rows_ = 0;
   std::vector<double> outputs_;  // one period's substeps (AdvancePeriod), rows as in MachinePlant
   std::vector<double> taus_;     // the substeps' times within a period
@@ -223,6 +233,8 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
   acc_.quiet_since_tick = window_.motion_ticks;
   SetUpPlant();
   SetUpSampling();
+  if (!window_.cruise_probe_ticks.empty()) next_probe_tick_ = window_.cruise_probe_ticks.front();
+  if (window_.motion_ticks == 0) ProbeMotionEnd();  // no motion: the state at rest
 }
 
 void CoSimulation::SetUpPlant() {
@@ -237,6 +249,7 @@ void CoSimulation::SetUpPlant() {
                                         samples_.max_speed_m_s);
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
     holds_ = integrator_->UsesInputHolds();
+    residual_vibration_ = std::make_unique<ResidualVibration>(plant, view_);
   }
   rows_ = plant.num_outputs();
   width_ = rows_;
@@ -357,8 +370,10 @@ void CoSimulation::Tick(std::size_t k) {
   const bool others_zero = StepPlant(k);
   if (k < window_.motion_ticks) {
     SampleTick<RunPhase::kMotion>(k, others_zero);
+    if (k == next_probe_tick_) ProbeCruise(k);
   } else if (k <= window_.window_end()) {
     SampleTick<RunPhase::kWindow>(k, others_zero);
+    if (k == window_.motion_ticks) ProbeMotionEnd();
   } else {
     SampleTick<RunPhase::kTail>(k, others_zero);
   }
@@ -376,7 +391,7 @@ void CoSimulation::SampleTick(std::size_t k, bool others_zero) {
     SampleGeneral<P>(k, &general);
     tick = general;
   }
-  acc_.Merge(tick, k, substeps_, k <= samples_.n && window_.cruise_tick[k]);
+  acc_.Merge(tick, k, substeps_);
 }
 
 template <RunPhase P>
@@ -425,6 +440,31 @@ void CoSimulation::SampleGeneral(std::size_t k, TickAccumulator* tick) {
     }
     tick->Add<P>(j, std::abs(view_.Of(deflection)), contour_gauge_.SquaredDistanceTo(actual));
   }
+}
+
+// The free vibration at motion end (the acceleration 0 from here on: equilibrium 0), per
+// pole into the result, their sum into residual_amplitude_m.
+void CoSimulation::ProbeMotionEnd() {
+  if (!residual_vibration_) return;
+  result_.residual_modes = residual_vibration_->Amplitudes(integrator_->PlantState(), Eigen::Vector3d::Zero());
+  residual_m_ = ResidualVibration::Total(result_.residual_modes);
+  if (std::isnan(residual_m_)) {
+    result_.warnings.push_back(
+        "the plant's state does not split into its modes (a critically damped pole?): residual_ratio is n/a");
+  }
+}
+
+// Cruise probe k: the vibration about the equilibrium at the cruise velocity v_k.
+void CoSimulation::ProbeCruise(std::size_t k) {
+  ++next_probe_;
+  next_probe_tick_ = next_probe_ < window_.cruise_probe_ticks.size() ? window_.cruise_probe_ticks[next_probe_]
+                                                                      : std::numeric_limits<std::size_t>::max();
+  const double amplitude =
+      residual_vibration_ ? ResidualVibration::Total(residual_vibration_->Amplitudes(
+                                integrator_->PlantState(), samples_.velocity[k]))
+                          : 0.0;
+  // The largest; a failed split (NaN) stays.
+  if (next_probe_ == 1 || std::isnan(amplitude) || amplitude > cruise_m_) cruise_m_ = amplitude;
 }
 
 void CoSimulation::Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v,
@@ -487,9 +527,11 @@ void CoSimulation::FinishMetrics(Metrics* m) const {
   if (single_.axis >= 0) peak_axes(single_.axis) = std::max(peak_axes(single_.axis), acc_.peak);
   m->peak_deflection_m = acc_.peak;
   m->peak_ratio = acc_.peak / m->static_displacement_m;
-  m->residual_amplitude_m = acc_.residual;
-  m->residual_ratio = acc_.residual / m->static_displacement_m;
-  m->cruise_residual_ratio = acc_.cruise / m->static_displacement_m;
+  m->residual_amplitude_m = residual_m_;
+  m->residual_ratio = residual_m_ / m->static_displacement_m;
+  m->residual_peak_m = acc_.residual;
+  m->residual_peak_ratio = acc_.residual / m->static_displacement_m;
+  m->cruise_residual_ratio = cruise_m_ / m->static_displacement_m;
   m->max_contour_error_m = std::sqrt(acc_.contour_sq);
   for (const ArcWindow& w : arcs_) {
     if (w.samples == 0) continue;

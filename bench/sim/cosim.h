@@ -13,6 +13,7 @@
 #include "bench/sim/metrics.h"
 #include "bench/sim/scenario.h"
 #include "controller/controller.h"
+#include "model/free_response.h"
 #include "model/integrator.h"
 
 namespace shapebench::bench {
@@ -42,6 +43,10 @@ struct RunResult {
   controller::MultiAxisCommand command;
   Trace trace;
   Metrics metrics;
+  // Per pole of the plant the output view sees (ascending frequency): the free vibration at
+  // motion end in the view, amplitude in m; they sum to metrics.residual_amplitude_m. Empty
+  // for a machine without states.
+  std::vector<model::PoleAmplitude> residual_modes;
   model::IntegratorStats stats;
   int substeps = 0;
   double simulated_s = 0.0;  // the time of the last sample (motion and tail)

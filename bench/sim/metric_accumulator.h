@@ -20,7 +20,7 @@ enum class RunPhase { kMotion, kWindow, kTail };
 struct TickAccumulator {
   double peak = 0.0;        // largest |deflection| (the view's scalar)
   double contour_sq = 0.0;  // largest squared contour error
-  double residual = 0.0;    // largest |deflection| in the residual window
+  double residual = 0.0;    // largest |deflection| in the residual window (residual_peak_m)
   int last_outside = -1;    // the last sample (0-based) outside the settling band
   int first_after_motion = 0;  // samples before this one are still the motion's
   double band = 0.0;
@@ -44,7 +44,6 @@ struct RunAccumulator {
   double peak = 0.0;
   double contour_sq = 0.0;
   double residual = 0.0;
-  double cruise = NAN;           // NaN until a cruise tick
   long last_outside_band = -1;   // the last sample (count from t = 0) outside the band
   std::size_t quiet_since_tick = 0;
   double band = 0.0;             // kSettlingBand x static displacement
@@ -56,12 +55,11 @@ struct RunAccumulator {
     return tick;
   }
 
-  // Tick k's samples into the run's; `cruising`: the tick is part of a cruise.
-  void Merge(const TickAccumulator& tick, std::size_t k, int substeps, bool cruising) {
+  // Tick k's samples into the run's.
+  void Merge(const TickAccumulator& tick, std::size_t k, int substeps) {
     peak = std::max(peak, tick.peak);
     contour_sq = std::max(contour_sq, tick.contour_sq);
     residual = std::max(residual, tick.residual);
-    if (cruising) cruise = std::isnan(cruise) ? tick.peak : std::max(cruise, tick.peak);
     if (tick.last_outside >= 0) {
       last_outside_band = static_cast<long>((k - 1) * static_cast<std::size_t>(substeps)) + tick.last_outside + 1;
       quiet_since_tick = k;

@@ -15,14 +15,27 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "peak_deflection_m / static_displacement_m (the patent's aim: 1; an unshaped step: 2)",
        &M::peak_ratio},
       {"residual_amplitude_m", "m", Better::kLower,
-       "the largest absolute deflection from the end of commanded motion to three periods of the "
-       "lowest mode later",
+       "the amplitude of the free vibration the structure holds when commanded motion ends, from "
+       "its state then (input 0 after): with A = V diag(lambda) V^-1 and x = V z, per pole of "
+       "the plant the modulus of 2 C v z (a pair) or of C v z (a real pole) in the output view, "
+       "summed (one modal mode: abs(gain) sqrt(q^2 + ((q' + zeta w q) / w_d)^2)); a bound of "
+       "every later deflection",
        &M::residual_amplitude_m},
-      {"residual_ratio", "1", Better::kLower, "residual_amplitude_m / static_displacement_m",
+      {"residual_ratio", "1", Better::kLower,
+       "residual_amplitude_m / static_displacement_m (the input-shaping literature's residual "
+       "vibration; independent of where in its cycle the vibration is when motion ends)",
        &M::residual_ratio},
+      {"residual_peak_m", "m", Better::kLower,
+       "the largest absolute deflection sampled from the end of commanded motion to three periods "
+       "of the lowest mode later",
+       &M::residual_peak_m},
+      {"residual_peak_ratio", "1", Better::kLower, "residual_peak_m / static_displacement_m",
+       &M::residual_peak_ratio},
       {"cruise_residual_ratio", "1", Better::kLower,
-       "the largest absolute deflection while the commanded feed is constant and non-zero for at least "
-       "one lowest-mode period, / static_displacement_m",
+       "the amplitude of the free vibration about the cruise equilibrium (the static state at the "
+       "cruise velocity, x_eq = -A^-1 B_vel v), as residual_amplitude_m, from the state one "
+       "lowest-mode period into each stretch where the commanded feed stays constant and non-zero "
+       "for at least that long; the largest stretch's, / static_displacement_m",
        &M::cruise_residual_ratio},
       {"motion_time_s", "s", Better::kLower, "when commanded motion ends", &M::motion_time_s},
       {"settling_time_s", "s", Better::kLower,

@@ -19,6 +19,8 @@ struct Metrics {
   double peak_ratio = NAN;
   double residual_amplitude_m = NAN;
   double residual_ratio = NAN;
+  double residual_peak_m = NAN;
+  double residual_peak_ratio = NAN;
   double cruise_residual_ratio = NAN;
   double motion_time_s = NAN;
   double settling_time_s = NAN;
@@ -54,7 +56,7 @@ struct MetricInfo {
   std::string_view shown_unit() const { return unit == "m" || unit == "s" || unit == "Hz" ? unit : ""; }
 };
 
-inline constexpr std::size_t kNumMetrics = 18;
+inline constexpr std::size_t kNumMetrics = 20;
 
 // Every metric, in the order JSON, tables and results.csv list them.
 const std::array<MetricInfo, kNumMetrics>& MetricTable();

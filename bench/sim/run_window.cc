@@ -10,14 +10,18 @@
 namespace shapebench::bench {
 namespace {
 
-std::vector<char> CruiseTicks(const CommandSamples& s, std::size_t period_ticks) {
+std::vector<char> CruiseTicks(const CommandSamples& s, std::size_t period_ticks,
+                              std::vector<std::size_t>* probes) {
   std::vector<char> cruise_tick(s.n + 1, 0);
   for (std::size_t k = 1, run_start = 1; k <= s.n + 1; ++k) {
     const bool steady =
         k <= s.n && (s.velocity[k](0) != 0.0 || s.velocity[k](1) != 0.0 || s.velocity[k](2) != 0.0) &&
         (s.accel[k].squaredNorm() == 0.0 || s.accel[k].norm() <= 1e-9 * s.max_accel_m_s2);
     if (steady) continue;
-    if (k - run_start >= period_ticks) std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
+    if (k - run_start >= period_ticks) {
+      std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
+      probes->push_back(run_start - 1 + period_ticks);
+    }
     run_start = k + 1;
   }
   return cruise_tick;
@@ -55,7 +59,7 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
   w.max_ticks = static_cast<std::size_t>(std::min(
       static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));
   w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy;
-  w.cruise_tick = CruiseTicks(samples, w.period_ticks);
+  w.cruise_tick = CruiseTicks(samples, w.period_ticks, &w.cruise_probe_ticks);
   return w;
 }
 

@@ -30,6 +30,10 @@ struct RunWindow {
   // in a row. Shorter constant stretches are steps of a pattern (method 2's zero step,
   // T/6), not the cruise whose vibration cruise_residual_ratio reports.
   std::vector<char> cruise_tick;
+  // Per cruise stretch (a maximal run of cruise ticks s..e), ascending: the tick one
+  // lowest-mode period into it, s - 1 + period_ticks (<= e), whose state
+  // cruise_residual_ratio reads.
+  std::vector<std::size_t> cruise_probe_ticks;
 
   std::size_t window_end() const { return motion_ticks + residual_ticks; }
   // Whether the run stops after tick k, the deflection last outside the settling band in

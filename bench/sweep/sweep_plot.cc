@@ -329,7 +329,9 @@ std::string SafeName(const std::string& text) {
 
 double FivePercentLevel(const std::string& metric) {
   if (metric == "peak_ratio") return 1.05;
-  if (metric == "residual_ratio" || metric == "cruise_residual_ratio") return 0.05;
+  if (metric == "residual_ratio" || metric == "residual_peak_ratio" || metric == "cruise_residual_ratio") {
+    return 0.05;
+  }
   return kNaN;
 }
 

@@ -129,7 +129,8 @@ TEST(CompareGates, UnknownMetricNamesTheClosestAndTheAllowed) {
       << error;
   EXPECT_NE(error.find("allowed: static_displacement_m, peak_deflection_m,"), std::string::npos) << error;
   error = ErrorText([] { ParseGate("residual=0.1"); });
-  EXPECT_NE(error.find("did you mean residual_amplitude_m or residual_ratio or cruise_residual_ratio?"),
+  EXPECT_NE(error.find("did you mean residual_amplitude_m or residual_ratio or residual_peak_m or residual_peak_ratio or "
+                       "cruise_residual_ratio?"),
             std::string::npos)
       << error;
   error = ErrorText([] { ParseGate("zzzz=0.1"); });
