@@ -25,8 +25,8 @@ long HalfPulseTicks(const Eigen::VectorXcd& poles, double period_s) {
     if (magnitude > 0.0 && (slowest == 0.0 || magnitude < slowest)) slowest = magnitude;
   }
   if (!(slowest > 0.0)) return 1;
-  const double half_period_s = kPi / slowest;
-  return std::clamp(std::lround(half_period_s / period_s), 1L, kMaxHalfPulseTicks);
+  const double ticks = std::min(kPi / slowest / period_s, static_cast<double>(kMaxHalfPulseTicks));
+  return std::max(std::lround(ticks), 1L);  // bounded first: lround of a huge value is undefined
 }
 
 // Drives `integrator` with the pulse and returns its outputs, substep after substep: a
