@@ -78,13 +78,15 @@ TEST(PlotOutputs, FileNamesUseShortestUniqueKeySuffix) {
 // option, a long value shortened with "...".
 TEST(PlotOutputs, RunTitleCarriesMethodAndOverrides) {
   const std::vector<Override> overrides = ParseOverrides(
-      {"controller.pattern.method=none", "name=" + std::string(60, 'n')});
+      {"controller.pattern.method=none", "controller.pattern.frequency_hz=25." + std::string(60, '0')});
   const Scenario scenario = LoadScenario(DataPath("shaped_method1.yaml"), overrides);
   const std::string title = RunPlotTitle(scenario, overrides);
-  EXPECT_EQ(title.rfind(scenario.name + ", method none, --set controller.pattern.method=none name=", 0), 0u)
+  EXPECT_EQ(title.rfind(scenario.name + ", method none, --set controller.pattern.method=none "
+                        "controller.pattern.frequency_hz=25.000", 0),
+            0u)
       << title;
   EXPECT_NE(title.find("..."), std::string::npos) << title;
-  EXPECT_EQ(title.find(std::string(30, 'n')), std::string::npos) << title;
+  EXPECT_EQ(title.find(std::string(30, '0')), std::string::npos) << title;
   const Scenario plain = LoadScenario(DataPath("shaped_method1.yaml"), {});
   EXPECT_EQ(RunPlotTitle(plain, {}), plain.name + ", method 1");
 }
@@ -146,8 +148,8 @@ TEST(PlotOutputs, SweepLogAxesAsAsked) {
       "  controller.accel_time_s: [0.05, 0.1]\nmetrics: [residual_ratio, motion_time_s]\nplots:\n";
   const std::string logged = dir.Write(
       "log.yaml", head +
-                      "  - {metric: motion_time_s, x: machine.modes[0].frequency_hz, log: true}\n"
-                      "  - {metric: residual_ratio, heatmap: [machine.modes[0].frequency_hz, controller.accel_time_s], "
+                      "  - {metric: motion_time_s, x: \"machine.modes[0].frequency_hz\", log: true}\n"
+                      "  - {metric: residual_ratio, heatmap: [\"machine.modes[0].frequency_hz\", controller.accel_time_s], "
                       "log: true}\n");
   const CliResult a = RunCli({"sweep", logged, "--out", dir.File("a")}, dir.path().string(), path);
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -159,7 +161,7 @@ TEST(PlotOutputs, SweepLogAxesAsAsked) {
 
   std::filesystem::remove(dir.File("scripts.gp"));
   const std::string linear = dir.Write(
-      "linear.yaml", head + "  - {metric: residual_ratio, x: machine.modes[0].frequency_hz, log: false}\n");
+      "linear.yaml", head + "  - {metric: residual_ratio, x: \"machine.modes[0].frequency_hz\", log: false}\n");
   const CliResult b = RunCli({"sweep", linear, "--out", dir.File("b")}, dir.path().string(), path);
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const std::string linear_script = ReadText(dir.File("scripts.gp"));
@@ -167,7 +169,7 @@ TEST(PlotOutputs, SweepLogAxesAsAsked) {
   EXPECT_EQ(linear_script.find("logscale"), std::string::npos);
 
   const std::string bad = dir.Write(
-      "bad.yaml", head + "  - {metric: residual_ratio, x: machine.modes[0].frequency_hz, log: maybe}\n");
+      "bad.yaml", head + "  - {metric: residual_ratio, x: \"machine.modes[0].frequency_hz\", log: maybe}\n");
   const CliResult c = RunCli({"sweep", bad, "--out", dir.File("c")}, dir.path().string());
   EXPECT_EQ(c.exit_code, 2) << c.err;
   EXPECT_NE(c.err.find("log"), std::string::npos) << c.err;

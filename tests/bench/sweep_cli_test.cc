@@ -122,7 +122,7 @@ TEST(SweepCli, ShardsMergeToTheUnshardedFile) {
   ASSERT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_EQ(ReadText(dir.File("merged/results.csv")), ReadText(reference));
   EXPECT_EQ(ReadText(dir.File("merged/manifest.json")), ReadText(dir.File("whole/manifest.json")));
-  EXPECT_EQ(ReadText(dir.File("merged/residual_ratio-vs-frequency_hz.png")).substr(1, 3), "PNG");
+  EXPECT_EQ(ReadText(dir.File("merged/residual_ratio-vs-modes_0_.frequency_hz.png")).substr(1, 3), "PNG");
 
   const CliResult missing = RunCli({"merge", "--out", dir.File("m2"), dir.File("shard0")}, kSourceDir);
   EXPECT_EQ(missing.exit_code, 2);
