@@ -137,7 +137,10 @@ RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& over
 // directory behind. A new directory is filled under a temporary name and renamed when
 // complete, so a failure (gnuplot, full disk) leaves none behind either. A signal while
 // writing lets the files finish (each is complete or absent), then stops.
-void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const RunResult& result) {
+// deflection.png and path.png are left out when they would show nothing (a flat zero
+// line, a line along one axis); a note on stderr says so.
+void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const RunResult& result,
+                     const std::vector<Override>& overrides) {
   const DeferInterrupts defer;
   StagedDirectory staged(out_dir);
   const std::filesystem::path dir(staged.path());
@@ -153,8 +156,19 @@ void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const
                 << "): trace.csv and the plots keep 1 in " << stride
                 << "; the metrics use every sample\n";
     }
-    WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario);
-    WritePathPlot((dir / "path.png").string(), result, scenario);
+    const std::string title = RunPlotTitle(scenario, overrides);
+    if (DeflectionIsZero(result)) {
+      std::cerr << "note: " << Safe(scenario.source_file) << ": no deflection.png: the deflection is "
+                << "identically 0 (a rigid machine, no states)\n";
+    } else {
+      WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario, title);
+    }
+    if (PathIsSingleAxisLine(result)) {
+      std::cerr << "note: " << Safe(scenario.source_file) << ": no path.png: the programmed path is a "
+                << "straight move along one axis (its XY plot would be a line)\n";
+    } else {
+      WritePathPlot((dir / "path.png").string(), result, scenario, title);
+    }
   } catch (const std::runtime_error& error) {
     if (typeid(error) != typeid(std::runtime_error)) throw;
     throw std::runtime_error(staged.Shown(error.what()));  // DIR/FILE, not the temporary name
@@ -183,7 +197,7 @@ int RunCommand(const RunArgs& args) {
   for (const std::string& warning : result.warnings) {
     std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
-  if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result);
+  if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result, overrides);
   if (args.json) {
     std::cout << RunJson(result).dump(2) << std::endl;
   } else {

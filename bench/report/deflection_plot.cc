@@ -26,12 +26,55 @@ bool AllZero(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double d) { return d == 0.0; });
 }
 
+// The peak |deflection| marked with its value (µm, and peak_ratio: times the static
+// deflection), the end of the commanded motion labelled and the residual amplitude
+// (residual_ratio's numerator) written just after it.
+void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
+  const Trace& trace = result.trace;
+  const Metrics& metrics = result.metrics;
+  std::size_t peak = 0;
+  for (std::size_t i = 1; i < trace.deflection_m.size() && i < trace.time_s.size(); ++i) {
+    if (std::abs(trace.deflection_m[i]) > std::abs(trace.deflection_m[peak])) peak = i;
+  }
+  if (peak < trace.time_s.size() && peak < trace.deflection_m.size()) {
+    char text[128];
+    const double peak_um = trace.deflection_m[peak] * 1e6;
+    if (std::isfinite(metrics.peak_ratio)) {
+      std::snprintf(text, sizeof text, "peak %.4g µm (%.3g× static)", peak_um, metrics.peak_ratio);
+    } else {
+      std::snprintf(text, sizeof text, "peak %.4g µm", peak_um);
+    }
+    std::fprintf(gnuplot, "set label %s at %.10g, %.10g offset 1, %s front point pt 7 ps 1 lc rgb '#d62728'\n",
+                 Quoted(text).c_str(), trace.time_s[peak], peak_um, peak_um >= 0.0 ? "0.8" : "-0.8");
+  }
+  if (std::isfinite(metrics.motion_time_s)) {
+    // On the side of the end line with the more room.
+    const char* side = metrics.motion_time_s > 0.6 * end_s ? "right offset -0.5, 0" : "left offset 0.5, 0";
+    char text[160];
+    std::snprintf(text, sizeof text, "motion end %.4g s", metrics.motion_time_s);
+    std::fprintf(gnuplot, "set label %s at %.17g, graph 0.97 %s front tc rgb '#555555'\n",
+                 Quoted(text).c_str(), metrics.motion_time_s, side);
+    if (std::isfinite(metrics.residual_amplitude_m)) {
+      if (std::isfinite(metrics.residual_ratio)) {
+        std::snprintf(text, sizeof text, "residual %.3g µm (ratio %.3g)", metrics.residual_amplitude_m * 1e6,
+                      metrics.residual_ratio);
+      } else {
+        std::snprintf(text, sizeof text, "residual %.3g µm", metrics.residual_amplitude_m * 1e6);
+      }
+      std::fprintf(gnuplot, "set label %s at %.17g, graph 0.92 %s front tc rgb '#1f77b4'\n",
+                   Quoted(text).c_str(), metrics.motion_time_s, side);
+    }
+  }
+}
+
 void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunResult& result,
-                 const Scenario& scenario) {
+                 const Scenario& scenario, const std::string& title) {
   const Trace& trace = result.trace;
   const double static_um = result.metrics.static_displacement_m * 1e6;
   const double end_s = trace.time_s.empty() ? 1.0 : trace.time_s.back();
-  WriteFrame(gnuplot, output_path, scenario.name);
+  WriteFrame(gnuplot, output_path, title);
+  WriteMarks(gnuplot, result, end_s);
+  std::fprintf(gnuplot, "set offsets 0, 0, graph 0.12, 0\n");  // headroom for the labels
   std::fprintf(gnuplot, "set y2label 'command acceleration [m/s²]'\n");
   std::fprintf(gnuplot, "set ytics nomirror\nset y2tics\nset grid\n");
   // Legend in its own strip under the x label, clear of the curves.
@@ -152,9 +195,9 @@ void WriteDeflectionOverlayPlot(const std::string& path_png, const std::vector<O
 }
 
 void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
-                         const Scenario& scenario) {
+                         const Scenario& scenario, const std::string& title) {
   RunGnuplot(path_png, [&](std::FILE* gnuplot, const std::string& output_path) {
-    WriteScript(gnuplot, output_path, result, scenario);
+    WriteScript(gnuplot, output_path, result, scenario, title);
   });
 }
 

@@ -23,7 +23,8 @@ double RoundGain(double value) {
 
 }  // namespace
 
-void WritePathPlot(const std::string& path_png, const RunResult& result, const Scenario& scenario) {
+void WritePathPlot(const std::string& path_png, const RunResult& result, const Scenario& scenario,
+                   const std::string& plot_title) {
   const controller::PathGeometry path(result.program);
   // The programmed path, finely sampled (arcs every degree or better).
   std::vector<Eigen::Vector3d> programmed{path.start_m()};
@@ -60,9 +61,11 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
     std::fprintf(gnuplot, "set encoding utf8\n");
     std::fprintf(gnuplot, "set output %s\n", GnuplotQuoted(output_path).c_str());
     char title[160];
-    std::snprintf(title, sizeof title, " - XY path, deviation from the programmed path x%g (max %.4g µm)",
+    std::snprintf(title, sizeof title, "XY path, deviation from the programmed path x%g (max %.4g µm)",
                   gain, max_error * 1e6);
-    std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(scenario.name + title).c_str());
+    // Two lines (a gnuplot string expression): the run's title is long on an 800 px page.
+    std::fprintf(gnuplot, "set title %s.\"\\n\".%s\n", GnuplotQuoted(plot_title).c_str(),
+                 GnuplotQuoted(title).c_str());
     std::fprintf(gnuplot, "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n");
     std::fprintf(gnuplot, "set size ratio -1\nset grid\n");
     // A square window around the path: a move along one axis has no extent in the other

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/config/override.h"
 #include "bench/sim/checks.h"
 #include "bench/sim/cosim.h"
 #include "bench/sim/metrics.h"
@@ -50,8 +51,23 @@ std::size_t TraceStride(std::size_t samples, long max_rows);
 // Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
 // +/- static_displacement dashed; pngcairo 1000x600 via gnuplot. Throws
 // std::runtime_error when gnuplot is missing or fails.
+// The peak is marked (µm and peak_ratio), the residual amplitude labelled after the
+// motion's end, which is marked and labelled too; `title` heads the plot (RunPlotTitle).
 void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
-                         const Scenario& scenario);
+                         const Scenario& scenario, const std::string& title);
+
+// The title of a run's plots: the scenario's name, its pattern method and the --set
+// options, so two runs of one file tell apart ("demo, method none, --set ..."); each
+// option's value is shortened past 24 characters and the options past 160 in all.
+std::string RunPlotTitle(const Scenario& scenario, const std::vector<Override>& overrides);
+
+// The deflection is identically zero (a rigid machine, no states): deflection.png would
+// be a flat line, so `run --out` writes a note instead.
+bool DeflectionIsZero(const RunResult& result);
+
+// The programmed path is a straight line along one axis (every point shares its x or its
+// y): path.png would be a line, so `run --out` writes a note instead.
+bool PathIsSingleAxisLine(const RunResult& result);
 
 // One run of a deflection overlay: its result (the trace), its scenario (the trace's row
 // limit), a short name ("baseline") and its legend entry.
@@ -71,7 +87,7 @@ void WriteDeflectionOverlayPlot(const std::string& path_png, const std::vector<O
 // The XY path (programmed vs actual tool path), the deviation from the programmed path
 // magnified so it shows at the path's scale (the circle-test plot of ISO 230-4); mm.
 void WritePathPlot(const std::string& path_png, const RunResult& result,
-                   const Scenario& scenario);
+                   const Scenario& scenario, const std::string& title);
 
 // JUnit XML: one <testsuite> per scenario file, one <testcase> per check; a failed run
 // is one <testcase name="run"> with an <error>. A sweep: one <testcase> per point and

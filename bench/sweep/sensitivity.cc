@@ -323,6 +323,45 @@ void WriteSensitivityCsv(const std::string& path, const SensitivityResult& resul
   });
 }
 
+namespace {
+
+// The plot's terms for the curves. Curves that coincide (zv and method 1, an exact curve
+// and its realized table) must all stay visible: each shaper and damping its colour, dash
+// type and point type, its realized table thinner, dashed, with open points; markers every
+// N samples, each curve's at its own phase so coinciding curves show every marker.
+void WriteCurveTerms(std::FILE* gnuplot, const SensitivityResult& result) {
+  static const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                         "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const int kDash[] = {1, 4, 5, 6};  // a period prime to the colours' and points'
+  std::size_t shapers = 0;
+  for (const SensitivityCurve& c : result.curves) shapers += c.realized ? 0 : 1;
+  static const int kFilled[] = {7, 5, 9, 11, 13, 15};
+  static const int kOpen[] = {6, 4, 8, 10, 12, 14};
+  const std::size_t n = result.ratio.size();
+  const std::size_t every = std::max<std::size_t>(1, n / 10);
+  const std::size_t count = std::max<std::size_t>(1, result.curves.size());
+  std::size_t shaper = 0;
+  for (std::size_t i = 0; i < result.curves.size(); ++i) {
+    const SensitivityCurve& c = result.curves[i];
+    if (!c.realized && i > 0) ++shaper;
+    const char* colour = kColours[shaper % 10];
+    const int dash = c.realized ? 2 : kDash[shaper % 4];
+    const int point = c.realized ? kOpen[shaper % 6] : kFilled[shaper % 6];
+    // The first drawn, underneath, the widest: a curve drawn over it leaves its edges.
+    const double width =
+        c.realized ? 1.0 : 3.0 - 1.5 * static_cast<double>(shaper) / static_cast<double>(std::max<std::size_t>(1, shapers - 1));
+    const std::size_t phase = (i * every / count) % every;
+    std::fprintf(gnuplot,
+                 "$data using 1:%zu with lines lw %g dt %d lc rgb '%s' notitle, \\\n     "
+                 "$data every %zu::%zu using 1:%zu with points pt %d ps 1.1 lc rgb '%s' notitle, \\\n     "
+                 "NaN with linespoints lw %g dt %d pt %d ps 1.1 lc rgb '%s' title %s, \\\n     ",
+                 i + 2, width, dash, colour, every, phase, i + 2, point, colour, width, dash, point, colour,
+                 GnuplotQuoted(CurveName(c, result)).c_str());
+  }
+}
+
+}  // namespace
+
 void WriteSensitivityPlot(const std::string& path_png, const SensitivityResult& result,
                           const std::string& title) {
   RunGnuplot(path_png, [&](std::FILE* gnuplot, const std::string& output_path) {
@@ -347,14 +386,7 @@ void WriteSensitivityPlot(const std::string& path_png, const SensitivityResult& 
       std::fprintf(gnuplot, "\n");
     }
     std::fprintf(gnuplot, "EOD\nplot ");
-    // One colour per shaper and plant damping; its realized table dashed in the same.
-    std::size_t colour = 0;
-    for (std::size_t i = 0; i < result.curves.size(); ++i) {
-      const SensitivityCurve& c = result.curves[i];
-      if (!c.realized) ++colour;
-      std::fprintf(gnuplot, "$data using 1:%zu with lines lw 1.5 lc %zu%s title %s, \\\n     ", i + 2,
-                   colour, c.realized ? " dt 2" : "", GnuplotQuoted(CurveName(c, result)).c_str());
-    }
+    WriteCurveTerms(gnuplot, result);
     std::fprintf(gnuplot, "5 with lines lw 1.5 dt 3 lc rgb '#cc0000' title '5%% level'");
     if (std::abs(result.level - 0.05) > 1e-12) {
       const std::string name = Num(result.level * 100.0) + "% level";

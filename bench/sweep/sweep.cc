@@ -254,7 +254,7 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
   };
   std::vector<SweepPlot> plots;
   for (const NodeReader& entry : node.Elements()) {
-    entry.ExpectMap({"metric", "x", "series", "heatmap"});
+    entry.ExpectMap({"metric", "x", "series", "heatmap", "log"});
     SweepPlot plot;
     const auto metric = entry.Child("metric");
     if (!metric) throw entry.Error("a plot needs metric: and x: (or heatmap: [X_KEY, Y_KEY])");
@@ -301,6 +301,9 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
         throw keys[1].Error("'" + plot.heatmap_y + "' moves with '" + plot.heatmap_x +
                             "' (one axis of the grid); a heat map needs keys of two axes");
       }
+    }
+    if (const auto log = entry.Child("log")) {
+      plot.log = log->AsChoice<bool>({{"true", true}, {"false", false}});
     }
     plots.push_back(plot);
   }

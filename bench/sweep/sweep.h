@@ -14,7 +14,7 @@
 //   metrics: [peak_ratio, residual_ratio] # results.csv columns (default: every metric)
 //   plots:                                 # PNGs next to results.csv
 //     - {metric: residual_ratio, x: machine.modes[0].frequency_hz, series: controller.pattern.method}
-//     - {metric: peak_ratio, heatmap: [machine.modes[0].frequency_hz, controller.feed_mm_min]}
+//     - {metric: peak_ratio, heatmap: [machine.modes[0].frequency_hz, controller.feed_mm_min], log: true}
 //   checks: {residual_ratio: {max: 0.05}}  # `check` applies them to every point
 //
 // The grid is the Cartesian product of its axes in the order written, the LAST axis
@@ -85,6 +85,10 @@ struct SweepPlot {
   std::string series;
   std::string heatmap_x;
   std::string heatmap_y;
+  // `log:` the metric's axis (a heat map's colour scale) in log: true, false, or unset:
+  // then log for a ratio metric whose positive values span more than two decades
+  // (LogMetricAxis, bench/sweep/sweep_plot.h).
+  std::optional<bool> log;
   bool heatmap() const { return !heatmap_x.empty(); }
 };
 

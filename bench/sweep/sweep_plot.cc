@@ -20,6 +20,9 @@ namespace {
 const auto& Quoted = GnuplotQuoted;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// A line plot marks its points up to this many along x.
+constexpr std::size_t kMaxMarkedPoints = 300;
+
 const char* const kColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
@@ -170,6 +173,25 @@ std::string Title(const SweepLayout& layout, const std::string& what, const Slic
   return title;
 }
 
+// In log, a slice's non-positive values cannot be drawn: they become gaps. Returns
+// whether the metric's axis is in log (LogMetricAxis, and some value left to draw).
+bool ApplyLog(const SweepPlot& plot, Slice* slice) {
+  if (!LogMetricAxis(plot, slice->z)) return false;
+  bool any = false;
+  for (double& z : slice->z) {
+    if (!(z > 0.0)) z = kNaN;
+    any = any || std::isfinite(z);
+  }
+  return any;
+}
+
+// A range around one value: +/-10% (a decade each way in log), [-1, 1] around 0.
+std::pair<double, double> PaddedRange(double value, bool log) {
+  if (log) return {value / 10.0, value * 10.0};
+  const double pad = value == 0.0 ? 1.0 : 0.1 * std::abs(value);
+  return {value - pad, value + pad};
+}
+
 void Preamble(std::FILE* gnuplot, const std::string& output_path, const std::string& title) {
   std::fprintf(gnuplot, "set terminal pngcairo size 1000,640 noenhanced font 'sans,10'\n");
   std::fprintf(gnuplot, "set encoding utf8\n");
@@ -179,16 +201,23 @@ void Preamble(std::FILE* gnuplot, const std::string& output_path, const std::str
 }
 
 void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
-                    const SweepPlot& plot, const Slice& slice) {
+                    const SweepPlot& plot, Slice slice) {
   const double level = FivePercentLevel(plot.metric);
+  const bool log = ApplyLog(plot, &slice);
   Preamble(gnuplot, output_path,
            Title(layout, plot.metric + " vs " + plot.x +
                              (plot.series.empty() ? "" : ", one line per " + plot.series),
                  slice));
   std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.x)).c_str());
   std::fprintf(gnuplot, "set ylabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
-  std::fprintf(gnuplot, "set key outside right top box\n");
+  // The legend in rows under the plot, short samples: the plot keeps the page's width.
+  const std::size_t entries = slice.y.texts.size() + (std::isfinite(level) ? 1 : 0);
+  std::fprintf(gnuplot,
+               "set bmargin %zu\nset key at screen 0.5, screen 0.01 center bottom horizontal maxcols 4 "
+               "box samplen 2\n",
+               5 + (entries + 3) / 4);
   if (slice.x.numeric && slice.x.log) std::fprintf(gnuplot, "set logscale x\n");
+  if (log) std::fprintf(gnuplot, "set logscale y\nset format y '%%g'\n");
   if (!slice.x.numeric) std::fprintf(gnuplot, "set xtics %s\n", IndexTics(slice.x).c_str());
   // Ranges gnuplot cannot derive without warning: no defined value, or one value only.
   const std::size_t nx = slice.x.texts.size();
@@ -198,11 +227,16 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
     if (std::isfinite(z)) low = std::min(low, z), high = std::max(high, z);
   }
   if (std::isfinite(level)) low = std::min(low, level), high = std::max(high, level);
+  // In log, values a million times under the largest are numerical zeros (a shaper's
+  // exact notch): the axis stops there rather than spend decades on them.
+  if (log && std::isfinite(low) && low < 1e-6 * high) {
+    std::fprintf(gnuplot, "set yrange [%.17g:*]\n", 1e-6 * high);
+  }
   if (!std::isfinite(low)) {
     std::fprintf(gnuplot, "set yrange [0:1]\nset label 'no defined values' at graph 0.5, 0.5 center\n");
   } else if (low == high) {
-    const double pad = low == 0.0 ? 1.0 : 0.1 * std::abs(low);
-    std::fprintf(gnuplot, "set yrange [%.17g:%.17g]\n", low - pad, high + pad);
+    const auto range = PaddedRange(low, log);
+    std::fprintf(gnuplot, "set yrange [%.17g:%.17g]\n", range.first, range.second);
   }
   // The x range spans every value of the key, defined or not (no empty range warnings).
   double x_low = slice.x.Coordinate(0);
@@ -236,10 +270,12 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
     std::fprintf(gnuplot, "EOD\n");
     if (!any) continue;
     const std::string title =
-        plot.series.empty() ? plot.metric : plot.series + " = " + slice.y.texts[s];
+        plot.series.empty() ? plot.metric : ShortKey(plot.series, layout.keys) + " = " + slice.y.texts[s];
+    // Markers while they stay apart; beyond a few hundred points they merge into a ribbon.
     char term[256];
-    std::snprintf(term, sizeof term, "$s%zu using 1:2 with linespoints lw 1.5 pt 7 ps 0.4 lc rgb '%s' title ",
-                  s, kColors[s % (sizeof kColors / sizeof kColors[0])]);
+    std::snprintf(term, sizeof term, "$s%zu using 1:2 with %s lw 1.5 lc rgb '%s' title ", s,
+                  nx > kMaxMarkedPoints ? "lines" : "linespoints pt 7 ps 0.4",
+                  kColors[s % (sizeof kColors / sizeof kColors[0])]);
     terms.push_back(term + Quoted(title));
   }
   if (std::isfinite(level)) {
@@ -256,8 +292,9 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
 }
 
 void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
-                   const SweepPlot& plot, const Slice& slice) {
+                   const SweepPlot& plot, Slice slice) {
   const double level = FivePercentLevel(plot.metric);
+  const bool log = ApplyLog(plot, &slice);
   Preamble(gnuplot, output_path,
            Title(layout, plot.metric + " over " + plot.heatmap_x + " and " + plot.heatmap_y, slice));
   std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.heatmap_x)).c_str());
@@ -269,6 +306,7 @@ void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const Swe
   // Legend (the 5% contour) in its own strip under the x label.
   std::fprintf(gnuplot, "set bmargin 6\nset key at screen 0.5, screen 0.02 center bottom horizontal box\n");
   std::fprintf(gnuplot, "set autoscale fix\n");
+  if (log) std::fprintf(gnuplot, "set logscale cb\nset format cb '%%g'\n");
   // Keys drawn at their values when evenly spaced numbers, else by index with labels.
   const bool x_values = slice.x.Uniform();
   const bool y_values = slice.y.Uniform();
@@ -293,11 +331,14 @@ void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const Swe
     std::fprintf(gnuplot, "\n");
   }
   std::fprintf(gnuplot, "EOD\n");
+  if (log && std::isfinite(low) && low < 1e-6 * high) {  // numerical zeros, as in a line plot
+    std::fprintf(gnuplot, "set cbrange [%.17g:*]\n", 1e-6 * high);
+  }
   if (!std::isfinite(low)) {
     std::fprintf(gnuplot, "set cbrange [0:1]\nset label 'no defined values' at graph 0.5, 0.5 center front\n");
   } else if (low == high) {
-    const double pad = low == 0.0 ? 1.0 : 0.1 * std::abs(low);
-    std::fprintf(gnuplot, "set cbrange [%.17g:%.17g]\n", low - pad, high + pad);
+    const auto range = PaddedRange(low, log);
+    std::fprintf(gnuplot, "set cbrange [%.17g:%.17g]\n", range.first, range.second);
   }
   // The 5% level as a contour line, when the map crosses it.
   const bool contour = std::isfinite(level) && low < level && level < high && nx > 1 && ny > 1;
@@ -370,6 +411,7 @@ nlohmann::ordered_json SweepLayout::ToJson() const {
       entry["x"] = plot.x;
       if (!plot.series.empty()) entry["series"] = plot.series;
     }
+    if (plot.log) entry["log"] = *plot.log;
     json["plots"].push_back(entry);
   }
   return json;
@@ -407,6 +449,7 @@ SweepLayout SweepLayout::FromJson(const nlohmann::json& json) {
         plot.x = entry.at("x").get<std::string>();
         if (entry.contains("series")) plot.series = entry.at("series").get<std::string>();
       }
+      if (entry.contains("log")) plot.log = entry.at("log").get<bool>();
       layout.plots.push_back(plot);
     }
     for (const auto axis : layout.key_axis) {
@@ -421,19 +464,46 @@ SweepLayout SweepLayout::FromJson(const nlohmann::json& json) {
   }
 }
 
-std::string SweepPlotFileName(const SweepPlot& plot) {
-  if (plot.heatmap()) {
-    return SafeName(plot.metric + "_over_" + plot.heatmap_x + "_and_" + plot.heatmap_y) + ".png";
+std::string ShortKey(const std::string& key, const std::vector<std::string>& keys) {
+  // Dotted components from the end: the first suffix no other key ends with.
+  for (std::size_t dot = key.size(); dot != std::string::npos;) {
+    dot = dot == 0 ? std::string::npos : key.rfind('.', dot - 1);
+    const std::string suffix = dot == std::string::npos ? key : key.substr(dot + 1);
+    bool unique = true;
+    for (const std::string& other : keys) {
+      if (other == key) continue;
+      unique = unique && !(other == suffix || EndsWith(other, "." + suffix));
+    }
+    if (unique) return suffix;
   }
-  return SafeName(plot.metric + "_vs_" + plot.x + (plot.series.empty() ? "" : "_by_" + plot.series)) +
+  return key;
+}
+
+std::string SweepPlotFileName(const SweepPlot& plot, const std::vector<std::string>& keys) {
+  const auto key = [&](const std::string& name) { return ShortKey(name, keys); };
+  if (plot.heatmap()) {
+    return SafeName(plot.metric + "-over-" + key(plot.heatmap_x) + "-and-" + key(plot.heatmap_y)) + ".png";
+  }
+  return SafeName(plot.metric + "-vs-" + key(plot.x) + (plot.series.empty() ? "" : "-by-" + key(plot.series))) +
          ".png";
+}
+
+bool LogMetricAxis(const SweepPlot& plot, const std::vector<double>& values) {
+  if (plot.log) return *plot.log;
+  if (!EndsWith(plot.metric, "_ratio")) return false;
+  double low = std::numeric_limits<double>::infinity();
+  double high = 0.0;
+  for (const double value : values) {
+    if (std::isfinite(value) && value > 0.0) low = std::min(low, value), high = std::max(high, value);
+  }
+  return high > 0.0 && high > 100.0 * low;
 }
 
 std::vector<std::string> WriteSweepPlots(const std::string& out_dir, const SweepLayout& layout,
                                          const std::string& results_csv) {
   std::vector<std::string> written;
   for (const SweepPlot& plot : layout.plots) {
-    const std::string path = (std::filesystem::path(out_dir) / SweepPlotFileName(plot)).string();
+    const std::string path = (std::filesystem::path(out_dir) / SweepPlotFileName(plot, layout.keys)).string();
     const Slice slice = plot.heatmap()
                             ? ReadSlice(layout, results_csv, plot.metric, plot.heatmap_x, plot.heatmap_y)
                             : ReadSlice(layout, results_csv, plot.metric, plot.x, plot.series);

@@ -30,9 +30,21 @@ struct SweepLayout {
   static SweepLayout FromJson(const nlohmann::json& json);  // throws std::runtime_error
 };
 
-// The file name of a plot: "residual_ratio_vs_machine.modes_0_.frequency_hz.png" style,
-// characters other than [A-Za-z0-9._-] replaced by '_'.
-std::string SweepPlotFileName(const SweepPlot& plot);
+// The shortest dotted suffix of `key` that no other of `keys` ends with (whole
+// components): "frequency_hz" for machine.modes[0].frequency_hz unless another key ends
+// in frequency_hz, then "modes[0].frequency_hz".
+std::string ShortKey(const std::string& key, const std::vector<std::string>& keys);
+
+// The file name of a plot, each key by its ShortKey among the sweep's `keys`:
+// "residual_ratio-vs-frequency_hz-by-method.png", "peak_ratio-over-frequency_hz-and-
+// feed_mm_min.png"; characters other than [A-Za-z0-9._-] replaced by '_'.
+std::string SweepPlotFileName(const SweepPlot& plot, const std::vector<std::string>& keys);
+
+// Whether the metric's axis (a heat map's colour scale) is drawn in log: the plot's
+// `log:` when given; else for a ratio metric whose positive `values` span more than two
+// decades (a residual ratio from 1e-4 to 2 would leave everything under 5% flat).
+// Non-positive values are then left out (gaps).
+bool LogMetricAxis(const SweepPlot& plot, const std::vector<double>& values);
 
 // Draws every plot of `layout` from `results_csv` into `out_dir`; returns the PNG paths.
 // Throws std::runtime_error when gnuplot is missing or fails.

@@ -177,7 +177,7 @@ TEST(AtomicOutput, FailedRunOutLeavesNoDirectory) {
 TEST(AtomicOutput, GoodRunOutGivesTheWholeDirectory) {
   ScratchDir dir;
   const std::string out = dir.File("out");
-  const CliResult r = RunCli({"run", DataPath("shaped_method1.yaml"), "--out", out}, kSourceDir);
+  const CliResult r = RunCli({"run", DataPath("shaped_method1_xy.yaml"), "--out", out}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* name : {"metrics.json", "trace.csv", "deflection.png", "path.png"}) {
     EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + name)) << name;

@@ -70,7 +70,7 @@ TEST(Cli, RunSetOverrides) {
 TEST(Cli, RunOutWritesFiles) {
   ScratchDir dir;
   const std::string out = dir.File("nested/out");
-  const CliResult r = RunCli({"run", DataPath("shaped_method1.yaml"), "--out", out}, kSourceDir);
+  const CliResult r = RunCli({"run", DataPath("shaped_method1_xy.yaml"), "--out", out}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const auto metrics = nlohmann::json::parse(ReadText(out + "/metrics.json"));

@@ -368,7 +368,7 @@ const std::string kHostileTitle = std::string("it's a \"title\" \\ `touch pwned1
 TEST(Gnuplot, HostileTitlesAreQuotedNeverRun) {
   ScratchDir dir;
   const std::string stem = "it's \"q\" \\ `touch pwned3` $(touch pwned4)\nx";
-  std::string yaml = ReadText(DataPath("shaped_method1.yaml"));
+  std::string yaml = ReadText(DataPath("shaped_method1_xy.yaml"));  // an XY path: path.png too
   const std::string by_stem = dir.Write(stem + ".yaml", yaml);
   const CliResult a = RunCli({"run", by_stem, "--out", dir.File("a")}, dir.path().string());
   ASSERT_EQ(a.exit_code, 0) << a.err;

@@ -122,7 +122,7 @@ TEST(SweepCli, ShardsMergeToTheUnshardedFile) {
   ASSERT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_EQ(ReadText(dir.File("merged/results.csv")), ReadText(reference));
   EXPECT_EQ(ReadText(dir.File("merged/manifest.json")), ReadText(dir.File("whole/manifest.json")));
-  EXPECT_EQ(ReadText(dir.File("merged/residual_ratio_vs_machine.modes_0_.frequency_hz.png")).substr(1, 3), "PNG");
+  EXPECT_EQ(ReadText(dir.File("merged/residual_ratio-vs-modes_0_.frequency_hz.png")).substr(1, 3), "PNG");
 
   const CliResult missing = RunCli({"merge", "--out", dir.File("m2"), dir.File("shard0")}, kSourceDir);
   EXPECT_EQ(missing.exit_code, 2);
@@ -314,9 +314,9 @@ TEST(SweepCli, PlotsArePngs) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;  // no gnuplot warnings either
   for (const std::string name :
-       {"residual_ratio_vs_machine.modes_0_.frequency_hz_by_controller.accel_time_s.png",
-        "residual_ratio_over_machine.modes_0_.frequency_hz_and_controller.accel_time_s.png",
-        "motion_time_s_vs_controller.accel_time_s.png"}) {
+       {"residual_ratio-vs-frequency_hz-by-accel_time_s.png",
+        "residual_ratio-over-frequency_hz-and-accel_time_s.png",
+        "motion_time_s-vs-accel_time_s.png"}) {
     const std::string png = ReadText(dir.File("map/" + name));
     ASSERT_GT(png.size(), 1000u) << name;
     EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << name;
