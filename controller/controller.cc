@@ -298,7 +298,10 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   command.block_clamped = std::move(plan.block_clamped);
   command.short_block_clamps = plan.short_block_clamps;
   command.stroke_alarm = plan.stroke_alarm;
-  command.warnings = ShortBlockWarnings(controller.short_block);
+  command.warnings = program.warnings;
+  for (std::string& warning : ShortBlockWarnings(controller.short_block)) {
+    command.warnings.push_back(std::move(warning));
+  }
   return command;
 }
 

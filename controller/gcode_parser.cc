@@ -1,10 +1,13 @@
 #include "controller/gcode_parser.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <set>
 #include <vector>
 
 namespace shapebench::controller {
@@ -163,10 +166,139 @@ void CheckParsedSoFar(const Program& program, std::size_t counted, double* path_
   }
 }
 
+// What the parser does with a word before ProgramBuilder sees the block.
+enum class WordUse { kModelled, kNoEffect, kIgnored };
+
+// The G or M code of `word` (-1 when it is none or beyond any code's range).
+int CodeOf(const Word& word) {
+  if (!(word.value >= 0 && word.value <= 1000) || word.value != std::floor(word.value)) return -1;
+  return static_cast<int>(word.value);
+}
+
+// Why `word` is refused: it would change the motion and the bench does not model it; ""
+// for the others.
+std::string RefusalReason(const Word& word) {
+  const int code = CodeOf(word);
+  const std::string shown = "'" + word.text + "'";
+  if (word.letter == 'M' && (code == 98 || code == 99)) {
+    return shown + " (subprogram call or return) changes which blocks run, and the bench reads "
+           "one program without subprograms; write the moves out in the program";
+  }
+  if (word.letter != 'G') return "";
+  if (code == 41 || code == 42) {
+    return shown + " (cutter radius compensation) offsets the path by the tool radius, and the "
+           "bench has no tool table; program the tool-centre path (G40)";
+  }
+  if (code == 95 || code == 96) {
+    return shown + " (feed per revolution, constant surface speed) ties the feed to the "
+           "spindle, which the bench does not model; program F in mm/min (G94)";
+  }
+  if (code == 73 || code == 74 || code == 76 || (code >= 81 && code <= 89)) {
+    return shown + " is a canned cycle, which expands into moves the bench does not generate; "
+           "program the moves with G0/G1 (G80 cancels a cycle)";
+  }
+  if (code == 28 || code == 30) {
+    return shown + " (reference point return) moves through the machine's reference point, "
+           "which the bench does not model; program the moves with G0/G1";
+  }
+  if (code == 53) {
+    return shown + " (machine coordinates) needs the work offsets, which the bench does not "
+           "model; program the moves in the part's coordinates";
+  }
+  return "";
+}
+
+WordUse UseOf(const Word& word) {
+  if (std::strchr("OTSHDM", word.letter) != nullptr) return WordUse::kIgnored;
+  if (word.letter != 'G') return WordUse::kModelled;
+  const int code = CodeOf(word);
+  if (code == 43 || code == 44 || (code >= 54 && code <= 59)) return WordUse::kIgnored;
+  if (code == 40 || code == 49 || code == 80 || code == 94) return WordUse::kNoEffect;
+  return WordUse::kModelled;
+}
+
+bool IsOffsetWord(const Word& word) {
+  const int code = word.letter == 'G' ? CodeOf(word) : -1;
+  return code == 43 || code == 44 || (code >= 54 && code <= 59);
+}
+
+// The words a program drops, each distinct one (as written) once, with its first line.
+class IgnoredWords {
+ public:
+  void Add(const std::string& shown, int line) {
+    if (!seen_.insert(shown).second) return;
+    if (entries_.size() < kMaxListed) {
+      entries_.push_back(shown + " (line " + std::to_string(line) + ")");
+    } else {
+      ++unlisted_;
+    }
+  }
+  void NoteOffset() { offsets_ = true; }
+
+  // The one warning of the program, "" when nothing was dropped.
+  std::string Warning() const {
+    if (seen_.empty()) return "";
+    std::string text = "ignored words not modelled by the bench: ";
+    for (std::size_t i = 0; i < entries_.size(); ++i) text += (i > 0 ? ", " : "") + entries_[i];
+    if (unlisted_ > 0) text += " and " + std::to_string(unlisted_) + " more";
+    if (offsets_) {
+      text += "; tool-length and work offsets do not move the commanded path (the bench has "
+              "no tool or offset table)";
+    }
+    return text;
+  }
+
+ private:
+  static constexpr std::size_t kMaxListed = 40;  // a long program repeats a few words
+  std::set<std::string> seen_;
+  std::vector<std::string> entries_;
+  std::size_t unlisted_ = 0;
+  bool offsets_ = false;
+};
+
+// `words` without the words the bench drops; refuses those that would change the motion
+// (and, strict, the dropped ones). Sets *ends for M2/M30.
+std::vector<Word> ModelledWords(const std::vector<Word>& words, int line, const GcodeOptions& options,
+                                IgnoredWords* ignored, bool* ends) {
+  std::vector<Word> kept;
+  auto is_length_offset = [](const Word& w) {
+    return w.letter == 'G' && (CodeOf(w) == 43 || CodeOf(w) == 44);
+  };
+  // An H word shown with its G43/G44 ("G43 H1").
+  const bool length_offset = std::any_of(words.begin(), words.end(), is_length_offset);
+  std::string h_word;
+  for (const Word& word : words) {
+    if (word.letter == 'H') h_word = word.text;
+  }
+  for (const Word& word : words) {
+    const std::string reason = RefusalReason(word);
+    if (!reason.empty()) throw ProgramError(line, word.column, -1, reason);
+    const WordUse use = UseOf(word);
+    if (use == WordUse::kModelled) kept.push_back(word);
+    if (use != WordUse::kIgnored) continue;
+    if (options.strict) {
+      throw ProgramError(line, word.column, -1,
+                         "'" + word.text + "' is not modelled by the bench, and " +
+                             options.strict_key + " refuses the words it would otherwise "
+                             "ignore (O, T, S, H, D, M, G43, G44, G54-G59)");
+    }
+    const int code = CodeOf(word);
+    if (word.letter == 'M' && (code == 2 || code == 30)) *ends = true;
+    if (IsOffsetWord(word)) ignored->NoteOffset();
+    if (word.letter == 'H' && length_offset) continue;  // listed with its G43/G44
+    ignored->Add(is_length_offset(word) && !h_word.empty() ? word.text + " " + h_word : word.text,
+                 line);
+  }
+  return kept;
+}
+
 }  // namespace
 
-Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, const GcodeLimits& limits) {
+Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, const GcodeLimits& limits,
+                   const GcodeOptions& options) {
   ProgramBuilder builder(start_m);
+  IgnoredWords ignored;
+  int end_line = 0;  // the line of M2/M30, 0 before it
   double path_s = 0.0;  // the path's time so far, at least
   bool opened = false;     // an opening `%` was read
   int closing_line = 0;    // the line of the closing `%`, 0 while open
@@ -203,15 +335,25 @@ Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, cons
                              std::to_string(closing_line) +
                              "; '%' may only open and close the program");
     }
+    if (end_line > 0) {
+      throw ProgramError(line_number, scanned.words.front().column, -1,
+                         "a block after the program end (M2/M30) of line " +
+                             std::to_string(end_line) + "; a control stops there");
+    }
+    bool ends = false;
     Block block;
-    block.words = scanned.words;
+    block.words = ModelledWords(scanned.words, line_number, options, &ignored, &ends);
     block.source_line = line_number;
+    if (ends) end_line = line_number;
     const std::size_t counted = builder.program().blocks.size();
     builder.Apply(block);
     CheckParsedSoFar(builder.program(), counted, &path_s, limits, line_number);
     any_block = true;
   }
-  return builder.TakeProgram();
+  Program program = builder.TakeProgram();
+  const std::string warning = ignored.Warning();
+  if (!warning.empty()) program.warnings.push_back(warning);
+  return program;
 }
 
 }  // namespace shapebench::controller

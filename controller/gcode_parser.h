@@ -14,6 +14,19 @@
 //     allowed (`X 10`, `X -5`), not inside the number.
 //   - Numbers: optional sign, digits with at most one decimal point (`10`, `-5.5`, `.5`,
 //     `5.`); no exponent. G and N take unsigned integers (`G01` is G1; `G1.5` is malformed).
+//   - Part-program words outside the motion (controller/program_builder.h lists the modelled
+//     ones) are read and dropped, with ONE warning per program that lists each distinct
+//     word with its first line (Program::warnings): O (program number), T (tool), S
+//     (spindle speed), H and D (offset numbers), M (spindle, coolant, tool change, end:
+//     M3 M4 M5 M6 M8 M9 M30 and any other), G43/G44 (tool-length offset) and G54-G59
+//     (work offsets). The bench has no tool or offset table, so the offsets do not move
+//     the commanded path. G40, G49, G80 and G94 select the state the bench models (no
+//     cutter compensation, no length offset, no canned cycle, feed per minute) and are
+//     accepted without a warning. GcodeOptions::strict refuses every dropped word.
+//   - Words that would change the motion the bench does not model are refused: G41/G42
+//     (cutter compensation), G95/G96 (feed per revolution, constant surface speed),
+//     canned cycles (G73, G74, G76, G81-G89), G28/G30 (reference return), G53 (machine
+//     coordinates), M98/M99 (subprograms), and any block after M2/M30 (the program end).
 //   - Columns are 1-based characters (a tab counts as one). Every error about a word,
 //     including a malformed number, points at the word's letter; an unclosed comment at
 //     its `(`; a stray character at itself.
@@ -44,9 +57,17 @@ struct GcodeLimits {
   double rapid_feed_m_s = 0.0;    // G0
 };
 
+// How strictly the part-program words outside the motion are read.
+struct GcodeOptions {
+  // Refuse the words that would otherwise be dropped with a warning (O, T, S, H, D, M,
+  // G43, G44, G54-G59), each at its line and column.
+  bool strict = false;
+  std::string strict_key = "strict";  // names the setting in the message
+};
+
 // Throws ProgramError with the 1-based line and column of what is wrong.
 Program ParseGcode(const std::string& text,
                    const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
-                   const GcodeLimits& limits = {});
+                   const GcodeLimits& limits = {}, const GcodeOptions& options = {});
 
 }  // namespace shapebench::controller

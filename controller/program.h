@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -39,6 +40,9 @@ struct ProgramBlock {
 struct Program {
   Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
   std::vector<ProgramBlock> blocks;
+  // What the reader dropped and the run should say (e.g. the G-code words the bench does
+  // not model, controller/gcode_parser.h); GenerateProgramCommand passes them on.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace shapebench::controller

@@ -77,7 +77,8 @@ controller::Program ReadProgramList(const NodeReader& program, const Eigen::Vect
 controller::Program ReadProgramFile(const NodeReader& program_file,
                                     const std::string& scenario_dir,
                                     const Eigen::Vector3d& start_m,
-                                    const controller::GcodeLimits& limits) {
+                                    const controller::GcodeLimits& limits,
+                                    const controller::GcodeOptions& options) {
   const std::string reference = program_file.AsString();
   const fs::path resolved = fs::path(reference).is_absolute()
                                 ? fs::path(reference)
@@ -91,7 +92,7 @@ controller::Program ReadProgramFile(const NodeReader& program_file,
     throw program_file.Error("G-code file " + shown + ": " + error);
   }
   try {
-    return controller::ParseGcode(text, start_m, limits);
+    return controller::ParseGcode(text, start_m, limits, options);
   } catch (const controller::ProgramError& error) {
     throw ConfigError(file, std::max(1, error.line()), std::max(1, error.column()),
                       program_file.path(), error.message());

@@ -16,7 +16,9 @@
 // `program_file:` is resolved relative to the scenario file's directory (absolute paths
 // are kept). Errors inside the file: "GCODE_FILE:LINE:COL: program_file: ...", located
 // in the G-code file; a missing or unreadable file is reported at the `program_file:`
-// value, naming the resolved path.
+// value, naming the resolved path. The words the bench does not model (O, T, S, M, G43 H,
+// G54...) are dropped with one warning per program, or refused under the scenario's
+// `program_strict: true` (controller/gcode_parser.h).
 #pragma once
 
 #include <string>
@@ -32,10 +34,12 @@ namespace shapebench::bench {
 controller::Program ReadProgramList(const NodeReader& program,
                                     const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
 
-// `limits` stops the parse at the block that crosses them (ParseGcode).
+// `limits` stops the parse at the block that crosses them; `options.strict` refuses the
+// words the parser would drop with a warning (ParseGcode).
 controller::Program ReadProgramFile(const NodeReader& program_file,
                                     const std::string& scenario_dir,
                                     const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
-                                    const controller::GcodeLimits& limits = {});
+                                    const controller::GcodeLimits& limits = {},
+                                    const controller::GcodeOptions& options = {});
 
 }  // namespace shapebench::bench

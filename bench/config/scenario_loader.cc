@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kScenarioKeys = {
-    "name", "machine", "drive", "controller", "move", "program", "program_file", "output",
+    "name", "machine", "drive", "controller", "move", "program", "program_file", "program_strict", "output",
     "integrator", "checks", "limits"};
 
 bool HasKey(const YAML::Node& map, const std::string& key) {
@@ -399,12 +399,22 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   }
   if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
   if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
+  controller::GcodeOptions gcode_options;
+  gcode_options.strict_key = "program_strict";
+  if (auto strict = top.Child("program_strict")) {
+    if (!top.Has("program_file")) {
+      throw strict->Error("program_strict applies to a G-code file; give program_file, or remove "
+                          "program_strict");
+    }
+    top.Read<bool>("program_strict", {{"true", true}, {"false", false}}, &gcode_options.strict);
+  }
   if (auto program_file = top.Child("program_file")) {
     // Limits from a validated period only (an invalid one is reported below, as before).
     const bool period_ok = scenario.controller.period_s > 0.0 && std::isfinite(scenario.controller.period_s);
     scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string(),
                                        Eigen::Vector3d::Zero(),
-                                       period_ok ? ParseLimits(scenario) : controller::GcodeLimits{});
+                                       period_ok ? ParseLimits(scenario) : controller::GcodeLimits{},
+                                       gcode_options);
   }
   if (auto output = top.Child("output")) {
     output->ExpectMap({"direction"});

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/config/scenario_loader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {
@@ -175,15 +176,17 @@ TEST(ProgramReaderTest, ReadsTheFile) {
   EXPECT_EQ(program.blocks[4].source_line, 9);
 }
 
-// Tests that an error inside the G-code file is located in that file, key program_file.
+// Tests that an error inside the G-code file is located in that file, key program_file
+// (the scenario's program_strict refuses the M3 the parser would otherwise drop).
 TEST(ProgramReaderTest, FileErrorInTheGcodeFile) {
   const std::string gcode = fs::path(DataPath("programs/bad_word.nc")).lexically_normal().string();
   const ConfigError error =
-      ErrorOf([&] { ReadFile(DataPath("programs/bad_program_file.yaml")); });
-  ExpectError(error, gcode, 3, 8, "program_file", "unsupported word 'M3'");
+      ErrorOf([&] { LoadScenario(DataPath("programs/bad_program_file.yaml"), {}); });
+  ExpectError(error, gcode, 3, 8, "program_file", "'M3' is not modelled by the bench");
   EXPECT_EQ(std::string(error.what()),
-            gcode + ":3:8: program_file: unsupported word 'M3'; allowed: G0-G4, G17-G19, G21, "
-                    "G90, G91, F, X, Y, Z, I, J, K, R, P, N");
+            gcode + ":3:8: program_file: 'M3' is not modelled by the bench, and program_strict "
+                    "refuses the words it would otherwise ignore (O, T, S, H, D, M, G43, G44, "
+                    "G54-G59)");
   // A malformed number in a file in a subdirectory.
   ScratchDir dir;
   dir.Write("parts/p.nc", "G1 X1\n\n  G1 X1.2.3\n");

@@ -83,5 +83,46 @@ TEST(ScenarioProgramTest, BadOutputDirection) {
   EXPECT_NE(error.message().find("auto|magnitude|x|y|z"), std::string::npos) << error.what();
 }
 
+// Tests that the shipped tool-change pocket runs with one warning listing the words the
+// bench ignores, and that program_strict: true refuses its first one (O1000, line 2) at
+// its line and column in the G-code file.
+TEST(ScenarioProgramTest, ProgramStrictRefusesWhatARunIgnores) {
+  const std::string scenario =
+      std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/pocket_toolchange.yaml";
+  const RunResult r = RunScenario(LoadScenario(scenario, {}));
+  ASSERT_EQ(r.command.warnings.size(), 1u);
+  EXPECT_EQ(r.command.warnings[0].rfind("ignored words not modelled by the bench: O1000 (line 2), "
+                                        "T1 (line 7), M6 (line 7), G54 (line 8)",
+                                        0),
+            0u)
+      << r.command.warnings[0];
+  EXPECT_FALSE(r.command.stroke_alarm);
+
+  ScratchDir dir;
+  const std::string program = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/programs/pocket_toolchange.nc";
+  const std::string path = dir.Write("s.yaml", "program_file: " + program + "\nprogram_strict: true\n");
+  const ConfigError error = LoadError(path);
+  EXPECT_EQ(error.line(), 2) << error.what();
+  EXPECT_EQ(error.column(), 1) << error.what();
+  EXPECT_NE(error.message().find("'O1000' is not modelled by the bench, and program_strict refuses"),
+            std::string::npos)
+      << error.what();
+  // program_strict: false is the default behaviour.
+  const std::string lenient = dir.Write("l.yaml", "program_file: " + program + "\nprogram_strict: false\n");
+  EXPECT_EQ(LoadScenario(lenient, {}).program->warnings.size(), 1u);
+}
+
+// Tests that program_strict needs program_file and takes true or false.
+TEST(ScenarioProgramTest, ProgramStrictKeyErrors) {
+  ScratchDir dir;
+  const ConfigError without = LoadError(
+      dir.Write("a.yaml", "program:\n  - {g: 1, x: 10, f: 600}\nprogram_strict: true\n"));
+  EXPECT_EQ(without.key_path(), "program_strict") << without.what();
+  EXPECT_NE(without.message().find("give program_file"), std::string::npos) << without.what();
+  dir.Write("p.nc", "G1 X1 F600\n");
+  const ConfigError not_bool = LoadError(dir.Write("b.yaml", "program_file: p.nc\nprogram_strict: yes please\n"));
+  EXPECT_EQ(not_bool.key_path(), "program_strict") << not_bool.what();
+}
+
 }  // namespace
 }  // namespace shapebench::bench

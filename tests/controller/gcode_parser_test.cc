@@ -205,17 +205,38 @@ TEST(GcodeParserTest, EmptyProgram) {
   EXPECT_TRUE(ParseGcode("%\n(nothing)\n%\n").blocks.empty());
 }
 
-// Tests unsupported words at their line and the letter's column.
+// Tests unsupported words at their line and the letter's column; the part-program words
+// the parser would drop (M, S, T, G54, O) under strict options, G41 refused as cutter
+// compensation (tests/controller/gcode_ignored_words_test.cc has the rest).
 TEST(GcodeParserTest, UnsupportedWords) {
-  ExpectError("G1 X10\nG1 X20 M3\n", 2, 8,
-              "unsupported word 'M3'; allowed: G0-G4, G17-G19, G21, G90, G91, F, X, Y, Z, I, "
+  ExpectError("G1 X10\nG1 X20 G68\n", 2, 8,
+              "unsupported word 'G68'; allowed: G0-G4, G17-G19, G21, G90, G91, F, X, Y, Z, I, "
               "J, K, R, P, N");
-  ExpectError("N10 S1000\n", 1, 5, "unsupported word 'S1000'");
-  ExpectError("\n\nG41 X1\n", 3, 1, "unsupported word 'G41'");
-  ExpectError("T1\n", 1, 1, "unsupported word 'T1'");
-  ExpectError("G54\n", 1, 1, "unsupported word 'G54'");
-  ExpectError("O1000\n", 1, 1, "unsupported word 'O1000'");
-  ExpectError("x1 m03\n", 1, 4, "unsupported word 'M03'");
+  ExpectError("N10 Q1000\n", 1, 5, "unsupported word 'Q1000'");
+  GcodeOptions strict;
+  strict.strict = true;
+  auto strict_error = [&](const std::string& text) {
+    try {
+      ParseGcode(text, Eigen::Vector3d::Zero(), {}, strict);
+    } catch (const ProgramError& error) {
+      return error;
+    }
+    ADD_FAILURE() << "no ProgramError for:\n" << text;
+    return ProgramError(0, 0, -1, "");
+  };
+  auto expect_strict = [&](const std::string& text, int line, int column, const std::string& part) {
+    const ProgramError error = strict_error(text);
+    EXPECT_EQ(error.line(), line) << error.what();
+    EXPECT_EQ(error.column(), column) << error.what();
+    EXPECT_NE(error.message().find(part), std::string::npos) << error.what();
+  };
+  expect_strict("G1 X10\nG1 X20 M3\n", 2, 8, "'M3' is not modelled by the bench");
+  expect_strict("N10 S1000\n", 1, 5, "'S1000' is not modelled");
+  ExpectError("\n\nG41 X1\n", 3, 1, "'G41' (cutter radius compensation)");
+  expect_strict("T1\n", 1, 1, "'T1' is not modelled");
+  expect_strict("G54\n", 1, 1, "'G54' is not modelled");
+  expect_strict("O1000\n", 1, 1, "'O1000' is not modelled");
+  expect_strict("x1 m03\n", 1, 4, "'M03' is not modelled");
   ExpectError("G1 X1 #1=5\n", 1, 7, "unexpected character '#'");
   ExpectError("/G1 X1\n", 1, 1, "unexpected character '/'");
 }
