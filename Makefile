@@ -3,7 +3,7 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PACKAGES = cmake ninja-build g++ libsundials-dev libeigen3-dev libyaml-cpp-dev libgtest-dev \
-           libcli11-dev nlohmann-json3-dev gnuplot-nox libxml2-utils universal-ctags
+           libcli11-dev nlohmann-json3-dev gnuplot-nox libxml2-utils universal-ctags chromium
 
 .PHONY: deps configure build demo test clean
 

@@ -23,6 +23,7 @@
 #include "common/atomic_file.h"
 #include "common/fd_stream.h"
 #include "bench/compare/compare.h"
+#include "bench/compare/compare_html.h"
 #include "bench/compare/compare_report.h"
 #include "bench/compare/compare_runs.h"
 #include "bench/compare/compare_sweep.h"
@@ -31,11 +32,13 @@
 #include "bench/sim/cosim.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
+#include "bench/report/html_report.h"
 #include "bench/report/modes_report.h"
 #include "bench/report/pattern_report.h"
 #include "bench/report/report.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_html.h"
 #include "bench/sweep/sweep_runner.h"
 #include "bench/sweep/sensitivity.h"
 #include "common/validation_error.h"
@@ -133,6 +136,15 @@ RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& over
   }
 }
 
+// --report FILE.html (bench/report/html_report.h), written complete or not at all.
+void WriteReport(const std::string& path, const std::function<HtmlReport()>& build) {
+  Doing("writing the report " + path);
+  const HtmlReport report = build();  // gnuplot runs here: before the deferral, so ^C stops it
+  const DeferInterrupts defer;
+  WriteHtmlReport(path, report);
+  ThrowIfInterrupted(path + " is complete");
+}
+
 // The files of `run --out DIR`. Created only now: bad input and solver failures leave no
 // directory behind. A new directory is filled under a temporary name and renamed when
 // complete, so a failure (gnuplot, full disk) leaves none behind either. A signal while
@@ -182,9 +194,11 @@ struct RunArgs {
   std::vector<std::string> sets;
   bool json = false;
   std::string out_dir;
+  std::string report;  // --report FILE.html
 };
 
 int RunCommand(const RunArgs& args) {
+  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   Doing("loading " + args.scenario);
   const Scenario scenario = LoadScenario(args.scenario, overrides);
@@ -198,6 +212,13 @@ int RunCommand(const RunArgs& args) {
     std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
   }
   if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result, overrides);
+  if (!args.report.empty()) {
+    WriteReport(args.report, [&] {
+      Doing("evaluating the checks of scenario '" + scenario.name + "' for the report", RunMemory(scenario));
+      const std::vector<CheckResult> checks = EvaluateScenarioChecks(scenario, overrides, result.metrics);
+      return RunHtmlReport(scenario, result, checks, EffectiveScenarioYaml(args.scenario, overrides));
+    });
+  }
   if (args.json) {
     std::cout << RunJson(result).dump(2) << std::endl;
   } else {
@@ -212,6 +233,7 @@ struct CheckArgs {
   std::vector<std::string> files;
   std::vector<std::string> sets;
   std::string junit;
+  std::string report;  // --report FILE.html
   bool json = false;  // the results as one JSON object instead of the lines
   int jobs = 0;  // sweep files: worker threads (0: every hardware thread)
   bool force = false;  // sweep files: load a grid above SweepLoadOptions::max_points
@@ -224,6 +246,7 @@ int JobsOrDefault(int jobs) {
 }
 
 int CheckCommand(const CheckArgs& args) {
+  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   // Every file is loaded before anything runs: bad input fails fast and writes nothing.
   // A file with base: and grid: is a sweep: its checks apply to every point.
@@ -295,6 +318,7 @@ int CheckCommand(const CheckArgs& args) {
     WriteJUnit(args.junit, reports);
     ThrowIfInterrupted(args.junit + " is complete");
   }
+  if (!args.report.empty()) WriteReport(args.report, [&] { return CheckHtmlReport(reports); });
   return exit_code;
 }
 
@@ -368,6 +392,7 @@ struct SweepArgs {
   int jobs = 0;
   std::string out_dir;
   std::string shard;
+  std::string report;  // --report FILE.html
   bool force = false;
 };
 
@@ -391,6 +416,7 @@ void ParseShard(const std::string& text, SweepRunOptions* options) {
 
 // A grid of runs (bench/sweep/sweep.h, bench/sweep/sweep_runner.h): results.csv, plots.
 int SweepCommand(const SweepArgs& args) {
+  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   SweepRunOptions options;
   if (!args.shard.empty()) ParseShard(args.shard, &options);
@@ -417,6 +443,9 @@ int SweepCommand(const SweepArgs& args) {
   std::cout << " -> " << summary.results << "\n";
   for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
   std::cout.flush();
+  if (!args.report.empty()) {
+    WriteReport(args.report, [&] { return SweepHtmlReport(ReadSweepHtmlData(sweep, overrides, summary.results)); });
+  }
   return kExitOk;
 }
 
@@ -474,6 +503,10 @@ class CheckedStdout {
   std::streambuf* stdio_;
 };
 
+// --report of run, check, sweep and compare.
+constexpr const char* kReportHelp =
+    "write a self-contained HTML report (metrics, plots, checks, effective scenario) to FILE";
+
 // --force of `sweep` and `check` (SweepLoadOptions::max_points).
 constexpr const char* kForceHelp = "run a grid of more than 2,000,000 points";
 
@@ -493,6 +526,7 @@ struct CompareArgs {
   std::vector<std::string> gates;
   bool json = false;
   std::string out_dir;
+  std::string report;  // --report FILE.html (two scenarios)
   int jobs = 0;
 };
 
@@ -503,6 +537,10 @@ int CompareCommand(const CompareArgs& args) {
   const CompareRequest request{args.baseline, args.candidate, args.sets, args.baseline_sets,
                                args.candidate_sets};
   const bool sweep = IsSweepFile(args.baseline);
+  if (!args.report.empty()) {
+    if (sweep) throw std::runtime_error("compare --report: two scenarios only (a sweep's: sweep --report)");
+    ValidateReportPath(args.report);  // before anything runs
+  }
   if (!args.candidate.empty() && IsSweepFile(args.candidate) != sweep) {
     throw std::runtime_error("compare: " + (sweep ? args.baseline : args.candidate) +
                              " is a sweep file (base:, grid:), " + (sweep ? args.candidate : args.baseline) +
@@ -531,6 +569,7 @@ int CompareCommand(const CompareArgs& args) {
     }
   }
   if (!args.out_dir.empty()) WriteComparisonOutputs(args.out_dir, comparison);
+  if (!args.report.empty()) WriteReport(args.report, [&] { return CompareHtmlReport(comparison); });
   if (args.json) {
     std::cout << ComparisonJson(comparison).dump(2) << std::endl;
   } else {
@@ -567,6 +606,7 @@ CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
       ->add_option("--out", args->out_dir,
                    "write compare.txt, compare.json and deflection.png (sweeps: points.csv) into DIR")
       ->type_name("DIR");
+  compare->add_option("--report", args->report, kReportHelp)->type_name("FILE.html");
   compare->add_option("--jobs", args->jobs, "sweeps: worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096))
       ->type_name("N");
@@ -594,6 +634,7 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_args.out_dir,
                   "write metrics.json, trace.csv and deflection.png into DIR (created)")
       ->type_name("DIR");
+  run->add_option("--report", run_args.report, kReportHelp)->type_name("FILE.html");
 
   CheckArgs check_args;
   CLI::App* check = app.add_subcommand("check", "run scenarios and evaluate their checks");
@@ -602,6 +643,7 @@ int main(int argc, char** argv) {
       ->type_name("FILE.yaml");
   AddSetOption(check, &check_args.sets);
   check->add_option("--junit", check_args.junit, "write JUnit XML")->type_name("REPORT.xml");
+  check->add_option("--report", check_args.report, kReportHelp)->type_name("FILE.html");
   check->add_flag("--json", check_args.json,
                   "print the results as one JSON object (band checks: worst value and where)");
   check->add_option("--jobs", check_args.jobs, "sweep files: worker threads (default: all cores)")
@@ -651,6 +693,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--shard", sweep_args.shard,
                     "run the points p with p % N == I only (I in 0..N-1); join with merge")
       ->type_name("I/N");
+  sweep->add_option("--report", sweep_args.report, kReportHelp)->type_name("FILE.html");
   sweep->add_flag("--force", sweep_args.force, kForceHelp);
 
   MergeArgs merge_args;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bench/report/gnuplot.h"
+#include "bench/report/html_report.h"
 #include "bench/report/report.h"
 
 namespace shapebench::bench {
@@ -13,8 +14,11 @@ namespace {
 const auto& Quoted = GnuplotQuoted;
 
 // The page, the title and the axes' labels both deflection plots share.
-void WriteFrame(std::FILE* gnuplot, const std::string& output_path, const std::string& title) {
-  std::fprintf(gnuplot, "set terminal pngcairo size 1000,600 noenhanced font 'sans,10'\n");
+// `svg`: the HTML report's inline SVG (bench/report/html_report.h) instead of the PNG.
+void WriteFrame(std::FILE* gnuplot, const std::string& output_path, const std::string& title,
+                bool svg) {
+  std::fprintf(gnuplot, svg ? "set terminal svg size 1000,600 noenhanced font 'sans,10' background '#ffffff'\n"
+                            : "set terminal pngcairo size 1000,600 noenhanced font 'sans,10'\n");
   std::fprintf(gnuplot, "set encoding utf8\n");
   std::fprintf(gnuplot, "set output %s\n", Quoted(output_path).c_str());
   std::fprintf(gnuplot, "set title %s\n", Quoted(title).c_str());
@@ -68,11 +72,11 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
 }
 
 void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunResult& result,
-                 const Scenario& scenario, const std::string& title) {
+                 const Scenario& scenario, const std::string& title, bool svg = false) {
   const Trace& trace = result.trace;
   const double static_um = result.metrics.static_displacement_m * 1e6;
   const double end_s = trace.time_s.empty() ? 1.0 : trace.time_s.back();
-  WriteFrame(gnuplot, output_path, title);
+  WriteFrame(gnuplot, output_path, title, svg);
   WriteMarks(gnuplot, result, end_s);
   std::fprintf(gnuplot, "set offsets 0, 0, graph 0.12, 0\n");  // headroom for the labels
   std::fprintf(gnuplot, "set y2label 'command acceleration [m/s²]'\n");
@@ -130,10 +134,11 @@ void WriteOverlayData(std::FILE* gnuplot, const std::vector<OverlaidRun>& runs) 
 }
 
 void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
-                        const std::vector<OverlaidRun>& runs, const std::string& title) {
+                        const std::vector<OverlaidRun>& runs, const std::string& title,
+                        bool svg = false) {
   static const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
   const auto colour = [](std::size_t r) { return kColours[r % 4]; };
-  WriteFrame(gnuplot, output_path, title);
+  WriteFrame(gnuplot, output_path, title, svg);
   std::fprintf(gnuplot, "set grid\n");
   // The legend names files and --set options: one entry a line in a strip under the plot.
   std::fprintf(gnuplot,
@@ -198,6 +203,18 @@ void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
                          const Scenario& scenario, const std::string& title) {
   RunGnuplot(path_png, [&](std::FILE* gnuplot, const std::string& output_path) {
     WriteScript(gnuplot, output_path, result, scenario, title);
+  });
+}
+
+std::string DeflectionSvg(const RunResult& result, const Scenario& scenario) {
+  return RunGnuplotSvg("the deflection plot", [&](std::FILE* gnuplot, const std::string& output_path) {
+    WriteScript(gnuplot, output_path, result, scenario, scenario.name, /*svg=*/true);
+  });
+}
+
+std::string DeflectionOverlaySvg(const std::vector<OverlaidRun>& runs, const std::string& title) {
+  return RunGnuplotSvg("the deflection plot", [&](std::FILE* gnuplot, const std::string& output_path) {
+    WriteOverlayScript(gnuplot, output_path, runs, title, /*svg=*/true);
   });
 }
 

@@ -12,6 +12,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -141,6 +143,41 @@ void RunGnuplot(const std::string& path_png,
                              ")");
   }
   CommitPng(temp, path_png);
+}
+
+std::string RunGnuplotSvg(const std::string& what,
+                          const std::function<void(std::FILE*, const std::string&)>& script) {
+  std::error_code ec;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path(ec);
+  std::string name = ((ec ? std::filesystem::path("/tmp") : dir) / "shapebench-plot-XXXXXX.svg").string();
+  const int fd = mkstemps(name.data(), 4);
+  if (fd < 0) throw std::runtime_error("cannot draw " + what + ": " + std::strerror(errno));
+  close(fd);
+  int status = 0;
+  {
+    SigpipeBlock block;
+    std::FILE* gnuplot = popen("gnuplot", "w");
+    if (gnuplot == nullptr) {
+      std::remove(name.c_str());
+      throw std::runtime_error("cannot draw " + what + ": cannot start gnuplot");
+    }
+    script(gnuplot, name);
+    status = pclose(gnuplot);
+  }
+  std::ifstream in(name, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::remove(name.c_str());
+  const std::string svg = text.str();
+  const std::size_t start = svg.find("<svg");
+  const std::size_t end = svg.rfind("</svg>");
+  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || start == std::string::npos ||
+      end == std::string::npos || end < start) {
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    throw std::runtime_error("cannot draw " + what + ": gnuplot failed (exit " + std::to_string(code) +
+                             (code == 127 ? ", is gnuplot installed?" : "") + ")");
+  }
+  return svg.substr(start, end + 6 - start);
 }
 
 }  // namespace shapebench::bench

@@ -29,4 +29,10 @@ void CommitPng(TempFile& temp, const std::string& path_png);
 void RunGnuplot(const std::string& path_png,
                 const std::function<void(std::FILE* gnuplot, const std::string& output_path)>& script);
 
+// Runs gnuplot, `script` writing its commands for an SVG at `output_path` (a temporary
+// file, removed after), and returns the <svg> element (the XML prolog dropped, for inlining
+// in HTML). Throws std::runtime_error naming `what` when gnuplot is missing or fails.
+std::string RunGnuplotSvg(const std::string& what,
+                          const std::function<void(std::FILE* gnuplot, const std::string& output_path)>& script);
+
 }  // namespace shapebench::bench
