@@ -211,7 +211,9 @@ Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, cons
     CheckParsedSoFar(builder.program(), counted, &path_s, limits, line_number);
     any_block = true;
   }
-  return builder.TakeProgram();
+  Program program = builder.TakeProgram();
+  program.gcode_lines = true;
+  return program;
 }
 
 }  // namespace shapebench::controller

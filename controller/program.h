@@ -39,6 +39,8 @@ struct ProgramBlock {
 struct Program {
   Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
   std::vector<ProgramBlock> blocks;
+  // The blocks' source_line are G-code line numbers (ParseGcode), not `program:` indices.
+  bool gcode_lines = false;
 };
 
 }  // namespace shapebench::controller
