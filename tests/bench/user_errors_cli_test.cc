@@ -183,13 +183,24 @@ TEST(UserErrors, UnmodelledMovedAxisNeedsRigid) {
 TEST(UserErrors, StrokeAlarmIsAWarning) {
   const std::string scenario = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/stroke_end.yaml";
   ScratchDir dir;
-  for (const std::string& command : {"run", "check"}) {
+  for (const std::string command : {"run", "check"}) {
     const CliResult r = RunCli({command, scenario, "--set", "controller.stroke_end.enabled=false"},
                                dir.path().string());
     EXPECT_EQ(r.exit_code, command == "run" ? 0 : 1) << r.err;
     EXPECT_TRUE(Has(r.err, "warning: " + scenario + ": stroke alarm at Y = 0.5")) << r.err;
     EXPECT_TRUE(Has(r.err, " m (limit 0.5 m) in block 1: the rest of the program was not run")) << r.err;
   }
+  // A G-code program: the block and its line.
+  dir.Write("p.nc", "G1 Y100 F30000\nY600\n");
+  dir.Write("pg.yaml", "machine: " + std::string(SHAPEBENCH_SOURCE_DIR) +
+                           "/configs/machines/moving_column.yaml\n"
+                           "controller: {period_s: 0.001, feed_mm_min: 30000, accel_time_s: 0.3}\n"
+                           "program_file: p.nc\n");
+  const CliResult gcode = RunCli({"run", "pg.yaml"}, dir.path().string());
+  EXPECT_EQ(gcode.exit_code, 0) << gcode.err;
+  EXPECT_TRUE(Has(gcode.err, "warning: pg.yaml: stroke alarm at Y = 0.5")) << gcode.err;
+  EXPECT_TRUE(Has(gcode.err, " m (limit 0.5 m) in block 2 (line 2): the rest of the program was not run"))
+      << gcode.err;
   const CliResult quiet = RunCli({"run", std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/method1.yaml"},
                                  dir.path().string());
   EXPECT_FALSE(Has(quiet.err, "stroke alarm")) << quiet.err;
