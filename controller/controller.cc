@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -236,6 +237,48 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   }
 }
 
+namespace {
+
+// The stroke alarm in words: where the tool was when it fired (the axis furthest towards
+// its limit), and in which block, since the rest of the program is dropped
+// (EP0646852 (seed 001): the conventional stroke check stops the tool there).
+std::string StrokeAlarmWarning(const Program& program, const PathGeometry& path,
+                               const InterpolatedPulses& pulses, const SpeedPlan& plan,
+                               const StrokeLimits& limits) {
+  const std::size_t k = std::min(plan.alarm_tick, pulses.path_position_m.size() - 1);
+  const Eigen::Vector3d p = path.PointAt(pulses.path_position_m[k]);
+  int axis = -1;
+  double beyond = -std::numeric_limits<double>::infinity();
+  double limit = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    if (!limits[a]) continue;
+    for (int side = 0; side < 2; ++side) {
+      const double bound = (*limits[a])[side];
+      const double reach = side == 0 ? bound - p(a) : p(a) - bound;
+      if (reach > beyond) {
+        beyond = reach;
+        axis = a;
+        limit = bound;
+      }
+    }
+  }
+  std::string text = "stroke alarm";
+  if (axis >= 0) {
+    const char name[] = {static_cast<char>('X' + axis), '\0'};
+    text += " at " + std::string(name) + " = " + FormatNumber(p(axis)) + " m (limit " +
+            FormatNumber(limit) + " m)";
+  }
+  const int block = k < pulses.block.size() ? pulses.block[k] : -1;
+  if (block >= 0 && static_cast<std::size_t>(block) < program.blocks.size()) {
+    text += " in block " + std::to_string(block + 1);
+    const int line = program.blocks[static_cast<std::size_t>(block)].source_line;
+    if (program.gcode_lines && line > 0) text += " (line " + std::to_string(line) + ")";
+  }
+  return text + ": the rest of the program was not run";
+}
+
+}  // namespace
+
 MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program,
                                         const CommandLimits& limits) {
   const double dt = controller.period_s;
@@ -258,6 +301,8 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
                                           std::to_string(limits.max_ticks) + " periods)");
   }
   InterpolatedPulses pulses = Interpolate(path, plan, dt);
+  const std::string alarm =
+      plan.stroke_alarm ? StrokeAlarmWarning(program, path, pulses, plan, controller.stroke_limits) : "";
 
   const PulseFilter filter = PostInterpFilter(controller);
   std::vector<Eigen::Vector3d> out;
@@ -302,6 +347,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   for (std::string& warning : ShortBlockWarnings(controller.short_block)) {
     command.warnings.push_back(std::move(warning));
   }
+  if (!alarm.empty()) command.warnings.push_back(alarm);
   return command;
 }
 

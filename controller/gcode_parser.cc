@@ -353,6 +353,7 @@ Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, cons
   Program program = builder.TakeProgram();
   const std::string warning = ignored.Warning();
   if (!warning.empty()) program.warnings.push_back(warning);
+  program.gcode_lines = true;
   return program;
 }
 

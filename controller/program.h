@@ -43,6 +43,8 @@ struct Program {
   // What the reader dropped and the run should say (e.g. the G-code words the bench does
   // not model, controller/gcode_parser.h); GenerateProgramCommand passes them on.
   std::vector<std::string> warnings;
+  // The blocks' source_line are G-code line numbers (ParseGcode), not `program:` indices.
+  bool gcode_lines = false;
 };
 
 }  // namespace shapebench::controller

@@ -35,6 +35,7 @@
 #include "bench/report/html_report.h"
 #include "bench/report/modes_report.h"
 #include "bench/report/pattern_report.h"
+#include "bench/report/output_path.h"
 #include "bench/report/report.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sweep.h"
@@ -189,6 +190,17 @@ void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const
   ThrowIfInterrupted("the output in " + out_dir + " is complete");
 }
 
+// The controller's warnings (a short-block clamp, a stroke alarm that dropped the rest of
+// the program) and the run's (a cross-check that disagreed) on stderr.
+void PrintRunWarnings(const std::string& file, const RunResult& result) {
+  for (const std::string& warning : result.command.warnings) {
+    std::cerr << "warning: " << Safe(file) << ": " << Safe(warning) << "\n";
+  }
+  for (const std::string& warning : result.warnings) {
+    std::cerr << "warning: " << Safe(file) << ": " << Safe(warning) << "\n";
+  }
+}
+
 struct RunArgs {
   std::string scenario;
   std::vector<std::string> sets;
@@ -199,18 +211,14 @@ struct RunArgs {
 
 int RunCommand(const RunArgs& args) {
   if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the run
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   Doing("loading " + args.scenario);
   const Scenario scenario = LoadScenario(args.scenario, overrides);
   Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
   const RunResult result = RunLocated(scenario, overrides);
   Doing("writing the outputs of scenario '" + scenario.name + "'");
-  for (const std::string& warning : result.command.warnings) {
-    std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
-  }
-  for (const std::string& warning : result.warnings) {
-    std::cerr << "warning: " << Safe(scenario.source_file) << ": " << Safe(warning) << "\n";
-  }
+  PrintRunWarnings(scenario.source_file, result);
   if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result, overrides);
   if (!args.report.empty()) {
     WriteReport(args.report, [&] {
@@ -247,6 +255,7 @@ int JobsOrDefault(int jobs) {
 
 int CheckCommand(const CheckArgs& args) {
   if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.junit.empty()) RequireWritableOutputFile("--junit", args.junit);  // before the runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   // Every file is loaded before anything runs: bad input fails fast and writes nothing.
   // A file with base: and grid: is a sweep: its checks apply to every point.
@@ -292,6 +301,7 @@ int CheckCommand(const CheckArgs& args) {
     Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
     try {
       const RunResult result = RunLocated(scenario, overrides);
+      PrintRunWarnings(scenario.source_file, result);
       report.results = EvaluateScenarioChecks(scenario, overrides, result.metrics);
     } catch (const ConfigError& error) {
       report.error = error.what();
@@ -365,6 +375,7 @@ struct SensitivityArgs {
 // Residual vibration vs plant frequency / design frequency per shaper (bench/sweep/sensitivity.h).
 int SensitivityCommand(const SensitivityArgs& args) {
   Doing("computing the sensitivity curves of " + args.file);
+  if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);
   const SensitivitySpec spec = LoadSensitivity(args.file, ParseOverrides(args.sets));
   const SensitivityResult result = ComputeSensitivity(spec);
   if (!args.out_dir.empty()) {
@@ -417,6 +428,7 @@ void ParseShard(const std::string& text, SweepRunOptions* options) {
 // A grid of runs (bench/sweep/sweep.h, bench/sweep/sweep_runner.h): results.csv, plots.
 int SweepCommand(const SweepArgs& args) {
   if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the points
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   SweepRunOptions options;
   if (!args.shard.empty()) ParseShard(args.shard, &options);
@@ -534,6 +546,7 @@ struct CompareArgs {
 // a gate fails; a sweep's point that fails to run makes it 2 or 3, as `check` ranks them.
 int CompareCommand(const CompareArgs& args) {
   const std::vector<Gate> gates = ParseGates(args.gates);  // before anything runs
+  if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);
   const CompareRequest request{args.baseline, args.candidate, args.sets, args.baseline_sets,
                                args.candidate_sets};
   const bool sweep = IsSweepFile(args.baseline);

@@ -137,6 +137,21 @@ void ReadStroke(const NodeReader& machine, model::MultiAxisMachineConfig* config
   }
 }
 
+// `rigid: [x, z]`: axes without a model that a program may still move. An axis with a
+// model cannot be rigid.
+void ReadRigid(const NodeReader& machine, model::MultiAxisMachineConfig* config) {
+  const auto rigid = machine.Child("rigid");
+  if (!rigid) return;
+  for (const NodeReader& entry : rigid->Elements()) {
+    const int axis = entry.AsChoice(AxisChoices());
+    if (config->axes[axis]) {
+      throw entry.Error(std::string("axis ") + model::AxisName(axis) +
+                        " has a model in this machine; only an axis without one can be rigid");
+    }
+    config->rigid[axis] = true;
+  }
+}
+
 model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   std::vector<std::string> single_keys = {"modes", "axis"};
   const std::vector<std::string> lumped_keys = LumpedKeys();
@@ -148,7 +163,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
                          "each axis' model under axes.x, axes.y or axes.z");
     }
   }
-  machine.ExpectMap({"axes", "driven_axis", "stroke"});
+  machine.ExpectMap({"axes", "driven_axis", "stroke", "rigid"});
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = false;
@@ -165,6 +180,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   }
   machine.Read<int>("driven_axis", AxisChoices(), &config.driven_axis);
   ReadStroke(machine, &config);
+  ReadRigid(machine, &config);
   return config;
 }
 
@@ -180,10 +196,11 @@ model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = true;
-  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke"});
+  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke", "rigid"});
   machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
   ReadStroke(machine, &config);
   config.axes[config.driven_axis] = form;
+  ReadRigid(machine, &config);
   return config;
 }
 

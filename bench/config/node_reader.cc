@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <set>
 
+#include "common/closest_name.h"
 #include "common/shown_text.h"
 #include "bench/config/key_path.h"
 
@@ -94,7 +95,8 @@ void NodeReader::ExpectMap(const std::vector<std::string>& allowed) const {
     for (const auto& name : allowed) known = known || name == key;
     if (!known) {
       throw document_->ErrorAt(entry.first, key_path,
-                               "unknown key '" + ClippedForMessage(key) + "'; allowed: " + JoinNames(allowed, ", "));
+                               "unknown key '" + ClippedForMessage(key) + "'; allowed: " + JoinNames(allowed, ", ") +
+                                   DidYouMean(key, allowed));
     }
     if (!seen.insert(key).second) {
       throw document_->ErrorAt(entry.first, key_path, "duplicate key '" + ClippedForMessage(key) + "'");

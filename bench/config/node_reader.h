@@ -10,12 +10,16 @@
 #include <yaml-cpp/yaml.h>
 
 #include "bench/config/config_document.h"
+#include "common/closest_name.h"
 
 namespace shapebench::bench {
 
 // YAML 1.2 core-schema decimal numbers only: no hex, no .inf/.nan, no quoted strings. The
 // whole text matches [-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?: what NodeReader reads as a number.
 bool IsNumberText(const std::string& text);
+
+// Joins names for "allowed: a, b, c".
+std::string JoinNames(const std::vector<std::string>& names, const std::string& separator);
 
 class NodeReader {
  public:
@@ -48,9 +52,10 @@ class NodeReader {
     for (const auto& choice : choices) {
       if (node_.IsScalar() && choice.first == text) return choice.second;
     }
-    std::string names;
-    for (const auto& choice : choices) names += (names.empty() ? "" : "|") + choice.first;
-    throw Error("expected one of " + names + ", got " + Shown());
+    std::vector<std::string> names;
+    for (const auto& choice : choices) names.push_back(choice.first);
+    throw Error("expected one of " + JoinNames(names, "|") + ", got " + Shown() +
+                (node_.IsScalar() ? DidYouMean(text, names) : std::string()));
   }
 
   // Reads the optional key into *out, leaving the default when the key is absent.
@@ -75,7 +80,5 @@ class NodeReader {
   std::string path_;
 };
 
-// Joins names for "allowed: a, b, c".
-std::string JoinNames(const std::vector<std::string>& names, const std::string& separator);
 
 }  // namespace shapebench::bench

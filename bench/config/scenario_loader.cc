@@ -1,6 +1,7 @@
 #include "bench/config/scenario_loader.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -372,6 +373,48 @@ void ResolveDesignDefaults(const ConfigDocument& document, const LoadOptions& op
   Validated(document, "controller.pattern", [&] { ResolvePatternDefaults(modes, &pattern); });
 }
 
+// The axes the program moves: a line's changed coordinates, an arc's plane (a full
+// circle ends where it starts) and its changed normal coordinate.
+std::array<bool, model::kNumAxes> MovedAxes(const controller::Program& program) {
+  std::array<bool, model::kNumAxes> moved{};
+  Eigen::Vector3d at = program.start_m;
+  for (const controller::ProgramBlock& block : program.blocks) {
+    using controller::MotionKind;
+    if (block.kind == MotionKind::kDwell) continue;
+    for (int a = 0; a < model::kNumAxes; ++a) moved[a] = moved[a] || block.end_m(a) != at(a);
+    if (block.kind == MotionKind::kArcCw || block.kind == MotionKind::kArcCcw) {
+      const int normal = block.plane == controller::Plane::kXY ? 2 : block.plane == controller::Plane::kZX ? 1 : 0;
+      for (int a = 0; a < model::kNumAxes; ++a) moved[a] = moved[a] || a != normal;
+    }
+    at = block.end_m;
+  }
+  return moved;
+}
+
+// A machine that models some axes and not one the program moves would run that axis as
+// rigid without a word (every ratio n/a): an error unless the machine lists it in
+// `rigid:`. A machine with no model at all (`axes: {}`) is rigid throughout, as it says.
+void CheckMovedAxesModelled(const NodeReader& machine, const Scenario& scenario) {
+  const model::MultiAxisMachineConfig& config = scenario.machine;
+  bool any_model = false;
+  std::string modelled;
+  for (int a = 0; a < model::kNumAxes; ++a) {
+    if (!config.axes[a]) continue;
+    any_model = true;
+    modelled += std::string(modelled.empty() ? "" : ", ") + model::AxisName(a);
+  }
+  if (!any_model) return;
+  const std::array<bool, model::kNumAxes> moved = MovedAxes(scenario.RunProgram());
+  for (int a = 0; a < model::kNumAxes; ++a) {
+    if (!moved[a] || config.axes[a] || config.rigid[a]) continue;
+    const std::string name = model::AxisName(a);
+    const ConfigError at = machine.Error("");
+    throw machine.Error("the program moves axis " + name + ", which the machine (" + at.file() +
+                        ") does not model (it models " + modelled + "): model it, or say it is rigid with " +
+                        "rigid: [" + name + "]");
+  }
+}
+
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                       const LoadOptions& options) {
   NodeReader top(document, document.root(), "");
@@ -443,6 +486,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
       controller::CheckShapedMove(scenario.controller, std::abs(scenario.move.distance_mm) * 1e-3);
     });
   }
+  if (auto machine = top.Child("machine")) CheckMovedAxesModelled(*machine, scenario);
   CheckRunLength(document, scenario);
   return scenario;
 }
