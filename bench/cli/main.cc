@@ -304,7 +304,6 @@ int CheckCommand(const CheckArgs& args) {
     const DeferInterrupts defer;
     WriteJUnit(args.junit, reports);
     ThrowIfInterrupted(args.junit + " is complete");
-    PrintWrote(args.json ? std::cerr : std::cout, {args.junit});
   }
   return exit_code;
 }

@@ -228,14 +228,13 @@ TEST(OutputFormat, JUnitHasRunTimesAndValueAndLimitInFailures) {
 }
 
 // Tests that `check --junit` on a sweep gives each point's testcase its measured time
-// (not 0) and says which file it wrote.
+// (not 0) and a failure message with the value and the bound.
 TEST(OutputFormat, CheckJUnitTimesAreMeasured) {
   ScratchDir dir;
   const std::string junit = dir.File("junit.xml");
   const CliResult r = RunCli(
       {"check", "tests/bench/data/sweeps/failing_point.yaml", "--jobs", "1", "--junit", junit}, kSourceDir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(WroteLines(r.out), std::vector<std::string>{junit}) << r.out;
   const std::string xml = ReadText(junit);
   const std::regex testcase("<testcase [^>]*time=\"([0-9.]+)\"");
   double total_s = 0.0;
