@@ -70,8 +70,8 @@ TEST(Report, TraceCsv) {
             "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
             "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n"
             "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,6000\n"
-            "0.10000000000000001,0.33333333333333331,2,-4,9.9999999999999995e-07,0.5,0.25,0,"
-            "0.5,0.25,9.9999999999999995e-07,0,0,9.9999999999999995e-07,-1,0\n");
+            "0.1,0.3333333333333333,2,-4,1e-06,0.5,0.25,0,"  // shortest exact (common/csv.h)
+            "0.5,0.25,1e-06,0,0,1e-06,-1,0\n");
 }
 
 // Tests that XML special characters and bytes XML cannot hold are escaped or dropped.
