@@ -1,5 +1,6 @@
 #include "common/csv.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,8 +91,13 @@ std::string ShortestDouble(double value) {
 std::string ExactDouble(double value) {
   if (std::isnan(value)) return "";
   char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
+  return std::string(text, AppendExactDouble(text, text + sizeof text, value));
+}
+
+char* AppendExactDouble(char* first, char* last, double value) {
+  // std::to_chars without a format: the shortest text that reads back as exactly `value`.
+  const std::to_chars_result written = std::to_chars(first, last, value);
+  return written.ec == std::errc() ? written.ptr : first;
 }
 
 }  // namespace shapebench

@@ -37,7 +37,12 @@ class CsvReader {
 // Formats a double so that strtod gives it back exactly, in as few digits as possible
 // ("15.1", not "15.099999999999999"); NaN -> "", infinities -> "inf"/"-inf".
 std::string ShortestDouble(double value);
-// %.17g (exact, and the same text on every run and thread count); NaN -> "".
+// The shortest text that reads back as exactly `value` (std::to_chars: "0.726", not
+// "0.72599999999999998"; the same text on every run and thread count); NaN -> "",
+// infinities "inf"/"-inf". The number format of the CSV files (results.csv, trace.csv).
 std::string ExactDouble(double value);
+// ExactDouble's text written at `first` (40 chars are always enough); returns its end.
+// NaN writes "nan" (callers of the CSV writers decide what NaN is).
+char* AppendExactDouble(char* first, char* last, double value);
 
 }  // namespace shapebench

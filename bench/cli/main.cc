@@ -40,11 +40,13 @@
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_html.h"
+#include "bench/sweep/sweep_files.h"
 #include "bench/sweep/sweep_runner.h"
 #include "bench/sweep/sensitivity.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/machine.h"
+#include "bench/cli/shapebench_version.h"  // generated in the build tree: cmake/git_version.cmake
 
 namespace {
 
@@ -128,6 +130,21 @@ int Guarded(const std::function<int()>& command) {
   }
 }
 
+// Every command with --out lists the files it wrote, one "wrote PATH" line each (PATH as
+// DIR/FILE with DIR as given), after its report: on stdout, or on stderr with --json, so
+// that stdout stays one JSON document (docs/concepts.md#what-a-run-writes).
+void PrintWrote(std::ostream& out, const std::string& dir, const std::vector<std::string>& files) {
+  for (const std::string& file : files) {
+    out << "wrote " << Safe((std::filesystem::path(dir) / file).string()) << "\n";
+  }
+  out.flush();
+}
+
+void PrintWrote(std::ostream& out, const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) out << "wrote " << Safe(path) << "\n";
+  out.flush();
+}
+
 // RunScenario's ValidationErrors are about the scenario: locate them in its sources.
 RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& overrides) {
   try {
@@ -151,12 +168,14 @@ void WriteReport(const std::string& path, const std::function<HtmlReport()>& bui
 // complete, so a failure (gnuplot, full disk) leaves none behind either. A signal while
 // writing lets the files finish (each is complete or absent), then stops.
 // deflection.png and path.png are left out when they would show nothing (a flat zero
-// line, a line along one axis); a note on stderr says so.
-void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const RunResult& result,
-                     const std::vector<Override>& overrides) {
+// line, a line along one axis); a note on stderr says so. Returns the names of the files
+// written.
+std::vector<std::string> WriteRunOutputs(const std::string& out_dir, const Scenario& scenario,
+                                         const RunResult& result, const std::vector<Override>& overrides) {
   const DeferInterrupts defer;
   StagedDirectory staged(out_dir);
   const std::filesystem::path dir(staged.path());
+  std::vector<std::string> written;
   try {
     WriteFileAtomically((dir / "metrics.json").string(), [&](std::ostream& out) {
       out << RunJson(result).dump(2) << "\n";
@@ -170,17 +189,20 @@ void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const
                 << "; the metrics use every sample\n";
     }
     const std::string title = RunPlotTitle(scenario, overrides);
+    written = {"metrics.json", "trace.csv"};
     if (DeflectionIsZero(result)) {
       std::cerr << "note: " << Safe(scenario.source_file) << ": no deflection.png: the deflection is "
                 << "identically 0 (a rigid machine, no states)\n";
     } else {
       WriteDeflectionPlot((dir / "deflection.png").string(), result, scenario, title);
+      written.push_back("deflection.png");
     }
     if (PathIsSingleAxisLine(result)) {
       std::cerr << "note: " << Safe(scenario.source_file) << ": no path.png: the programmed path is a "
                 << "straight move along one axis (its XY plot would be a line)\n";
     } else {
       WritePathPlot((dir / "path.png").string(), result, scenario, title);
+      written.push_back("path.png");
     }
   } catch (const std::runtime_error& error) {
     if (typeid(error) != typeid(std::runtime_error)) throw;
@@ -188,6 +210,7 @@ void WriteRunOutputs(const std::string& out_dir, const Scenario& scenario, const
   }
   staged.Commit();
   ThrowIfInterrupted("the output in " + out_dir + " is complete");
+  return written;
 }
 
 // The controller's warnings (a short-block clamp, a stroke alarm that dropped the rest of
@@ -219,7 +242,8 @@ int RunCommand(const RunArgs& args) {
   const RunResult result = RunLocated(scenario, overrides);
   Doing("writing the outputs of scenario '" + scenario.name + "'");
   PrintRunWarnings(scenario.source_file, result);
-  if (!args.out_dir.empty()) WriteRunOutputs(args.out_dir, scenario, result, overrides);
+  std::vector<std::string> written;
+  if (!args.out_dir.empty()) written = WriteRunOutputs(args.out_dir, scenario, result, overrides);
   if (!args.report.empty()) {
     WriteReport(args.report, [&] {
       Doing("evaluating the checks of scenario '" + scenario.name + "' for the report", RunMemory(scenario));
@@ -234,6 +258,7 @@ int RunCommand(const RunArgs& args) {
     PrintMetricsTable(std::cout, result.metrics);
     std::cout.flush();
   }
+  PrintWrote(args.json ? std::cerr : std::cout, args.out_dir, written);
   return kExitOk;
 }
 
@@ -314,6 +339,8 @@ int CheckCommand(const CheckArgs& args) {
     }
     report.run_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // Its checks share the run (and a band check's runs): each testcase is given its time.
+    for (CheckResult& result : report.results) result.run_time_s = report.run_time_s;
     for (const CheckResult& result : report.results) {
       if (!args.json) std::cout << Safe(FormatCheckLine(report.file, result)) << "\n";
       if (!result.passed) raise(kExitCheckFailed);
@@ -393,6 +420,7 @@ int SensitivityCommand(const SensitivityArgs& args) {
     ThrowIfInterrupted("the output in " + args.out_dir + " is complete");
   }
   PrintSensitivityTable(std::cout, result);
+  if (!args.out_dir.empty()) PrintWrote(std::cout, args.out_dir, {"sensitivity.csv", "sensitivity.png"});
   std::cout.flush();
   return kExitOk;
 }
@@ -453,7 +481,9 @@ int SweepCommand(const SweepArgs& args) {
   std::cout << ", " << summary.ok << " ok, " << summary.errors << " error";
   if (summary.resumed > 0) std::cout << " (" << summary.resumed << " done before)";
   std::cout << " -> " << summary.results << "\n";
-  for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
+  PrintWrote(std::cout, {(std::filesystem::path(summary.results).parent_path() / kSweepManifestFile).string(),
+                        summary.results});
+  PrintWrote(std::cout, summary.plots);
   std::cout.flush();
   if (!args.report.empty()) {
     WriteReport(args.report, [&] { return SweepHtmlReport(ReadSweepHtmlData(sweep, overrides, summary.results)); });
@@ -483,8 +513,9 @@ int MergeCommand(const MergeArgs& args) {
   ThrowIfInterrupted("the merged output in " + out_dir + " is complete");
   std::cout << "merged " << summary.shards << " shards: " << summary.points << " points -> "
             << summary.results << "\n";
-  for (const std::string& plot : summary.plots) std::cout << "plot " << plot << "\n";
-  std::cout.flush();
+  PrintWrote(std::cout, {(std::filesystem::path(summary.results).parent_path() / kSweepManifestFile).string(),
+                        summary.results});
+  PrintWrote(std::cout, summary.plots);
   return kExitOk;
 }
 
@@ -571,6 +602,10 @@ int CompareCommand(const CompareArgs& args) {
       PrintComparison(std::cout, comparison);
       std::cout.flush();
     }
+    if (!args.out_dir.empty()) {  // the files of CompareSweepsWritingTo
+      PrintWrote(args.json ? std::cerr : std::cout, args.out_dir,
+                 {"points.csv", "compare.txt", "compare.json"});
+    }
     if (comparison.point_exit_code != 0) return comparison.point_exit_code;
     return comparison.passed() ? kExitOk : kExitCheckFailed;
   }
@@ -588,6 +623,10 @@ int CompareCommand(const CompareArgs& args) {
   } else {
     PrintComparison(std::cout, comparison);
     std::cout.flush();
+  }
+  if (!args.out_dir.empty()) {  // the files of WriteComparisonOutputs
+    PrintWrote(args.json ? std::cerr : std::cout, args.out_dir,
+               {"compare.txt", "compare.json", "deflection.png"});
   }
   return comparison.passed() ? kExitOk : kExitCheckFailed;
 }
@@ -638,6 +677,8 @@ int main(int argc, char** argv) {
   CheckedStdout stdout_checked;
   CLI::App app{"shapebench: CNC vibration co-simulation testbench"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("shapebench ") + SHAPEBENCH_VERSION,
+                       "print shapebench and the git describe of its source tree, then exit");
 
   RunArgs run_args;
   CLI::App* run = app.add_subcommand("run", "simulate one scenario");

@@ -1,4 +1,5 @@
 // WriteJUnit and XmlEscape (bench/report/report.h): the JUnit XML that CI systems read.
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 #include <string>
@@ -49,6 +50,17 @@ std::string TestcaseName(const CheckResult& result) {
            ", " + FormatValue(result.band_to, 15) + "]";
   }
   return result.point.empty() ? result.metric : result.metric + " @ " + result.point;
+}
+
+// The failure's message: the value and the bound it crossed, "residual_ratio = 0.0613 >
+// max 0.05" (a band check: its worst value and where, then the bound).
+std::string FailureMessage(const CheckResult& result) {
+  if (result.banded()) return BandText(result) + ": " + result.message;
+  const std::string subject =
+      result.metric + (result.point.empty() ? "" : " @ " + result.point) + " = " + result.value_text;
+  if (result.message.rfind("above ", 0) == 0) return subject + " > " + result.message.substr(6);
+  if (result.message.rfind("below ", 0) == 0) return subject + " < " + result.message.substr(6);
+  return subject + ": " + result.message;
 }
 
 }  // namespace
@@ -144,7 +156,8 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
       }
       for (const auto& result : report.results) {
         out << "    <testcase classname=\"" << classname << "\" name=\""
-            << XmlEscape(TestcaseName(result)) << "\" time=\"0.000\"";
+            << XmlEscape(TestcaseName(result)) << "\" time=\""
+            << Seconds(std::isfinite(result.run_time_s) ? result.run_time_s : 0.0) << "\"";
         if (result.passed && !result.banded()) {
           out << "/>\n";
           continue;
@@ -152,8 +165,7 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
         out << ">\n";
         if (result.banded()) WriteBandDetails(out, result);
         if (!result.passed) {
-          const std::string message =
-              result.banded() ? BandText(result) + ": " + result.message : result.message;
+          const std::string message = FailureMessage(result);
           out << "      <failure type=\"CheckFailed\" message=\"" << XmlEscape(message) << "\">"
               << XmlEscape(FormatCheckLine(report.file, result)) << "</failure>\n";
         }

@@ -54,6 +54,45 @@ void PrintStep(std::ostream& out, const char* name, const controller::AccelStep&
       << "   (" << name << ")\n";
 }
 
+// The table's coefficients of at least kShownFraction of the largest |alpha_n|, then a
+// count and the sum of the rest: the grid correction (grid_realization.h) spreads
+// impulses over many ticks in tiny amounts (a 3-impulse ZVD: 57 coefficients, 53 of
+// them +-5e-6), which would bury the few that carry the shaping. Returns every
+// coefficient as an impulse (the residuals use them all).
+constexpr double kShownFraction = 1e-4;
+
+std::vector<controller::Impulse> PrintProfileTable(std::ostream& out, const std::vector<double>& table,
+                                                   double period_s) {
+  double largest = 0.0;
+  for (const double alpha : table) largest = std::max(largest, std::abs(alpha));
+  out << "  n      t_s            alpha_n   (listed: |alpha_n| >= " << Num(kShownFraction)
+      << " of the largest; alpha_n not listed are below it or 0)\n";
+  std::vector<controller::Impulse> impulses;
+  std::size_t hidden = 0;
+  double hidden_sum = 0.0;
+  double hidden_largest = 0.0;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    const double time_s = static_cast<double>(n) * period_s;
+    impulses.push_back({time_s, table[n]});
+    if (table[n] == 0.0) continue;
+    if (std::abs(table[n]) < kShownFraction * largest) {
+      ++hidden;
+      hidden_sum += table[n];
+      hidden_largest = std::max(hidden_largest, std::abs(table[n]));
+      continue;
+    }
+    char line[96];
+    std::snprintf(line, sizeof line, "  %-5zu  %-13.9g  %.9g\n", n, time_s, table[n]);
+    out << line;
+  }
+  if (hidden > 0) {
+    out << "  ... and " << hidden << " more below " << Num(kShownFraction)
+        << " of the largest (|alpha_n| <= " << Num(hidden_largest, "%.2g") << ", sum "
+        << Num(hidden_sum, "%.2g") << ")\n";
+  }
+  return impulses;
+}
+
 }  // namespace
 
 void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& controller) {
@@ -137,19 +176,10 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
       << "  profile_table: the impulses as jerk coefficients convolved with the move pulses\n"
       << "    after interpolation (paras. 52-61); it shapes every start and end (mode both)\n"
       << "\nprofile table on the " << Num(controller.period_s) << " s period grid "
-      << "(alpha_n at t = n * period_s; alpha_n not listed are 0; " << table.size()
+      << "(alpha_n at t = n * period_s; " << table.size()
       << " coefficients, at most post_interp.max_table_length = " << controller.post_interp.max_table_length
-      << ")\n"
-      << "  n      t_s            alpha_n\n";
-  std::vector<controller::Impulse> table_impulses;
-  for (std::size_t n = 0; n < table.size(); ++n) {
-    const double time_s = static_cast<double>(n) * controller.period_s;
-    table_impulses.push_back({time_s, table[n]});
-    if (table[n] == 0.0) continue;
-    char line[96];
-    std::snprintf(line, sizeof line, "  %-5zu  %-13.9g  %.9g\n", n, time_s, table[n]);
-    out << line;
-  }
+      << ")\n";
+  const std::vector<controller::Impulse> table_impulses = PrintProfileTable(out, table, controller.period_s);
 
   // Each impulse rounded to its nearest tick, without the correction: what the grid
   // would leave without grid_realization.h.
@@ -192,11 +222,53 @@ double MotionTimeS(const Scenario& scenario, const controller::ControllerConfig&
   return MotionEndS(controller::GenerateProgramCommand(c, scenario.RunProgram()));
 }
 
+// The residual vibration at every mode of every modelled axis of the scenario's machine,
+// each with its own damping: the design frequency is one guess of them, a band of them
+// or a second mode is what the machine actually has.
+void PrintMachineModeResiduals(std::ostream& out, const Scenario& scenario) {
+  const controller::ControllerConfig& controller = scenario.controller;
+  const controller::PatternConfig& config = controller.pattern;
+  const controller::StepPattern pattern = controller::MakeStepPattern(config);
+  const std::vector<controller::Impulse> impulses =
+      pattern.shapes() ? controller::ShaperImpulses(config) : controller::PatternImpulses(pattern);
+  const std::vector<double> table =
+      pattern.shapes() ? controller::ProfileTableFromImpulses(impulses, controller.period_s,
+                                                             controller::ShaperGridDesign(config))
+                       : std::vector<double>{1.0};
+  std::vector<controller::Impulse> table_impulses;
+  for (std::size_t n = 0; n < table.size(); ++n) {
+    table_impulses.push_back({static_cast<double>(n) * controller.period_s, table[n]});
+  }
+  out << "\nresidual vibration at the machine's modes (each with its own damping; fraction of an "
+         "unshaped step's)\n";
+  const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(scenario.machine);
+  bool any = false;
+  for (const model::AxisModes& axis : axes) any = any || !axis.analysis.modes.empty();
+  if (!any) {
+    out << "  none: the machine model has no modes\n";
+    return;
+  }
+  out << "  axis  mode  frequency_hz  damping_ratio  participation  stepped     profile_table\n";
+  for (const model::AxisModes& axis : axes) {
+    for (std::size_t m = 0; m < axis.analysis.modes.size(); ++m) {
+      const model::ModeInfo& mode = axis.analysis.modes[m];
+      char line[160];
+      std::snprintf(line, sizeof line, "  %-4s  %-4zu  %-12.6g  %-13.6g  %-13.6g  %-10.3e  %.3e\n",
+                    model::AxisName(axis.axis), m + 1, mode.frequency_hz, mode.damping_ratio,
+                    mode.participation,
+                    controller::ResidualVibration(impulses, mode.frequency_hz, mode.damping_ratio),
+                    controller::ResidualVibration(table_impulses, mode.frequency_hz, mode.damping_ratio));
+      out << line;
+    }
+  }
+}
+
 }  // namespace
 
 void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
   const controller::ControllerConfig& controller = scenario.controller;
   PrintPatternReport(out, controller);
+  PrintMachineModeResiduals(out, scenario);
   const controller::PatternConfig& config = controller.pattern;
   const controller::StepPattern pattern = controller::MakeStepPattern(config);
   out << "\ntime penalty (what the shaping costs the machine)\n";

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <iomanip>
 
+#include "bench/sim/engineering_units.h"
 #include "common/atomic_file.h"
+#include "common/csv.h"
 
 namespace shapebench::bench {
 std::string MetricUnit(const std::string& name) {
@@ -18,16 +20,13 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   for (const MetricInfo& info : MetricTable()) {
     const double value = metrics.*info.field;
-    char number[32];
-    std::snprintf(number, sizeof number, "%.6g", value);
     out << std::left << std::setw(static_cast<int>(width) + 2) << info.name;
     if (std::isnan(value)) {
       out << "n/a\n";
     } else if (info.is_bool()) {
       out << (value != 0.0 ? "true" : "false") << "\n";
     } else {
-      const std::string_view unit = info.shown_unit();
-      out << number << (unit.empty() ? "" : " ") << unit << "\n";
+      out << EngineeringText(value, info.unit) << "\n";  // um, mm, ms: JSON keeps SI
     }
   }
 }
@@ -80,7 +79,7 @@ std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_
     out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
            "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
            "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n";
-    char line[512];
+    char line[1024];  // 15 numbers of at most 40 characters, a block number
     const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
                                        trace.command_velocity_m_s.size(),
                                        trace.command_accel_m_s2.size(), trace.deflection_m.size(),
@@ -91,13 +90,18 @@ std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_
       const Eigen::Vector3d& c = trace.command_m[i];
       const Eigen::Vector3d& a = trace.actual_m[i];
       const Eigen::Vector3d& d = trace.deflection_axes_m[i];
-      std::snprintf(line, sizeof line,
-                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                    "%.17g,%.17g,%d,%.17g\n",
-                    trace.time_s[i], trace.command_position_m[i], trace.command_velocity_m_s[i],
-                    trace.command_accel_m_s2[i], trace.deflection_m[i], c.x(), c.y(), c.z(), a.x(),
-                    a.y(), a.z(), d.x(), d.y(), d.z(), trace.block[i], trace.planned_feed_mm_min[i]);
-      out << line;
+      char* end = line;
+      for (const double value : {trace.time_s[i], trace.command_position_m[i],
+                                 trace.command_velocity_m_s[i], trace.command_accel_m_s2[i],
+                                 trace.deflection_m[i], c.x(), c.y(), c.z(), a.x(), a.y(), a.z(),
+                                 d.x(), d.y(), d.z()}) {
+        end = AppendExactDouble(end, line + sizeof line, value);
+        *end++ = ',';
+      }
+      end += std::snprintf(end, static_cast<std::size_t>(line + sizeof line - end), "%d,", trace.block[i]);
+      end = AppendExactDouble(end, line + sizeof line, trace.planned_feed_mm_min[i]);
+      *end++ = '\n';
+      out.write(line, end - line);
     }
   });
   return stride;

@@ -17,7 +17,8 @@
 
 namespace shapebench::bench {
 
-// One aligned line per metric: name, value, unit ("n/a" for NaN).
+// One aligned line per metric: name, value in engineering units (bench/sim/engineering_units.h:
+// "7.99855 um", "12.5 ms"), "n/a" for NaN.
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
 
 // The unit a table shows for a metric (MetricInfo::shown_unit): "m", "s", or "".
@@ -36,7 +37,8 @@ nlohmann::ordered_json RunJson(const RunResult& result);
 
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
 // deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then
-// block (0-based, -1 after the program) and planned_feed_mm_min; %.17g.
+// block (0-based, -1 after the program) and planned_feed_mm_min; numbers as ExactDouble
+// (common/csv.h): the shortest text that reads back exactly.
 // A trace of more than `max_rows` samples is decimated (TraceStride): every stride-th
 // sample from the first, and a first line "# decimated: 1 in K of N samples kept ..." says
 // so. Returns the stride.

@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <string_view>
+
+#include "bench/sim/engineering_units.h"
 
 namespace shapebench::bench {
 
@@ -26,6 +29,12 @@ double Violation(const Check& check, double value) {
 CheckResult EvaluateCheck(const Check& check, double value, double worst_at, int band_runs) {
   CheckResult result;
   result.metric = check.metric;
+  // Lengths and times as people read them ("8 um", "12.5 ms"); check --json keeps the SI value.
+  const MetricInfo* info = FindMetric(check.metric);
+  const std::string_view unit = info != nullptr && (info->unit == "m" || info->unit == "s") ? info->unit : "";
+  const auto text = [unit](double x, int digits = 5) {
+    return unit.empty() ? FormatValue(x, digits) : EngineeringText(x, unit, digits);
+  };
   result.value = value;
   if (check.band) {
     result.band_key = check.band->key;
@@ -34,27 +43,27 @@ CheckResult EvaluateCheck(const Check& check, double value, double worst_at, int
     result.worst_at = worst_at;
     result.band_runs = band_runs;
   }
-  if (check.min) result.bound = "min " + FormatValue(*check.min);
-  if (check.max) result.bound += (result.bound.empty() ? "" : ", ") + ("max " + FormatValue(*check.max));
+  if (check.min) result.bound = "min " + text(*check.min);
+  if (check.max) result.bound += (result.bound.empty() ? "" : ", ") + ("max " + text(*check.max));
 
-  result.value_text = FormatValue(result.value);
+  result.value_text = text(result.value);
   std::optional<double> violated;
   if (std::isnan(result.value)) {
     result.message = check.band && !std::isnan(worst_at)
                          ? "metric not defined at " + check.band->key + " = " + FormatValue(worst_at, 7)
                          : "metric not defined for this run";
   } else if (check.min && result.value < *check.min) {
-    result.message = "below min " + FormatValue(*check.min);
+    result.message = "below min " + text(*check.min);
     violated = check.min;
   } else if (check.max && result.value > *check.max) {
-    result.message = "above max " + FormatValue(*check.max);
+    result.message = "above max " + text(*check.max);
     violated = check.max;
   } else {
     result.passed = true;
   }
   // 1.01000004 must not print as "1.01 (max 1.01)" next to FAIL.
-  if (violated && result.value_text == FormatValue(*violated)) {
-    result.value_text = FormatValue(result.value, 17);
+  if (violated && result.value_text == text(*violated)) {
+    result.value_text = text(result.value, 17);
   }
   return result;
 }

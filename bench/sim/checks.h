@@ -19,6 +19,7 @@ struct CheckResult {
   bool passed = false;
   std::string message;  // why it failed; empty when passed
   std::string point;    // a sweep's point, "key=value, ..."; empty for a scenario
+  double run_time_s = NAN;  // wall time of the run it was evaluated on (JUnit); NaN: not measured
   // A band check (Check::band): `value` is the worst over the band, found at
   // band_key = worst_at (NaN when no point ran), after `band_runs` runs.
   std::string band_key = {};  // (initialised: the brace-initialised results of tests stay warning-free)

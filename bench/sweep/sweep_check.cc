@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/ordered_pool.h"
 #include "common/shown_text.h"
@@ -39,10 +40,19 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   report->name = sweep.name;
   std::vector<CheckTally> tallies(sweep.checks.size());
   std::uint64_t failed_points = 0;
-  RunOrdered<PointOutcome>(
+  // Each point's outcome with the wall time of its run (a JUnit testcase's time).
+  using TimedOutcome = std::pair<PointOutcome, double>;
+  RunOrdered<TimedOutcome>(
       sweep.points, jobs,
-      [&](std::uint64_t point) { return RunPoint(sweep, sets, point); },
-      [&](std::uint64_t point, PointOutcome&& outcome) {
+      [&](std::uint64_t point) {
+        const auto point_start = std::chrono::steady_clock::now();
+        PointOutcome outcome = RunPoint(sweep, sets, point);
+        return TimedOutcome(std::move(outcome), std::chrono::duration<double>(
+                                                    std::chrono::steady_clock::now() - point_start)
+                                                    .count());
+      },
+      [&](std::uint64_t point, TimedOutcome&& timed) {
+        const PointOutcome& outcome = timed.first;
         const std::string label = MakePoint(sweep, point, {}).Label();
         if (!outcome.ok()) {
           ++failed_points;
@@ -56,6 +66,7 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
         for (std::size_t c = 0; c < results.size(); ++c) {
           CheckResult& result = results[c];
           result.point = label;
+          result.run_time_s = timed.second;
           CheckTally& tally = tallies[c];
           tally.bound = result.bound;
           ++(result.passed ? tally.passed : tally.failed);

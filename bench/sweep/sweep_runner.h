@@ -11,8 +11,9 @@
 //                        written (so a results.csv is always complete);
 //   *.png                the plots (not for a shard; `merge` draws them).
 // results.csv: `point` (0-based index in the whole grid; the last key varies fastest),
-// the swept keys as written in the grid, the kept metrics (%.17g, empty when undefined
-// or the point failed), `status` (ok|error) and `error` (the message); RFC 4180 quoting.
+// the swept keys as written in the grid, the kept metrics (ExactDouble, common/csv.h: the
+// shortest text that reads back exactly; empty when undefined or the point failed),
+// `status` (ok|error) and `error` (the message); RFC 4180 quoting.
 // Started again with the same --out, a sweep keeps the partial file's complete rows (a
 // torn last row is cut off), runs the points after them and ends with the same bytes as
 // an uninterrupted run. A directory holding another sweep (or another shard) is refused.

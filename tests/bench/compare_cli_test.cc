@@ -106,7 +106,9 @@ TEST(CompareCli, OutWritesTableJsonAndOverlayPlot) {
                                          "controller.pattern.method=zvd"};
   const CliResult r = RunCli(Args(args, {"--out", out}), kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(ReadText(out + "/compare.txt"), r.out);
+  // stdout: the table as compare.txt holds it, then a "wrote" line per file.
+  EXPECT_EQ(r.out, ReadText(out + "/compare.txt") + "wrote " + out + "/compare.txt\nwrote " + out +
+                       "/compare.json\nwrote " + out + "/deflection.png\n");
   EXPECT_EQ(nlohmann::json::parse(ReadText(out + "/compare.json")),
             nlohmann::json::parse(RunCli(Args(args, {"--json"}), kSourceDir).out));
   EXPECT_EQ(PngDefect(out + "/deflection.png"), "");

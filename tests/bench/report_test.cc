@@ -25,12 +25,12 @@ Metrics SomeMetrics() {
   return metrics;
 }
 
-// Tests that the table has one aligned line per metric with units and n/a for NaN.
+// Tests that the table has one aligned line per metric with (engineering) units and n/a for NaN.
 TEST(Report, MetricsTable) {
   std::ostringstream out;
   PrintMetricsTable(out, SomeMetrics());
   const std::string text = out.str();
-  EXPECT_NE(text.find("static_displacement_m  8.1e-06 m\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("static_displacement_m  8.1 um\n"), std::string::npos) << text;  // engineering units
   EXPECT_NE(text.find("peak_ratio             2\n"), std::string::npos) << text;
   EXPECT_NE(text.find("motion_time_s          1.05 s\n"), std::string::npos) << text;
   EXPECT_NE(text.find("settling_time_s        n/a\n"), std::string::npos) << text;
@@ -70,8 +70,8 @@ TEST(Report, TraceCsv) {
             "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
             "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n"
             "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,6000\n"
-            "0.10000000000000001,0.33333333333333331,2,-4,9.9999999999999995e-07,0.5,0.25,0,"
-            "0.5,0.25,9.9999999999999995e-07,0,0,9.9999999999999995e-07,-1,0\n");
+            "0.1,0.3333333333333333,2,-4,1e-06,0.5,0.25,0,"  // shortest exact (common/csv.h)
+            "0.5,0.25,1e-06,0,0,1e-06,-1,0\n");
 }
 
 // Tests that XML special characters and bytes XML cannot hold are escaped or dropped.
@@ -97,7 +97,9 @@ TEST(Report, JUnitCounts) {
             std::string::npos) << xml;
   EXPECT_NE(xml.find("name=\"a&amp;b.yaml\""), std::string::npos) << xml;
   EXPECT_NE(xml.find("CV_TOO_MUCH_WORK: &lt;x&gt;"), std::string::npos) << xml;
-  EXPECT_NE(xml.find("<failure type=\"CheckFailed\" message=\"above max 0.01\">"), std::string::npos);
+  // The message names the value and the bound it crossed.
+  EXPECT_NE(xml.find("<failure type=\"CheckFailed\" message=\"residual_ratio = 0.5 &gt; max 0.01\">"),
+            std::string::npos) << xml;
 }
 
 // Tests that atomic writes leave only the final file, and nothing when writing fails.
