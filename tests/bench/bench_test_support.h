@@ -49,6 +49,12 @@ inline void LimitChildMemory(unsigned long bytes) {
   }
 }
 
+// `args` followed by `more`: a command line and the options every case adds.
+inline std::vector<std::string> Args(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
 // The ConfigError `read` throws (a failure when it throws none).
 template <typename Read>
 ConfigError ErrorOf(Read read) {

@@ -15,6 +15,7 @@
 namespace shapebench::bench {
 namespace {
 
+using testing::Args;
 using testing::CliResult;
 using testing::DataPath;
 using testing::ReadText;
@@ -23,11 +24,6 @@ using testing::ScratchDir;
 
 const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 const std::vector<std::string> kUnshaped = {"--set", "controller.pattern.method=none"};
-
-std::vector<std::string> Args(std::vector<std::string> args, const std::vector<std::string>& more) {
-  args.insert(args.end(), more.begin(), more.end());
-  return args;
-}
 
 // Tests that on configs/demo.yaml a residual_ratio gate of 0 passes (exit 0) when the
 // candidate is ZVD and the baseline unshaped, and fails (exit 1) the other way round, with

@@ -23,6 +23,7 @@ namespace {
 
 using testing::CliResult;
 using testing::ReadText;
+using testing::Args;
 using testing::RunCli;
 using testing::ScratchDir;
 using testing::SpawnCli;
@@ -32,11 +33,6 @@ const std::string kNaturalPeriod = "tests/bench/data/sweeps/natural_period.yaml"
 // Method 4 with t1 = 4.77 ms: valid up to 34.9 Hz; at 35 Hz T/6 = 4.762 ms < t1.
 const std::vector<std::string> kMethod4 = {"--set", "controller.pattern.method=4", "--set",
                                            "controller.pattern.t1_s=0.00477"};
-
-std::vector<std::string> Args(std::vector<std::string> args, const std::vector<std::string>& more) {
-  args.insert(args.end(), more.begin(), more.end());
-  return args;
-}
 
 std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using testing::CliResult;
 using testing::LimitChildMemory;
 using testing::ReadText;
+using testing::Args;
 using testing::RunCli;
 using testing::ScratchDir;
 
@@ -33,11 +34,6 @@ const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 const std::string kNaturalPeriod = "tests/bench/data/sweeps/natural_period.yaml";
 const std::vector<std::string> kMethod4 = {"--set", "controller.pattern.method=4", "--set",
                                            "controller.pattern.t1_s=0.00477"};
-
-std::vector<std::string> Args(std::vector<std::string> args, const std::vector<std::string>& more) {
-  args.insert(args.end(), more.begin(), more.end());
-  return args;
-}
 
 // Runs the CLI with at most 1 GiB of address space and `seconds` of time (then SIGKILL):
 // a reader stuck on a FIFO or filling memory from /dev/zero fails instead of hanging.

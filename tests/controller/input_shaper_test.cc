@@ -3,6 +3,7 @@
 // formula sum A_j e^{(zeta w + i w_d) t_j}, evaluated here independently of
 // ResidualVibration), the grid realization keeping those zeros, convolution for several
 // modes, and validation naming the field.
+#include "tests/controller/validation_field.h"
 #include "controller/shaper_registry.h"
 
 #include <cmath>
@@ -307,14 +308,7 @@ TEST(InputShaperTest, ModeStartNeedsThePhaseToOutlastTheShaper) {
 
 // --- validation ------------------------------------------------------------------------
 
-std::string FieldOf(const PatternConfig& config) {
-  try {
-    config.validate();
-  } catch (const ValidationError& error) {
-    return error.field();
-  }
-  return "(valid)";
-}
+using testing::FieldOf;
 
 // Tests that custom shapers are validated naming the impulse and field: none given,
 // amplitudes not summing to 1, a negative or non-ascending time, a non-finite amplitude,

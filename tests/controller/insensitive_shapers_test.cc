@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "common/validation_error.h"
+#include "tests/controller/validation_field.h"
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
@@ -261,14 +262,7 @@ TEST(ExtraInsensitive, AgreesWithSinghosesCurveFits) {
   }
 }
 
-std::string FieldOf(const PatternConfig& config) {
-  try {
-    config.validate();
-  } catch (const ValidationError& error) {
-    return error.field();
-  }
-  return "(valid)";
-}
+using testing::FieldOf;
 
 // Tests that a damping beyond the reach of a design is refused naming design_damping_ratio
 // (at V 5% the continuation reaches zeta 0.52 for ei, 0.23 for the 3-hump EI, and finds no
