@@ -1,0 +1,90 @@
+// Modal parameters from measured frequency response functions (docs/measured-data.md):
+// the poles by the least-squares complex frequency-domain method (LSCF: a common-
+// denominator polynomial in z = exp(-j w Ts), fitted by linear least squares at increasing
+// orders, its roots the poles), picked from a stabilisation diagram, then the modal
+// constants by least squares in the frequency domain (LSFD) with lower and upper residual
+// terms. The method follows Verboven's thesis (Frequency-domain system identification for
+// modal analysis, VUB 2002, ch. 5) as pyEMA (ladisk/pyEMA, MIT) applies it to FRFs.
+//
+// Units: an FRF is given in its measured form, (j w)^derivative_order times receptance:
+// 0 receptance (displacement per excitation), 1 mobility (velocity), 2 accelerance
+// (acceleration). The modal constants are those of the receptance,
+//   H(w) = sum_r R_r / (w_r^2 - w^2 + 2 j zeta_r w_r w) - LR / w^2 + UR,
+// R_r = 2 j w_d,r A_r with A_r the residue of the pole lambda_r = -zeta_r w_r + j w_d,r;
+// a real (proportionally damped) mode has a real R_r.
+#pragma once
+
+#include <complex>
+#include <limits>
+#include <vector>
+
+namespace shapebench::model {
+
+// Receptance from an FRF of the given form at `frequency_hz` (> 0): h / (j w)^order.
+std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, int derivative_order);
+
+struct IdentificationOptions {
+  // The band the poles are searched in and the modal constants fitted over, in Hz; lines
+  // at 0 Hz are left out (the lower residual is singular there).
+  double min_frequency_hz = 0.0;
+  double max_frequency_hz = std::numeric_limits<double>::infinity();
+  // The highest model order, in pole pairs (the LSCF polynomial has twice that degree);
+  // orders 1..max_order are fitted. Capped by the lines in the band (an order needs more
+  // lines than coefficients).
+  int max_order = 30;
+  // A pole is stable when the previous order has one within these relative distances.
+  double frequency_tolerance = 0.01;
+  double damping_tolerance = 0.05;
+  // A physical pole: damping ratio in (0, max_damping_ratio), frequency inside the band.
+  double max_damping_ratio = 0.5;
+  // A mode is a cluster of stable poles (frequencies within frequency_tolerance of its
+  // mean) found at this fraction of the orders at least (and at 3 orders at least).
+  double min_stable_fraction = 0.2;
+
+  // Throws ValidationError naming the field.
+  void validate() const;
+};
+
+enum class PoleStability { kNew, kFrequency, kStable };
+
+// One physical pole of one order of the stabilisation diagram.
+struct DiagramPole {
+  int order = 0;  // pole pairs of the model
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;
+  // kNew: no pole of the previous order within frequency_tolerance; kFrequency: one in
+  // frequency, not in damping; kStable: both.
+  PoleStability stability = PoleStability::kNew;
+};
+
+struct IdentifiedMode {
+  double frequency_hz = 0.0;  // undamped natural frequency |lambda| / 2 pi
+  double damping_ratio = 0.0;
+  std::vector<std::complex<double>> modal_constants;  // R_r, one per FRF (receptance)
+  int stable_orders = 0;  // the orders its cluster has a stable pole at
+};
+
+struct FrfFit {
+  std::vector<std::complex<double>> synthesized;  // in the measured form, at the band's lines
+  double lower_residual = 0.0;  // LR of the receptance
+  double upper_residual = 0.0;  // UR
+  double error_percent = 0.0;   // ||H_fit - H|| / ||H|| over the band, in %
+};
+
+struct ModalIdentification {
+  std::vector<double> frequency_hz;  // the band's lines used
+  int max_order = 0;                 // the highest order fitted (after the cap)
+  std::vector<DiagramPole> diagram;
+  std::vector<IdentifiedMode> modes;  // ascending frequency
+  std::vector<FrfFit> fits;           // one per FRF
+  double fit_error_percent = 0.0;     // over every FRF together
+};
+
+// `frfs` are FRFs of one structure on the grid `frequency_hz` (ascending), each in the
+// measured form `derivative_order`. Throws ValidationError("band", ...) when fewer than 4
+// lines lie in the band, ValidationError on non-finite data.
+ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
+                                  const std::vector<std::vector<std::complex<double>>>& frfs,
+                                  int derivative_order, const IdentificationOptions& options);
+
+}  // namespace shapebench::model
