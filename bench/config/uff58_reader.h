@@ -1,0 +1,65 @@
+// Universal File Format dataset 58 (function at nodal DOF), ASCII and binary 58b: the
+// measured FRFs `shapebench identify` and the machine key `frf_file` read
+// (docs/measured-data.md). The layout is the one of the UC-SDRL description of dataset 58
+// and of 58b's identifier line (byte order, floating-point format, ASCII lines, bytes):
+// 80-column records between "    -1" lines; records 1-5 ID lines, 6 the DOFs, 7 the data
+// form, 8-11 the abscissa, ordinate numerator, denominator and z-axis characteristics,
+// 12 the values (ASCII in the Fortran widths of its case, or raw bytes in 58b).
+//
+// Only frequency response functions (record 6 function type 4) are read; every other
+// dataset 58 is refused. Other datasets (151 header, 164 units, 2411 nodes, ...) are
+// skipped. Errors are ConfigError "FILE:LINE:COL: record N: ..." (exit 2).
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace shapebench::bench {
+
+// What the FRF's ordinate numerator measures: its power of (j w) over a receptance.
+enum class FrfResponse { kDisplacement = 0, kVelocity = 1, kAcceleration = 2 };
+// What it is divided by: an excitation force (an impact or shaker test) or a base
+// acceleration (transmissibility).
+enum class FrfExcitation { kForce, kAcceleration };
+
+struct Uff58Record {
+  int line = 0;  // the identifier line ("    58" or "    58b")
+  int record6_line = 0;
+  int record7_line = 0;
+  int record9_line = 0;
+  int record12_line = 0;
+  bool binary = false;
+  std::string id1;  // record 1, trimmed
+  int response_node = 0;
+  int response_direction = 0;  // 1, 2, 3 = +x, +y, +z; negative: the opposite sense; 0 scalar
+  int reference_node = 0;
+  int reference_direction = 0;
+  FrfResponse response = FrfResponse::kAcceleration;
+  FrfExcitation excitation = FrfExcitation::kForce;
+  std::string units;  // as understood, e.g. "m/s2 per N"
+  std::vector<double> frequency_hz;
+  // SI (a units label's scale, e.g. g, applied), in the senses recorded (not yet flipped
+  // by a negative direction).
+  std::vector<std::complex<double>> values;
+
+  int DerivativeOrder() const { return static_cast<int>(response); }
+  // The axis 0, 1, 2 of the response direction (a translation), or -1.
+  int ResponseAxis() const;
+  // +1 or -1: the product of the senses of the response and reference directions (0,
+  // a scalar, counts +1), which turns the values into +axis response per +axis excitation.
+  double DirectionSign() const;
+};
+
+struct Uff58File {
+  std::string file;
+  std::vector<Uff58Record> records;  // in file order
+};
+
+// Parses the bytes of a UFF file named `file` (for messages). Throws ConfigError.
+Uff58File ParseUff58(const std::string& bytes, const std::string& file);
+
+// Reads and parses `path` (at most 64 MiB, a regular file). Throws ConfigError.
+Uff58File ReadUff58(const std::string& path);
+
+}  // namespace shapebench::bench
