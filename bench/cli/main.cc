@@ -1,5 +1,5 @@
 // shapebench command line: run, check, modes, pattern, sensitivity,
-// sweep, merge, compare.
+// sweep, merge, compare, identify.
 // Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage, unwritable
 // output (stdout included) or out of memory; 3 the solver failed. Errors go to stderr as
 // "error: ...".
@@ -33,6 +33,7 @@
 #include "common/interrupt.h"
 #include "common/shown_text.h"
 #include "bench/report/html_report.h"
+#include "bench/report/identify_report.h"
 #include "bench/report/modes_report.h"
 #include "bench/report/pattern_report.h"
 #include "bench/report/output_path.h"
@@ -761,6 +762,26 @@ int main(int argc, char** argv) {
   CompareArgs compare_args;
   CLI::App* compare = AddCompareCommand(&app, &compare_args);
 
+  // Modes from measured FRFs (bench/report/identify_report.h, docs/measured-data.md).
+  IdentifyArgs identify_args;
+  CLI::App* identify = app.add_subcommand(
+      "identify", "modal parameters from measured FRFs (UFF 58): table or JSON, stabilisation diagram");
+  identify->add_option("file", identify_args.file, "UFF file of dataset 58 FRF records (ASCII or 58b)")
+      ->required()
+      ->type_name("FILE.uff");
+  identify->add_option("--axis", identify_args.axis, "only the records whose response is along this axis")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->type_name("x|y|z");
+  identify->add_option("--band", identify_args.band, "the band in Hz the modes are identified in (default: all lines)")
+      ->type_name("MIN:MAX");
+  identify->add_option("--max-order", identify_args.max_order, "highest model order in pole pairs (default 30)")
+      ->check(CLI::Range(1, 200))
+      ->type_name("N");
+  identify->add_flag("--json", identify_args.json, "print one JSON object");
+  identify->add_option("--out", identify_args.out_dir,
+                       "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
+      ->type_name("DIR");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -780,5 +801,11 @@ int main(int argc, char** argv) {
   if (sweep->parsed()) code = Guarded([&] { return SweepCommand(sweep_args); });
   if (merge->parsed()) code = Guarded([&] { return MergeCommand(merge_args); });
   if (compare->parsed()) code = Guarded([&] { return CompareCommand(compare_args); });
+  if (identify->parsed()) {
+    code = Guarded([&] {
+      Doing("identifying the modes of " + identify_args.file);
+      return RunIdentify(identify_args, std::cout, identify_args.json ? std::cerr : std::cout);
+    });
+  }
   return stdout_checked.Checked(code);
 }

@@ -1,6 +1,7 @@
 #include "bench/config/machine_reader.h"
 
 #include "bench/config/field_reader.h"
+#include "bench/config/frf_machine_reader.h"
 
 #include <string>
 #include <utility>
@@ -91,16 +92,39 @@ model::LumpedMachineConfig ReadLumped(const NodeReader& machine) {
   return lumped;
 }
 
-// One axis' model: `modes` or `bodies` (+ elements, ...); `extra_keys` are allowed beside
-// them and read by the caller.
+// The measured form (`frf_file`, bench/config/frf_machine_reader.h): its keys alone.
+model::MachineConfig ReadMeasuredForm(const NodeReader& machine, int axis) {
+  std::vector<std::string> others = LumpedKeys();
+  others.push_back("modes");
+  for (const auto& key : others) {
+    if (auto child = machine.Child(key)) {
+      throw child->Error("'" + key + "' and 'frf_file' both give this axis' model; the measured form's modes "
+                         "come from the file: use one form");
+    }
+  }
+  model::MachineConfig config;
+  config.form = ReadFrfMachine(machine, axis);
+  return config;
+}
+
+// One axis' model (`axis` 0, 1, 2): `modes`, `bodies` (+ elements, ...) or `frf_file`;
+// `extra_keys` are allowed beside them and read by the caller.
 model::MachineConfig ReadForm(const NodeReader& machine,
-                              const std::vector<std::string>& extra_keys) {
+                              const std::vector<std::string>& extra_keys, int axis) {
   const std::vector<std::string> lumped_keys = LumpedKeys();
   std::vector<std::string> allowed = FieldNames<model::ModalMachineConfig>();
   allowed.insert(allowed.end(), lumped_keys.begin(), lumped_keys.end());
+  allowed.insert(allowed.end(), FrfFormKeys().begin(), FrfFormKeys().end());
   allowed.insert(allowed.end(), extra_keys.begin(), extra_keys.end());
   machine.ExpectMap(allowed);
 
+  if (machine.Has("frf_file")) return ReadMeasuredForm(machine, axis);
+  for (const auto& key : FrfFormKeys()) {
+    if (auto child = machine.Child(key)) {
+      throw child->Error("'" + key + "' belongs to the measured form: give 'frf_file' (a UFF 58 file of FRFs) "
+                         "beside it");
+    }
+  }
   model::MachineConfig config;
   if (machine.Has("modes")) {
     for (const auto& key : lumped_keys) {
@@ -116,8 +140,8 @@ model::MachineConfig ReadForm(const NodeReader& machine,
   } else {
     const bool top_level = !extra_keys.empty();  // the single form, where 'axes' could stand
     throw machine.Error(
-        std::string("expected 'modes' (modal form) or 'bodies' (lumped mass-spring-damper "
-                    "form)") +
+        std::string("expected 'modes' (modal form), 'bodies' (lumped mass-spring-damper "
+                    "form) or 'frf_file' (modes identified from measured FRFs)") +
         (top_level ? ", or 'axes' (one of those per axis x, y, z)" : ""));
   }
   return config;
@@ -156,6 +180,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   std::vector<std::string> single_keys = {"modes", "axis"};
   const std::vector<std::string> lumped_keys = LumpedKeys();
   single_keys.insert(single_keys.end(), lumped_keys.begin(), lumped_keys.end());
+  single_keys.insert(single_keys.end(), FrfFormKeys().begin(), FrfFormKeys().end());
   for (const auto& key : single_keys) {
     if (auto child = machine.Child(key)) {
       throw child->Error("'" + key +
@@ -175,7 +200,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
         throw misplaced->Error("'axis' belongs to the single-axis form; under 'axes' the key (" +
                                name + ") names the axis");
       }
-      config.axes[axis] = ReadForm(*form, {});
+      config.axes[axis] = ReadForm(*form, {}, axis);
     }
   }
   machine.Read<int>("driven_axis", AxisChoices(), &config.driven_axis);
@@ -196,8 +221,8 @@ model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = true;
-  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke", "rigid"});
-  machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
+  if (machine.IsMap()) machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
+  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke", "rigid"}, config.driven_axis);
   ReadStroke(machine, &config);
   config.axes[config.driven_axis] = form;
   ReadRigid(machine, &config);
