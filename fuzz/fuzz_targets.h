@@ -24,6 +24,7 @@
 #include "bench/sim/scenario.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/config/structure_numbers.h"
+#include "bench/config/uff58_reader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"
 #include "bench/sweep/sweep_plot.h"
@@ -32,6 +33,7 @@
 #include "common/validation_error.h"
 #include "controller/controller.h"
 #include "controller/gcode_parser.h"
+#include "model/modal_identification.h"
 #include "model/multi_axis_machine.h"
 #include "fuzz/fuzz_support.h"
 
@@ -432,6 +434,48 @@ inline void RowsTarget(const std::string& bytes) {
   const bench::RowScan scan = bench::ScanRows(merged, setup.columns, bench::ShardPoints{setup.shard.total, 0, 1}, setup.grid);
   if (scan.rows != setup.shard.total || scan.good_bytes != fs::file_size(merged)) {
     throw Violation{"merge wrote a results.csv a sweep would not keep"};
+  }
+}
+
+// UFF dataset 58 reader (bench/config/uff58_reader.h): any bytes are FRF records or a
+// ConfigError at a line of the file; the records read are finite, ascending in frequency,
+// as long as their values; a short one goes through the identification (low orders), which
+// returns modes inside the band or refuses the band with a ValidationError naming it.
+inline void Uff58Target(const std::string& bytes) {
+  bench::Uff58File file;
+  try {
+    file = bench::ParseUff58(bytes, "input.uff");
+  } catch (const bench::ConfigError& error) {
+    if (error.file() != "input.uff" || error.line() < 1) throw Violation{"unlocated: " + std::string(error.what())};
+    return;
+  }
+  if (file.records.empty()) throw Violation{"a file read without records"};
+  for (const bench::Uff58Record& record : file.records) {
+    if (record.values.size() != record.frequency_hz.size() || record.values.empty()) {
+      throw Violation{"values and frequencies differ in length"};
+    }
+    for (std::size_t i = 0; i < record.values.size(); ++i) {
+      if (!std::isfinite(record.values[i].real()) || !std::isfinite(record.values[i].imag()) ||
+          !std::isfinite(record.frequency_hz[i]) || (i > 0 && !(record.frequency_hz[i] > record.frequency_hz[i - 1]))) {
+        throw Violation{"a record read with a non-finite value or a frequency not ascending"};
+      }
+    }
+  }
+  const bench::Uff58Record& first = file.records.front();
+  if (first.values.size() > 512) return;
+  model::IdentificationOptions options;
+  options.max_order = 4;
+  try {
+    const model::ModalIdentification id =
+        model::IdentifyModes(first.frequency_hz, {first.values}, first.DerivativeOrder(), options);
+    for (const model::IdentifiedMode& mode : id.modes) {
+      if (!(mode.frequency_hz >= id.frequency_hz.front() && mode.frequency_hz <= id.frequency_hz.back()) ||
+          !(mode.damping_ratio > 0.0 && mode.damping_ratio < 0.5)) {
+        throw Violation{"a mode outside the band or not physical"};
+      }
+    }
+  } catch (const ValidationError& error) {
+    if (error.field().empty()) throw Violation{"a ValidationError without a key: " + std::string(error.what())};
   }
 }
 

@@ -574,7 +574,7 @@ model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
                                               const std::vector<Override>& overrides) {
   YAML::Node root = ConfigDocument::ParseFile(path);
   const bool machine_file =
-      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes");
+      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes") || HasKey(root, "frf_file");
   if (!machine_file) {
     const ConfigDocument document = BuildScenarioDocument(path, overrides);
     NodeReader top(document, document.root(), "");

@@ -55,6 +55,9 @@ TEST(FuzzRegressions, Manifest) { Replay("manifest", ManifestTarget); }
 // Tests that the results rows readers of resume and merge keep the rows findings' good
 // rows or refuse them naming the file, and agree with each other.
 TEST(FuzzRegressions, Rows) { Replay("rows", RowsTarget); }
+// Tests that the UFF 58 reader's findings read or fail with a ConfigError at a line, and
+// that what it reads is finite and identifies within its band.
+TEST(FuzzRegressions, Uff58) { Replay("uff58", Uff58Target); }
 
 }  // namespace
 }  // namespace shapebench::fuzz
