@@ -671,6 +671,28 @@ CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
   return compare;
 }
 
+// Modes from measured FRFs (bench/report/identify_report.h, docs/measured-data.md).
+CLI::App* AddIdentifyCommand(CLI::App* app, IdentifyArgs* args) {
+  CLI::App* identify = app->add_subcommand(
+      "identify", "modal parameters from measured FRFs (UFF 58): table or JSON, stabilisation diagram");
+  identify->add_option("file", args->file, "UFF file of dataset 58 FRF records (ASCII or 58b)")
+      ->required()
+      ->type_name("FILE.uff");
+  identify->add_option("--axis", args->axis, "only the records whose response is along this axis")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->type_name("x|y|z");
+  identify->add_option("--band", args->band, "the band in Hz the modes are identified in (default: all lines)")
+      ->type_name("MIN:MAX");
+  identify->add_option("--max-order", args->max_order, "highest model order in pole pairs (default 30)")
+      ->check(CLI::Range(1, 200))
+      ->type_name("N");
+  identify->add_flag("--json", args->json, "print one JSON object");
+  identify->add_option("--out", args->out_dir,
+                       "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
+      ->type_name("DIR");
+  return identify;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -762,25 +784,8 @@ int main(int argc, char** argv) {
   CompareArgs compare_args;
   CLI::App* compare = AddCompareCommand(&app, &compare_args);
 
-  // Modes from measured FRFs (bench/report/identify_report.h, docs/measured-data.md).
   IdentifyArgs identify_args;
-  CLI::App* identify = app.add_subcommand(
-      "identify", "modal parameters from measured FRFs (UFF 58): table or JSON, stabilisation diagram");
-  identify->add_option("file", identify_args.file, "UFF file of dataset 58 FRF records (ASCII or 58b)")
-      ->required()
-      ->type_name("FILE.uff");
-  identify->add_option("--axis", identify_args.axis, "only the records whose response is along this axis")
-      ->check(CLI::IsMember({"x", "y", "z"}))
-      ->type_name("x|y|z");
-  identify->add_option("--band", identify_args.band, "the band in Hz the modes are identified in (default: all lines)")
-      ->type_name("MIN:MAX");
-  identify->add_option("--max-order", identify_args.max_order, "highest model order in pole pairs (default 30)")
-      ->check(CLI::Range(1, 200))
-      ->type_name("N");
-  identify->add_flag("--json", identify_args.json, "print one JSON object");
-  identify->add_option("--out", identify_args.out_dir,
-                       "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
-      ->type_name("DIR");
+  CLI::App* identify = AddIdentifyCommand(&app, &identify_args);
 
   try {
     app.parse(argc, argv);

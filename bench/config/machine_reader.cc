@@ -140,9 +140,10 @@ model::MachineConfig ReadForm(const NodeReader& machine,
   } else {
     const bool top_level = !extra_keys.empty();  // the single form, where 'axes' could stand
     throw machine.Error(
-        std::string("expected 'modes' (modal form), 'bodies' (lumped mass-spring-damper "
-                    "form) or 'frf_file' (modes identified from measured FRFs)") +
-        (top_level ? ", or 'axes' (one of those per axis x, y, z)" : ""));
+        std::string("expected 'modes' (modal form) or 'bodies' (lumped mass-spring-damper "
+                    "form)") +
+        (top_level ? ", or 'axes' (one of those per axis x, y, z)" : "") +
+        "; or 'frf_file' (modes identified from measured FRFs)");
   }
   return config;
 }
