@@ -34,8 +34,9 @@ const char* ConstantUnit(const IdentifiedFrfs& frfs) {
 std::string Axes(const IdentifiedFrfs& frfs) {
   std::string axes;
   for (std::size_t i : frfs.records) {
-    const std::string name = DirectionName(frfs.file.records[i].response_direction);
-    if (axes.find(name.substr(1)) == std::string::npos) axes += (axes.empty() ? "" : ", ") + name.substr(1);
+    std::string name = DirectionName(frfs.file.records[i].response_direction);
+    if (name[0] == '+' || name[0] == '-') name.erase(0, 1);  // the axis, either sense
+    if (axes.find(name) == std::string::npos) axes += (axes.empty() ? "" : ", ") + name;
   }
   return axes;
 }
