@@ -101,8 +101,8 @@ TEST(IdentifyCli, BadInputIsLocated) {
                 "no FRF record has its response along x");
 }
 
-// Tests the real measured beam (pyuff's accelerances, tests/data/uff/README.md): six modes,
-// each physical (damping in (0, 0.5), inside the band) and each within a line (1 Hz) of a
+// Tests that the real measured beam (pyuff's accelerances, tests/data/uff/README.md) gives six
+// modes, each physical (damping in (0, 0.5), inside the band) and each within a line (1 Hz) of a
 // peak of |H| found in the test by peak picking, with the fit error under 6 %.
 TEST(IdentifyCli, RealMeasuredBeam) {
   ScratchDir dir;

@@ -150,7 +150,7 @@ TEST(Uff58, UnitsConvertToReceptance) {
   }
 }
 
-// Tests the units labels: quantities, scales and labels holding both quantities.
+// Tests that units labels give their quantities and scales, also labels holding both quantities.
 TEST(Uff58, UnitsLabels) {
   EXPECT_EQ(NormalizedUnits("(1/N)*(m/s\xc2\xb2)"), "1/nm/s2");  // UTF-8 ²
   EXPECT_EQ(NormalizedUnits("m/s\xb2"), "m/s2");                 // latin-1 ²
@@ -172,8 +172,8 @@ TEST(Uff58, UnitsLabels) {
   EXPECT_EQ(record, 10);
 }
 
-// Tests pyuff's real dataset 58 FRF record (a vendor export with a latin-1 units label
-// "(1/N)*(m/s²)" and a general specific data type): read as accelerance per N, its six
+// Tests that pyuff's real dataset 58 FRF record (a vendor export with a latin-1 units label
+// "(1/N)*(m/s²)" and a general specific data type) reads as accelerance per N, its six
 // complex single-precision values as printed in the file.
 TEST(Uff58, RealVendorRecord) {
   const Uff58File file = ReadUff58(UffData("pyuff_non_ascii_header.uff"));
