@@ -37,6 +37,38 @@ std::string ParameterText(const controller::ShaperEntry& entry, const controller
   return text;
 }
 
+// The method's impulses at `scan`'s frequencies. Every built-in design is a sequence of
+// phases (w t), so a design at one frequency scaled in time is the design at any other;
+// a method checked to scale so (designs at 10 and 37 Hz agree scaled, to 1e-12) is
+// designed once, any other at every frequency. Throws ValidationError when a design fails.
+std::vector<std::vector<controller::Impulse>> ScanDesigns(const controller::ShaperEntry& entry,
+                                                          const std::vector<double>& scan, double damping) {
+  auto design = [&](double f) {
+    const controller::PatternConfig pattern = FitPattern(entry, f, damping);
+    pattern.validate();
+    return controller::ShaperImpulses(pattern);
+  };
+  const std::vector<controller::Impulse> low = design(10.0);
+  const std::vector<controller::Impulse> high = design(37.0);
+  bool scales = low.size() == high.size();
+  for (std::size_t j = 0; scales && j < low.size(); ++j) {
+    scales = std::abs(low[j].amplitude - high[j].amplitude) <= 1e-12 &&
+             std::abs(low[j].time_s * 10.0 - high[j].time_s * 37.0) <= 1e-12 * (1.0 + low[j].time_s * 10.0);
+  }
+  std::vector<std::vector<controller::Impulse>> designs;
+  designs.reserve(scan.size());
+  for (const double f : scan) {
+    if (!scales) {
+      designs.push_back(design(f));
+      continue;
+    }
+    std::vector<controller::Impulse> scaled = low;
+    for (controller::Impulse& impulse : scaled) impulse.time_s *= 10.0 / f;
+    designs.push_back(std::move(scaled));
+  }
+  return designs;
+}
+
 // One method's scan; nullopt (and *reason) when its design fails.
 std::optional<ShaperFit> FitMethod(const controller::ShaperEntry& entry, const std::vector<double>& frequency_hz,
                                    const std::vector<double>& psd, const ShaperFitOptions& options,
@@ -44,16 +76,13 @@ std::optional<ShaperFit> FitMethod(const controller::ShaperEntry& entry, const s
   const std::vector<double> scan = ScanFrequencies(options);
   std::vector<double> scores;
   scores.reserve(scan.size());
-  for (const double f : scan) {
-    const controller::PatternConfig pattern = FitPattern(entry, f, options.design_damping_ratio);
-    try {
-      pattern.validate();
-      scores.push_back(
-          RemainingVibration(controller::ShaperImpulses(pattern), frequency_hz, psd, options.test_damping_ratios));
-    } catch (const ValidationError& error) {
-      *reason = error.field() + ": " + error.message();
-      return std::nullopt;
+  try {
+    for (const std::vector<controller::Impulse>& impulses : ScanDesigns(entry, scan, options.design_damping_ratio)) {
+      scores.push_back(RemainingVibration(impulses, frequency_hz, psd, options.test_damping_ratios));
     }
+  } catch (const ValidationError& error) {
+    *reason = error.field() + ": " + error.message();
+    return std::nullopt;
   }
   ShaperFit fit;
   fit.method = entry.key;
