@@ -40,7 +40,7 @@ UniformAccel ToUniformGrid(const AccelLog& log) {
   uniform.start_s = log.time_s.front();
   const double rate = uniform.sample_rate_hz;
   const std::string record = std::to_string(n) + " samples over " + FormatNumber(span_s) + " s";
-  if (!(rate >= 2.0 * kFitMaxHz)) {
+  if (!(rate >= 2.0 * kFitMaxHz * (1.0 - 1e-9))) {  // 400 Hz stamped to the microsecond reads a hair below
     throw RecordError(log, "sample rate " + FormatNumber(rate) + " Hz (" + record + ") is too low: " + needs);
   }
   const int segment = WelchSegmentLength(rate);
@@ -106,7 +106,7 @@ AccelSpectrum ComputeAccelSpectrum(const AccelLog& log, AccelAxis axis) {
     throw ConfigError(log.file, log.line.front(), 1, column,
                       std::string(finite ? "no vibration in " : "accelerations too large for a PSD in ") +
                           FormatNumber(kFitMinHz) + "-" + FormatNumber(kFitMaxHz) + " Hz on axis " +
-                          AccelAxisName(axis) + (finite ? " (the accelerations are constant)" : " (it overflows)") +
+                          AccelAxisName(axis) + (finite ? " (the accelerations are constant, or too small to square)" : " (it overflows)") +
                           ": nothing to fit a shaper to");
   }
   return spectrum;

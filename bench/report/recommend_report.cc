@@ -135,7 +135,7 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
   const std::size_t n = u.accel_mm_s2[0].size();
   out << "recommend " << report.file << " (axis " << AccelAxisName(s.axis) << ")\n";
   out << "samples    " << n << " at " << Num(u.sample_rate_hz) << " Hz ("
-      << Num(static_cast<double>(n - 1) / u.sample_rate_hz) << " s); "
+      << EngineeringText(static_cast<double>(n - 1) / u.sample_rate_hz, "s", 4) << "); "
       << (u.resampled ? "time stamps up to " + EngineeringText(u.max_offset_s, "s", 3) +
                             " off a uniform grid: resampled linearly"
                       : std::string("time stamps on a uniform grid"))

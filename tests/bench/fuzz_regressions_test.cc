@@ -55,6 +55,9 @@ TEST(FuzzRegressions, Manifest) { Replay("manifest", ManifestTarget); }
 // Tests that the results rows readers of resume and merge keep the rows findings' good
 // rows or refuse them naming the file, and agree with each other.
 TEST(FuzzRegressions, Rows) { Replay("rows", RowsTarget); }
+// Tests that the accelerometer log reader's findings are taken, with a finite spectrum
+// and fit, or refused with a ConfigError at a line and column.
+TEST(FuzzRegressions, AccelLog) { Replay("accel_log", AccelLogTarget); }
 
 }  // namespace
 }  // namespace shapebench::fuzz
