@@ -15,6 +15,7 @@
 #include "common/csv.h"
 #include "common/format.h"
 #include "common/validation_error.h"
+#include "controller/shaper_registry.h"
 
 namespace shapebench::bench {
 namespace {
@@ -238,7 +239,7 @@ void WriteRecommendPlot(const std::string& path_png, const RecommendReport& repo
                               Num(std::round(best.frequency_hz * 10.0) / 10.0) + " Hz";
     std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(title).c_str());
     std::fprintf(gnuplot, "set xlabel 'frequency [Hz]'\nset ylabel 'PSD [(mm/s^2)^2/Hz]'\nset grid\n");
-    std::fprintf(gnuplot, "set key outside right top\nset xrange [0:%g]\nset yrange [0:*]\n", kFitMaxHz);
+    std::fprintf(gnuplot, "set key outside right top title 'V(f) x PSD per method'\nset xrange [0:%g]\nset yrange [0:*]\n", kFitMaxHz);
     std::fprintf(gnuplot, "$data << EOD\n");
     for (std::size_t k = 0; k < s.frequency_hz.size(); ++k) {
       std::fprintf(gnuplot, "%.10g %.10g", s.frequency_hz[k], s.psd[k]);
@@ -251,8 +252,9 @@ void WriteRecommendPlot(const std::string& path_png, const RecommendReport& repo
     for (std::size_t i = 0; i < r.fits.size(); ++i) {
       const ShaperFit& fit = r.fits[i];
       const bool chosen = i == r.recommended;
-      const std::string name = "V x PSD " + fit.method + " " + Num(std::round(fit.frequency_hz * 10.0) / 10.0) +
-                               " Hz (" + Percent(fit.remaining_vibration) + ")" + (chosen ? " recommended" : "");
+      const bool patent = controller::FindShaper(fit.method).kind == controller::ShaperKind::kPatentStep;
+      const std::string name = (patent ? "method " : "") + fit.method + " " + Num(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz: " +
+                               Percent(fit.remaining_vibration) + (chosen ? " (recommended)" : "");
       std::fprintf(gnuplot, ", \\\n     $data using 1:%zu with lines lw %g dt %d lc rgb '%s' title %s", i + 3,
                    chosen ? 3.0 : 1.2, chosen ? 1 : static_cast<int>(i / 10) + 1, kColours[i % 10],
                    GnuplotQuoted(name).c_str());
