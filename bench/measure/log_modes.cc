@@ -112,17 +112,30 @@ ValidationRuns RunValidation(const std::string& scenario_path, const std::vector
     s.controller.pattern.mode = old.mode;
     s.controller.pattern.realization = old.realization;
     s.controller.pattern.step_resolution_s = old.step_resolution_s;
+    // Errors name scenario keys (machine.*, controller.*, as RunScenario's do) and what
+    // --validate put in.
+    auto located = [&](const ValidationError& error) {
+      return ConfigError(scenario_path, 0, 0, error.field(),
+                         error.message() + " (--validate: the " + axis_name +
+                             " axis modelled by the log's modes, controller.pattern.method " + shaping.method +
+                             " at " + FormatNumber(shaping.frequency_hz) + " Hz)");
+    };
     try {
       s.machine.validate();
+    } catch (const ValidationError& error) {
+      throw located(error.Prefixed("machine"));
+    }
+    try {
       s.controller.validate();
+    } catch (const ValidationError& error) {
+      throw located(error.Prefixed("controller"));
+    }
+    try {
       RunOptions options;
       options.record_trace = false;
       return RunScenario(s, options).metrics;
     } catch (const ValidationError& error) {
-      throw ConfigError(scenario_path, 0, 0, error.field(),
-                        error.message() + " (--validate: the " + axis_name +
-                            " axis modelled by the log's modes, controller.pattern.method " + shaping.method + " at " +
-                            FormatNumber(shaping.frequency_hz) + " Hz)");
+      throw located(error);
     }
   };
   controller::PatternConfig none;
