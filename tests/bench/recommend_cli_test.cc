@@ -180,6 +180,14 @@ TEST(RecommendCli, ValidateRunsTheScenarioWithTheLogsModes) {
   const CliResult missing = RunCli({"recommend", kExampleLog, "--validate", "no/such.yaml"}, kSourceDir);
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_TRUE(Has(missing.err, "no/such.yaml")) << missing.err;
+  // A rigid driven axis has no static deflection for the log's modes to share.
+  ScratchDir dir;
+  const std::string rigid =
+      dir.Write("rigid.yaml", "machine: {axes: {}}\ncontroller: {feed_mm_min: 6000, accel_time_s: 0.1}\n"
+                              "move: {distance_mm: 50}\n");
+  const CliResult refused = RunCli({"recommend", kExampleLog, "--validate", rigid}, kSourceDir);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_TRUE(Has(refused.err, "error: " + rigid + ": machine: the driven axis y has no static deflection")) << refused.err;
 }
 
 }  // namespace
