@@ -4,6 +4,8 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PACKAGES = cmake ninja-build g++ libsundials-dev libeigen3-dev libyaml-cpp-dev libgtest-dev \
            libcli11-dev nlohmann-json3-dev gnuplot-nox libxml2-utils universal-ctags chromium
+# recommend: the Welch PSD of accelerometer logs (bench/measure/welch_psd.h)
+PACKAGES += libfftw3-dev pkgconf
 
 .PHONY: deps configure build demo test clean
 
@@ -49,6 +51,7 @@ test-sanitize: deps
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_scenario fuzz_set fuzz_sweep fuzz_gcode fuzz_manifest fuzz_rows fuzz_uff58
+FUZZ_TARGETS += fuzz_accel_log
 fuzz:
 	@scripts/install-deps.sh $(PACKAGES) clang libclang-rt-14-dev
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Fuzz \

@@ -25,6 +25,10 @@
 #include "bench/config/scenario_loader.h"
 #include "bench/config/structure_numbers.h"
 #include "bench/config/uff58_reader.h"
+#include "bench/measure/accel_log.h"
+#include "bench/measure/accel_spectrum.h"
+#include "bench/measure/log_modes.h"
+#include "bench/measure/shaper_fit.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"
 #include "bench/sweep/sweep_plot.h"
@@ -477,6 +481,67 @@ inline void Uff58Target(const std::string& bytes) {
   } catch (const ValidationError& error) {
     if (error.field().empty()) throw Violation{"a ValidationError without a key: " + std::string(error.what())};
   }
+// Accelerometer log reader (bench/measure/accel_log.h) and what `recommend` does with a
+// log it takes: any bytes are a log or a ConfigError at FILE:LINE:COL naming the column;
+// a log has finite, strictly increasing times and finite values; its spectrum is finite
+// and non-negative or refused at a line; every method fitted (on a coarse 5 Hz scan, to
+// keep each input quick) leaves a finite, non-negative vibration, the recommendation is
+// one of them, and the log's modes lie in the band with shares summing to 1.
+inline void AccelLogTarget(const std::string& bytes) {
+  auto located = [](const bench::ConfigError& error) {
+    if (error.file() != "input.csv" || error.line() < 1 || error.column() < 1 || error.key_path().empty()) {
+      throw Violation{"unlocated: " + std::string(error.what())};
+    }
+  };
+  bench::AccelLog log;
+  try {
+    log = bench::ParseAccelLog(bytes, "input.csv");
+  } catch (const bench::ConfigError& error) {
+    located(error);
+    return;
+  }
+  const std::size_t n = log.time_s.size();
+  if (n == 0 || log.line.size() != n) throw Violation{"a log without samples or lines"};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(log.time_s[i]) || (i > 0 && !(log.time_s[i] > log.time_s[i - 1]))) {
+      throw Violation{"a log whose times are not finite and increasing"};
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (log.accel_mm_s2[axis].size() != n || !std::isfinite(log.accel_mm_s2[axis][i])) {
+        throw Violation{"a log with a non-finite or missing acceleration"};
+      }
+    }
+  }
+  bench::AccelSpectrum spectrum;
+  try {
+    spectrum = bench::ComputeAccelSpectrum(log, bench::AccelAxis::kAll);
+  } catch (const bench::ConfigError& error) {
+    located(error);
+    return;
+  }
+  if (spectrum.psd.empty() || spectrum.psd.size() != spectrum.frequency_hz.size()) throw Violation{"an empty fit band"};
+  for (const double p : spectrum.psd) {
+    if (!std::isfinite(p) || p < 0.0) throw Violation{"a PSD value not finite and non-negative"};
+  }
+  bench::ShaperFitOptions options;
+  options.step_hz = 5.0;
+  const bench::ShaperRecommendation r = bench::RecommendShapers(spectrum.frequency_hz, spectrum.psd, options);
+  if (r.recommended >= r.fits.size()) throw Violation{"a recommendation that is not one of the fits"};
+  for (const bench::ShaperFit& fit : r.fits) {
+    if (!std::isfinite(fit.remaining_vibration) || fit.remaining_vibration < 0.0 || !std::isfinite(fit.smoothing_m) ||
+        !std::isfinite(fit.added_time_s)) {
+      throw Violation{"a fit of " + fit.method + " with a non-finite or negative number"};
+    }
+  }
+  double shares = 0.0;
+  for (const bench::LogMode& mode : bench::IdentifyModes(spectrum.frequency_hz, spectrum.psd)) {
+    if (!(mode.frequency_hz >= bench::kFitMinHz - 2.0 && mode.frequency_hz <= bench::kFitMaxHz + 2.0) ||
+        !(mode.damping_ratio > 0.0 && mode.damping_ratio < 1.0)) {
+      throw Violation{"a mode outside the band or with a damping ratio outside (0, 1)"};
+    }
+    shares += mode.share;
+  }
+  if (std::abs(shares - 1.0) > 1e-9) throw Violation{"mode shares that do not sum to 1"};
 }
 
 }  // namespace shapebench::fuzz

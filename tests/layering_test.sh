@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Tests that every include goes downwards in the house: a room may include itself and the
 # rooms listed before it, never one after it (controller/ and model/ never each other).
-#   common < model, controller < bench/sim < bench/config < bench/report < bench/sweep
+#   common < model, controller < bench/sim < bench/config < bench/measure < bench/report < bench/sweep
 #     < bench/compare < bench/cli
 set -u
 cd "$(dirname "$0")/.."
@@ -12,15 +12,16 @@ allowed() {  # the include prefixes a file in room $1 may use
     controller|controller/shapers) echo "common/ controller/" ;;
     bench/sim) echo "common/ model/ controller/ bench/sim/" ;;
     bench/config) echo "common/ model/ controller/ bench/sim/ bench/config/" ;;
-    bench/report) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/" ;;
-    bench/sweep) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/ bench/sweep/" ;;
-    bench/compare) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/report/ bench/sweep/ bench/compare/" ;;
+    bench/measure) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/measure/" ;;
+    bench/report) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/measure/ bench/report/" ;;
+    bench/sweep) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/measure/ bench/report/ bench/sweep/" ;;
+    bench/compare) echo "common/ model/ controller/ bench/sim/ bench/config/ bench/measure/ bench/report/ bench/sweep/ bench/compare/" ;;
     bench/cli) echo "common/ model/ controller/ bench/" ;;
   esac
 }
 bad=0
 checked=0
-for room in common model controller controller/shapers bench/sim bench/config bench/report bench/sweep bench/compare bench/cli; do
+for room in common model controller controller/shapers bench/sim bench/config bench/measure bench/report bench/sweep bench/compare bench/cli; do
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
     while IFS= read -r inc; do

@@ -1,5 +1,5 @@
 // shapebench command line: run, check, modes, pattern, sensitivity,
-// sweep, merge, compare, identify.
+// sweep, merge, compare, identify, recommend.
 // Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage, unwritable
 // output (stdout included) or out of memory; 3 the solver failed. Errors go to stderr as
 // "error: ...".
@@ -36,6 +36,7 @@
 #include "bench/report/identify_report.h"
 #include "bench/report/modes_report.h"
 #include "bench/report/pattern_report.h"
+#include "bench/report/recommend_report.h"
 #include "bench/report/output_path.h"
 #include "bench/report/report.h"
 #include "bench/config/scenario_loader.h"
@@ -691,6 +692,51 @@ CLI::App* AddIdentifyCommand(CLI::App* app, IdentifyArgs* args) {
                        "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
       ->type_name("DIR");
   return identify;
+// A shaper recommended from an accelerometer log (bench/report/recommend_report.h).
+int RecommendCommand(const RecommendArgs& args) {
+  if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the fit
+  Doing("fitting the shapers to " + args.file);
+  const RecommendReport report = ComputeRecommendation(args);
+  std::vector<std::string> written;
+  if (!args.out_dir.empty()) {
+    const DeferInterrupts defer;
+    written = WriteRecommendOutputs(args.out_dir, report);
+    ThrowIfInterrupted("the output in " + args.out_dir + " is complete");
+  }
+  if (args.json) {
+    std::cout << RecommendJson(report).dump(2) << std::endl;
+  } else {
+    PrintRecommendation(std::cout, report);
+    std::cout.flush();
+  }
+  PrintWrote(args.json ? std::cerr : std::cout, args.out_dir, written);
+  return kExitOk;
+}
+
+CLI::App* AddRecommendCommand(CLI::App* app, RecommendArgs* args) {
+  CLI::App* recommend = app->add_subcommand(
+      "recommend", "fit every shaper of the registry to an accelerometer log's PSD and recommend one");
+  recommend->add_option("file", args->file, "accelerometer log: #time,accel_x,accel_y,accel_z (s, mm/s^2)")
+      ->required()
+      ->type_name("FILE.csv");
+  recommend->add_option("--axis", args->axis, "x, y, z or all (the sum of the three PSDs; default)")
+      ->type_name("AXIS");
+  recommend->add_option("--damping-ratio", args->damping_ratio, "the library shapers' design damping (default 0.1)")
+      ->type_name("ZETA");
+  recommend->add_option("--feed-mm-min", args->feed_mm_min, "feed of the smoothing's circle (default 6000)")
+      ->type_name("F");
+  recommend->add_option("--accel-mm-s2", args->accel_mm_s2, "acceleration of the smoothing's circle (default 5000)")
+      ->type_name("A");
+  recommend->add_flag("--json", args->json, "print the fit as one JSON object");
+  recommend->add_option("--out", args->out_dir, "write recommend.json, psd.csv and recommend.png into DIR")
+      ->type_name("DIR");
+  recommend
+      ->add_option("--validate", args->validate,
+                   "run SCENARIO with the log's modes in place of its machine, unshaped and with the "
+                   "recommendation")
+      ->type_name("SCENARIO.yaml");
+  recommend->footer("docs/measured-data.md#accelerometer-logs");
+  return recommend;
 }
 
 }  // namespace
@@ -786,6 +832,8 @@ int main(int argc, char** argv) {
 
   IdentifyArgs identify_args;
   CLI::App* identify = AddIdentifyCommand(&app, &identify_args);
+  RecommendArgs recommend_args;
+  CLI::App* recommend = AddRecommendCommand(&app, &recommend_args);
 
   try {
     app.parse(argc, argv);
@@ -812,5 +860,6 @@ int main(int argc, char** argv) {
       return RunIdentify(identify_args, std::cout, identify_args.json ? std::cerr : std::cout);
     });
   }
+  if (recommend->parsed()) code = Guarded([&] { return RecommendCommand(recommend_args); });
   return stdout_checked.Checked(code);
 }

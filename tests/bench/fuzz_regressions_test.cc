@@ -58,6 +58,9 @@ TEST(FuzzRegressions, Rows) { Replay("rows", RowsTarget); }
 // Tests that the UFF 58 reader's findings read or fail with a ConfigError at a line, and
 // that what it reads is finite and identifies within its band.
 TEST(FuzzRegressions, Uff58) { Replay("uff58", Uff58Target); }
+// Tests that the accelerometer log reader's findings are taken, with a finite spectrum
+// and fit, or refused with a ConfigError at a line and column.
+TEST(FuzzRegressions, AccelLog) { Replay("accel_log", AccelLogTarget); }
 
 }  // namespace
 }  // namespace shapebench::fuzz
