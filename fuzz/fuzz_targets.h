@@ -481,6 +481,8 @@ inline void Uff58Target(const std::string& bytes) {
   } catch (const ValidationError& error) {
     if (error.field().empty()) throw Violation{"a ValidationError without a key: " + std::string(error.what())};
   }
+}
+
 // Accelerometer log reader (bench/measure/accel_log.h) and what `recommend` does with a
 // log it takes: any bytes are a log or a ConfigError at FILE:LINE:COL naming the column;
 // a log has finite, strictly increasing times and finite values; its spectrum is finite

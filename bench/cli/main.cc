@@ -692,6 +692,13 @@ CLI::App* AddIdentifyCommand(CLI::App* app, IdentifyArgs* args) {
                        "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
       ->type_name("DIR");
   return identify;
+}
+
+int IdentifyCommand(const IdentifyArgs& args) {
+  Doing("identifying the modes of " + args.file);
+  return RunIdentify(args, std::cout, args.json ? std::cerr : std::cout);
+}
+
 // A shaper recommended from an accelerometer log (bench/report/recommend_report.h).
 int RecommendCommand(const RecommendArgs& args) {
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the fit
@@ -854,12 +861,7 @@ int main(int argc, char** argv) {
   if (sweep->parsed()) code = Guarded([&] { return SweepCommand(sweep_args); });
   if (merge->parsed()) code = Guarded([&] { return MergeCommand(merge_args); });
   if (compare->parsed()) code = Guarded([&] { return CompareCommand(compare_args); });
-  if (identify->parsed()) {
-    code = Guarded([&] {
-      Doing("identifying the modes of " + identify_args.file);
-      return RunIdentify(identify_args, std::cout, identify_args.json ? std::cerr : std::cout);
-    });
-  }
+  if (identify->parsed()) code = Guarded([&] { return IdentifyCommand(identify_args); });
   if (recommend->parsed()) code = Guarded([&] { return RecommendCommand(recommend_args); });
   return stdout_checked.Checked(code);
 }
