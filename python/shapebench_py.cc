@@ -473,8 +473,8 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "The compiled core of the shapebench package; use the package (import shapebench).";
   m.attr("__version__") = std::string(SHAPEBENCH_VERSION);
   RegisterErrors();
+  DefineResult(m);  // before Scenario: its run() signature names Result
   DefineScenario(m);
-  DefineResult(m);
   m.def("load", &Load, py::arg("path"), py::arg("sets"), py::arg("plan_move") = true);
   m.def("sweep", &python::Sweep, py::arg("path"), py::arg("sets"), py::arg("jobs"), py::arg("force"));
   m.def("pattern", &python::Pattern, py::arg("scenario"));

@@ -124,17 +124,27 @@ def load(source: Source, set: Sets = None, *, base_dir: PathLike | None = None) 
     return scenario
 
 
+_core_run = Scenario.run
+
+
+def _scenario_run(self: Scenario, trace: bool = False) -> Result:
+    try:
+        return _core_run(self, trace)
+    except ConfigError as error:  # a dict source's errors at DICT_SOURCE
+        raise _relocated(error, getattr(self, "_source", None)) from None
+
+
+_scenario_run.__doc__ = _core_run.__doc__
+Scenario.run = _scenario_run  # type: ignore[method-assign]
+
+
 def run(source: Source | Scenario, set: Sets = None, *, trace: bool = False) -> Result:
     """load(source, set).run(trace=trace); a Scenario is run as it is (set must be None)."""
     if isinstance(source, Scenario):
         if set:
             raise ValueError("run(Scenario, set=...): load the scenario with its set instead")
         return source.run(trace=trace)
-    scenario = load(source, set)
-    try:
-        return scenario.run(trace=trace)
-    except ConfigError as error:
-        raise _relocated(error, scenario._source) from None
+    return load(source, set).run(trace=trace)
 
 
 def _jobs(jobs: int | None) -> int:
