@@ -204,7 +204,8 @@ def main() -> int:
         worst = int(np.argmax(left))
         curves[name] = left
         cells = (f"{name:<14}", f"{p.duration_s * 1e3:14.3f}", f"{100 * theory:14.3f}", f"{left[worst]:14.3f}",
-                 f"{frequencies[worst]:14.2f}", f"{result['peak_ratio'].max():14.5f}",
+                 f"{frequencies[worst]:14.2f}" if name != "unshaped" else f"{'-':>14}",
+                 f"{result['peak_ratio'].max():14.5f}",
                  f"{result['residual_ratio'].max():14.5f}", f"{result['motion_time_s'].max():14.3f}")
         print("  " + "  ".join(cells))
 
