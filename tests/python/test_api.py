@@ -8,7 +8,10 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 import struct
+import subprocess
+import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -294,3 +297,33 @@ def test_shapers_and_version():
     keys = [s["key"] for s in shapebench.shapers()]
     assert {"none", "1", "zv", "zvd", "ei", "custom"} <= set(keys)
     assert shapebench.__version__
+
+
+def test_set_numbers_reach_the_bench_exactly():
+    """Tests that a float in `set` (numpy's too) reaches the bench as the same double: the
+    design frequency 0.1 + 0.2 + 25 comes back as pattern_frequency_hz bit for bit."""
+    frequency = 0.1 + 0.2 + 25.0  # 25.3 plus an ulp: no short decimal text
+    for value in (frequency, np.float64(frequency)):
+        metrics = shapebench.load("configs/scenarios/sdof_method1.yaml",
+                                  set={"controller.pattern.frequency_hz": value}).run().metrics
+        assert bits(metrics["pattern_frequency_hz"]) == bits(frequency)
+
+
+def test_ctrl_c_stops_a_sweep_between_points():
+    """Tests that SIGINT during a 100,000-point sweep raises KeyboardInterrupt in the
+    calling thread (the sweep would otherwise run to its end and say so)."""
+    script = """
+import os, signal, threading, time, shapebench
+signal.signal(signal.SIGINT, signal.default_int_handler)
+threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+try:
+    shapebench.sweep({"base": "configs/scenarios/sdof_method1.yaml", "metrics": ["peak_ratio"],
+                      "grid": {"machine.modes[0].frequency_hz": {"from": 15, "to": 35, "steps": 100000}}}, jobs=2)
+    print("finished")
+except KeyboardInterrupt:
+    print("interrupted")
+"""
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(shapebench.__file__))))
+    done = subprocess.run([sys.executable, "-c", script], cwd=ROOT, env=env, capture_output=True, text=True,
+                          timeout=300)
+    assert done.stdout.strip() == "interrupted", (done.stdout, done.stderr)
