@@ -327,3 +327,34 @@ except KeyboardInterrupt:
     done = subprocess.run([sys.executable, "-c", script], cwd=ROOT, env=env, capture_output=True, text=True,
                           timeout=300)
     assert done.stdout.strip() == "interrupted", (done.stdout, done.stderr)
+
+
+def test_stubs_and_docstrings_cover_the_api():
+    """Tests that the package ships its stubs and py.typed beside the module, that the stub
+    declares every public name and every public member of Scenario and Result, and that each
+    of them has a docstring (what an editor completes and shows)."""
+    import ast
+    package = os.path.dirname(os.path.abspath(shapebench.__file__))
+    for name in ("__init__.pyi", "_errors.pyi", "py.typed"):
+        assert os.path.exists(os.path.join(package, name)), name
+    stub = ast.parse(open(os.path.join(package, "__init__.pyi")).read())
+    declared = set()
+    members: dict[str, set] = {}
+    for node in stub.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            declared.add(node.name)
+            if isinstance(node, ast.ClassDef):
+                members[node.name] = {n.name for n in node.body if isinstance(n, ast.FunctionDef)} | {
+                    n.target.id for n in node.body if isinstance(n, ast.AnnAssign)}
+        elif isinstance(node, ast.ImportFrom):
+            declared.update(alias.asname or alias.name for alias in node.names)
+        elif isinstance(node, ast.Assign):
+            declared.update(t.id for t in node.targets if isinstance(t, ast.Name))
+    assert set(shapebench.__all__) <= declared
+    for cls in (shapebench.Scenario, shapebench.Result):
+        public = {name for name in dir(cls) if not name.startswith("_")}
+        assert public <= members[cls.__name__], public - members[cls.__name__]
+        for name in public:
+            assert getattr(cls, name).__doc__, f"{cls.__name__}.{name}"
+    for name in shapebench.__all__:
+        assert getattr(shapebench, name).__doc__, name
