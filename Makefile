@@ -3,7 +3,10 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PACKAGES = cmake ninja-build g++ libsundials-dev libeigen3-dev libyaml-cpp-dev libgtest-dev \
-           libcli11-dev nlohmann-json3-dev gnuplot-nox libxml2-utils universal-ctags chromium
+           libcli11-dev nlohmann-json3-dev gnuplot-nox libxml2-utils universal-ctags chromium \
+           $(PYTHON_PACKAGES)
+# The Python module (python/, docs/python.md) and what its tests and examples use.
+PYTHON_PACKAGES = pybind11-dev python3-dev python3-pytest python3-numpy python3-scipy python3-yaml
 # recommend: the Welch PSD of accelerometer logs (bench/measure/welch_psd.h)
 PACKAGES += libfftw3-dev pkgconf
 
@@ -43,7 +46,7 @@ SANITIZE_FLAGS = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omi
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
                UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 test-sanitize: deps
-	@cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Sanitize \
+	@cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DSHAPEBENCH_PYTHON=OFF \
 	  -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 $(SANITIZE_FLAGS) -Wno-maybe-uninitialized" >/dev/null
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS) --target shapebench model_tests controller_tests bench_tests
 	@cd $(SANITIZE_DIR) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS)
@@ -56,7 +59,7 @@ fuzz:
 	@scripts/install-deps.sh $(PACKAGES) clang libclang-rt-14-dev
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Fuzz \
 	  -DCMAKE_CXX_FLAGS_FUZZ="-O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all" \
-	  -DSHAPEBENCH_FUZZ=ON >/dev/null
+	  -DSHAPEBENCH_FUZZ=ON -DSHAPEBENCH_PYTHON=OFF >/dev/null
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZ_TARGETS)
 	@fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
@@ -64,15 +67,17 @@ fuzz:
 # the moving column with the servo, case 3 a 1000-point sweep, CVODE's choices at equal
 # accuracy), the Python baselines on case 1 (scripts/baseline.py; needs python3-scipy and
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
-# resident memory; a few minutes), then one table of it all (scripts/baseline_table.py).
-# The README's "Performance" section quotes it. Everything lands in $(BUILD_DIR)/bench.
+# resident memory; a few minutes), then one table of it all (scripts/baseline_table.py),
+# then four Python threads running at once against one (benchmarks/python_threads.py: the
+# GIL is released while simulating). docs/performance.md quotes it. Everything lands in
+# $(BUILD_DIR)/bench.
 .PHONY: bench
 BENCH_OUT = $(BUILD_DIR)/bench
 bench: deps
 	@scripts/install-deps.sh libbenchmark-dev
 	@scripts/install-deps.sh python3-scipy python3-numpy || echo "(no python3-scipy/numpy: the baselines are skipped)"
 	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-	@cmake --build $(BUILD_DIR) -j $(JOBS) --target shapebench shapebench_benchmarks
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target shapebench shapebench_benchmarks shapebench_py
 	@mkdir -p $(BENCH_OUT)
 	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --export_case1=$(BENCH_OUT)/case1.json
 	@/usr/bin/python3 scripts/baseline.py $(BENCH_OUT)/case1.json > $(BENCH_OUT)/baseline.json
@@ -85,6 +90,7 @@ bench: deps
 	@rm -rf $(BENCH_OUT)/million
 	@/usr/bin/python3 scripts/baseline_table.py $(BENCH_OUT)/benchmarks.json \
 	  $(BENCH_OUT)/baseline.json $(BENCH_OUT)/memory.txt
+	@PYTHONPATH=$(BUILD_DIR)/python /usr/bin/python3 benchmarks/python_threads.py | tee $(BENCH_OUT)/python_threads.txt
 
 # `make bench-compare REF=<commit>`: REF's benchmarks built from `git archive` beside this
 # tree's, then case 1 exact and case 3 timed with the two binaries interleaved, medians

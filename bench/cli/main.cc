@@ -39,6 +39,7 @@
 #include "bench/report/recommend_report.h"
 #include "bench/report/output_path.h"
 #include "bench/report/report.h"
+#include "bench/config/located_run.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_html.h"
@@ -63,9 +64,7 @@ constexpr int kExitSolverFailed = 3;
 // Text from the input as printed: its control characters visible, not obeyed by the terminal.
 std::string Safe(const std::string& text) { return TerminalSafe(text, /*keep_newlines=*/true); }
 
-std::string SolverMessage(const model::SolverError& error) {
-  return "solver failed: " + error.flag_name() + ": " + error.what();
-}
+std::string SolverMessage(const model::SolverError& error) { return SolverFailureText(error); }
 
 // What the command is doing and what bounds its memory, for the message of a
 // std::bad_alloc (which names neither). Set by each command as it goes.
@@ -147,13 +146,9 @@ void PrintWrote(std::ostream& out, const std::vector<std::string>& paths) {
   out.flush();
 }
 
-// RunScenario's ValidationErrors are about the scenario: locate them in its sources.
+// RunScenario's ValidationErrors are about the scenario: located in its sources.
 RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& overrides) {
-  try {
-    return RunScenario(scenario);
-  } catch (const ValidationError& error) {
-    throw LocateValidationError(scenario.source_file, overrides, error);
-  }
+  return RunScenarioLocated(scenario, overrides);
 }
 
 // --report FILE.html (bench/report/html_report.h), written complete or not at all.

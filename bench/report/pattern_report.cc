@@ -57,23 +57,19 @@ void PrintStep(std::ostream& out, const char* name, const controller::AccelStep&
 // The table's coefficients of at least kShownFraction of the largest |alpha_n|, then a
 // count and the sum of the rest: the grid correction (grid_realization.h) spreads
 // impulses over many ticks in tiny amounts (a 3-impulse ZVD: 57 coefficients, 53 of
-// them +-5e-6), which would bury the few that carry the shaping. Returns every
-// coefficient as an impulse (the residuals use them all).
+// them +-5e-6), which would bury the few that carry the shaping.
 constexpr double kShownFraction = 1e-4;
 
-std::vector<controller::Impulse> PrintProfileTable(std::ostream& out, const std::vector<double>& table,
-                                                   double period_s) {
+void PrintProfileTable(std::ostream& out, const std::vector<double>& table, double period_s) {
   double largest = 0.0;
   for (const double alpha : table) largest = std::max(largest, std::abs(alpha));
   out << "  n      t_s            alpha_n   (listed: |alpha_n| >= " << Num(kShownFraction)
       << " of the largest; alpha_n not listed are below it or 0)\n";
-  std::vector<controller::Impulse> impulses;
   std::size_t hidden = 0;
   double hidden_sum = 0.0;
   double hidden_largest = 0.0;
   for (std::size_t n = 0; n < table.size(); ++n) {
     const double time_s = static_cast<double>(n) * period_s;
-    impulses.push_back({time_s, table[n]});
     if (table[n] == 0.0) continue;
     if (std::abs(table[n]) < kShownFraction * largest) {
       ++hidden;
@@ -90,10 +86,39 @@ std::vector<controller::Impulse> PrintProfileTable(std::ostream& out, const std:
         << " of the largest (|alpha_n| <= " << Num(hidden_largest, "%.2g") << ", sum "
         << Num(hidden_sum, "%.2g") << ")\n";
   }
-  return impulses;
 }
 
 }  // namespace
+
+PatternData ComputePattern(const controller::ControllerConfig& controller) {
+  const controller::PatternConfig& config = controller.pattern;
+  const controller::StepPattern pattern = controller::MakeStepPattern(config);
+  const controller::GridDesign design = controller::ShaperGridDesign(config);
+  PatternData data;
+  data.shapes = pattern.shapes();
+  data.design_frequencies_hz = config.DesignFrequencies();
+  data.impulses = pattern.shapes() ? controller::ShaperImpulses(config) : controller::PatternImpulses(pattern);
+  data.period_s = controller.period_s;
+  // The profile_table realization: the same impulses as jerk coefficients on the period
+  // grid (paras. 52-61), exactly as the controller builds the table.
+  data.table = pattern.shapes() ? controller::ProfileTableFromImpulses(data.impulses, controller.period_s, design)
+                                : std::vector<double>{1.0};
+  const std::vector<controller::Impulse> table_impulses = controller::TableImpulses(data.table, data.period_s);
+  // Each impulse rounded to its nearest tick, without the correction: what the grid
+  // would leave without grid_realization.h.
+  std::vector<controller::Impulse> rounded;
+  for (const controller::Impulse& impulse : data.impulses) {
+    rounded.push_back({std::round(impulse.time_s / controller.period_s) * controller.period_s,
+                       impulse.amplitude});
+  }
+  for (const double f : data.design_frequencies_hz) {
+    const double zeta = design.damping_ratio;
+    data.residuals.push_back({f, zeta, controller::ResidualVibration(data.impulses, f, zeta),
+                              controller::ResidualVibration(table_impulses, f, zeta),
+                              controller::ResidualVibration(rounded, f, zeta)});
+  }
+  return data;
+}
 
 void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& controller) {
   const controller::PatternConfig& config = controller.pattern;
@@ -154,21 +179,16 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
     }
   }
 
-  const std::vector<controller::Impulse> impulses =
-      pattern.shapes() ? controller::ShaperImpulses(config) : controller::PatternImpulses(pattern);
+  const PatternData data = ComputePattern(controller);
   out << "\njerk impulses at the start of a phase (continuous time, per unit a)\n"
       << "  t_s            amplitude\n";
-  for (const auto& impulse : impulses) {
+  for (const auto& impulse : data.impulses) {
     char line[96];
     std::snprintf(line, sizeof line, "  %-13.9g  %.9g\n", impulse.time_s, impulse.amplitude);
     out << line;
   }
 
-  // The profile_table realization: the same impulses as jerk coefficients on the period
-  // grid (paras. 52-61), exactly as the controller builds the table.
-  const std::vector<double> table =
-      pattern.shapes() ? controller::ProfileTableFromImpulses(impulses, controller.period_s, design)
-                       : std::vector<double>{1.0};
+  const std::vector<double>& table = data.table;
   const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
   out << "\nrealizations (in use: " << (table_in_use ? "profile_table" : "stepped") << ")\n"
       << "  stepped: the steps above in the pre-interpolation linear acc/dec (paras. 36-50),\n"
@@ -179,26 +199,16 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
       << "(alpha_n at t = n * period_s; " << table.size()
       << " coefficients, at most post_interp.max_table_length = " << controller.post_interp.max_table_length
       << ")\n";
-  const std::vector<controller::Impulse> table_impulses = PrintProfileTable(out, table, controller.period_s);
+  PrintProfileTable(out, table, controller.period_s);
 
-  // Each impulse rounded to its nearest tick, without the correction: what the grid
-  // would leave without grid_realization.h.
-  std::vector<controller::Impulse> rounded;
-  for (const controller::Impulse& impulse : impulses) {
-    rounded.push_back({std::round(impulse.time_s / controller.period_s) * controller.period_s,
-                       impulse.amplitude});
-  }
-  for (const double f : frequencies) {
-    const double zeta = design.damping_ratio;
-    out << "\nresidual vibration at " << Num(f) << " Hz ("
+  for (const PatternResidual& residual : data.residuals) {
+    const double zeta = residual.damping_ratio;
+    out << "\nresidual vibration at " << Num(residual.frequency_hz) << " Hz ("
         << (zeta > 0.0 ? "damping ratio " + Num(zeta) : std::string("undamped"))
         << "; fraction of an unshaped step's)\n"
-        << "  stepped (the step times as set)   "
-        << Num(controller::ResidualVibration(impulses, f, zeta), "%.3e")
-        << "\n  profile_table (on the grid)      "
-        << Num(controller::ResidualVibration(table_impulses, f, zeta), "%.3e") << "\n"
-        << "  rounded to the nearest tick      "
-        << Num(controller::ResidualVibration(rounded, f, zeta), "%.3e")
+        << "  stepped (the step times as set)   " << Num(residual.stepped, "%.3e")
+        << "\n  profile_table (on the grid)      " << Num(residual.profile_table, "%.3e") << "\n"
+        << "  rounded to the nearest tick      " << Num(residual.rounded, "%.3e")
         << "   (for comparison: no correction)\n";
   }
 }
@@ -226,44 +236,59 @@ double MotionTimeS(const Scenario& scenario, const controller::ControllerConfig&
 // each with its own damping: the design frequency is one guess of them, a band of them
 // or a second mode is what the machine actually has.
 void PrintMachineModeResiduals(std::ostream& out, const Scenario& scenario) {
-  const controller::ControllerConfig& controller = scenario.controller;
-  const controller::PatternConfig& config = controller.pattern;
-  const controller::StepPattern pattern = controller::MakeStepPattern(config);
-  const std::vector<controller::Impulse> impulses =
-      pattern.shapes() ? controller::ShaperImpulses(config) : controller::PatternImpulses(pattern);
-  const std::vector<double> table =
-      pattern.shapes() ? controller::ProfileTableFromImpulses(impulses, controller.period_s,
-                                                             controller::ShaperGridDesign(config))
-                       : std::vector<double>{1.0};
-  std::vector<controller::Impulse> table_impulses;
-  for (std::size_t n = 0; n < table.size(); ++n) {
-    table_impulses.push_back({static_cast<double>(n) * controller.period_s, table[n]});
-  }
   out << "\nresidual vibration at the machine's modes (each with its own damping; fraction of an "
          "unshaped step's)\n";
-  const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(scenario.machine);
-  bool any = false;
-  for (const model::AxisModes& axis : axes) any = any || !axis.analysis.modes.empty();
-  if (!any) {
+  const std::vector<ModeResidual> modes = MachineModeResiduals(scenario);
+  if (modes.empty()) {
     out << "  none: the machine model has no modes\n";
     return;
   }
   out << "  axis  mode  frequency_hz  damping_ratio  participation  stepped     profile_table\n";
-  for (const model::AxisModes& axis : axes) {
-    for (std::size_t m = 0; m < axis.analysis.modes.size(); ++m) {
-      const model::ModeInfo& mode = axis.analysis.modes[m];
-      char line[160];
-      std::snprintf(line, sizeof line, "  %-4s  %-4zu  %-12.6g  %-13.6g  %-13.6g  %-10.3e  %.3e\n",
-                    model::AxisName(axis.axis), m + 1, mode.frequency_hz, mode.damping_ratio,
-                    mode.participation,
-                    controller::ResidualVibration(impulses, mode.frequency_hz, mode.damping_ratio),
-                    controller::ResidualVibration(table_impulses, mode.frequency_hz, mode.damping_ratio));
-      out << line;
-    }
+  for (const ModeResidual& mode : modes) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-4s  %-4zu  %-12.6g  %-13.6g  %-13.6g  %-10.3e  %.3e\n",
+                  model::AxisName(mode.axis), mode.mode, mode.frequency_hz, mode.damping_ratio,
+                  mode.participation, mode.stepped, mode.profile_table);
+    out << line;
   }
 }
 
 }  // namespace
+
+std::vector<ModeResidual> MachineModeResiduals(const Scenario& scenario) {
+  const PatternData data = ComputePattern(scenario.controller);
+  const std::vector<controller::Impulse> table_impulses = controller::TableImpulses(data.table, data.period_s);
+  std::vector<ModeResidual> residuals;
+  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+    for (std::size_t m = 0; m < axis.analysis.modes.size(); ++m) {
+      const model::ModeInfo& mode = axis.analysis.modes[m];
+      residuals.push_back({axis.axis, m + 1, mode.frequency_hz, mode.damping_ratio, mode.participation,
+                           controller::ResidualVibration(data.impulses, mode.frequency_hz, mode.damping_ratio),
+                           controller::ResidualVibration(table_impulses, mode.frequency_hz, mode.damping_ratio)});
+    }
+  }
+  return residuals;
+}
+
+PatternMotionTimes MotionTimesWithAndWithoutPattern(const Scenario& scenario) {
+  const controller::ControllerConfig& controller = scenario.controller;
+  PatternMotionTimes times;
+  try {
+    controller::ControllerConfig unshaped = controller;
+    unshaped.pattern.method = controller::kNoShaping;
+    unshaped.pattern.frequencies_hz.clear();
+    unshaped.pattern.impulses.clear();
+    unshaped.pattern.design_damping_ratio = 0.0;
+    unshaped.pattern.damping_ratios.clear();
+    const double shaped_s = MotionTimeS(scenario, controller);
+    const double unshaped_s = MotionTimeS(scenario, unshaped);
+    times.shaped_s = shaped_s;
+    times.unshaped_s = unshaped_s;
+  } catch (const ValidationError& error) {
+    times.why_not = error.field() + ": " + error.message();
+  }
+  return times;
+}
 
 void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
   const controller::ControllerConfig& controller = scenario.controller;
@@ -276,29 +301,22 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
     out << "  none: no shaping\n";
     return;
   }
-  const std::vector<controller::Impulse> impulses = controller::ShaperImpulses(config);
-  const std::vector<double> table = controller::ProfileTableFromImpulses(
-      impulses, controller.period_s, controller::ShaperGridDesign(config));
+  const PatternData data = ComputePattern(controller);  // shaped: the shaper's impulses and table
+  const std::vector<controller::Impulse>& impulses = data.impulses;
+  const std::vector<double>& table = data.table;
   const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
   out << "  shaper duration             " << Num(controller::ShaperDuration(impulses))
       << " s (continuous); " << Num(static_cast<double>(table.size() - 1) * controller.period_s)
       << " s on the grid (the table's last coefficient)\n";
   const std::string what = scenario.program ? "the scenario's program"
                                             : "the scenario's move (" + Num(scenario.move.distance_mm) + " mm)";
-  try {
-    controller::ControllerConfig unshaped = controller;
-    unshaped.pattern.method = controller::kNoShaping;
-    unshaped.pattern.frequencies_hz.clear();
-    unshaped.pattern.impulses.clear();
-    unshaped.pattern.design_damping_ratio = 0.0;
-    unshaped.pattern.damping_ratios.clear();
-    const double shaped_s = MotionTimeS(scenario, controller);
-    const double unshaped_s = MotionTimeS(scenario, unshaped);
-    out << "  motion time added           " << Num(shaped_s - unshaped_s) << " s (" << what << ": "
-        << Num(shaped_s) << " s shaped, " << Num(unshaped_s) << " s unshaped; realization "
+  const PatternMotionTimes times = MotionTimesWithAndWithoutPattern(scenario);
+  if (times.why_not.empty()) {
+    out << "  motion time added           " << Num(times.shaped_s - times.unshaped_s) << " s (" << what
+        << ": " << Num(times.shaped_s) << " s shaped, " << Num(times.unshaped_s) << " s unshaped; realization "
         << (table_in_use ? "profile_table" : "stepped") << ", post_interp as set)\n";
-  } catch (const ValidationError& error) {
-    out << "  motion time added           n/a (" << error.field() << ": " << error.message() << ")\n";
+  } else {
+    out << "  motion time added           n/a (" << times.why_not << ")\n";
   }
   // Contour error at the programmed feed. The table filters each axis' pulses: on an arc
   // of radius r at speed v a filter of variance sigma^2 (of its coefficients as a

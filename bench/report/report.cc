@@ -61,6 +61,15 @@ nlohmann::ordered_json RunJson(const RunResult& result) {
   return json;
 }
 
+const std::vector<std::string>& TraceColumns() {
+  static const std::vector<std::string> columns = {
+      "t_s",         "command_position_m", "command_velocity_m_s", "command_accel_m_s2",
+      "deflection_m", "command_x_m",       "command_y_m",          "command_z_m",
+      "actual_x_m",  "actual_y_m",         "actual_z_m",           "deflection_x_m",
+      "deflection_y_m", "deflection_z_m",  "block",                "planned_feed_mm_min"};
+  return columns;
+}
+
 std::size_t TraceStride(std::size_t samples, long max_rows) {
   const auto limit = static_cast<std::size_t>(std::max(max_rows, 2L));
   if (samples <= limit) return 1;
@@ -76,9 +85,9 @@ std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_
           << " samples kept (limits.max_trace_rows " << max_rows
           << "); the metrics use every sample\n";
     }
-    out << "t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,"
-           "command_x_m,command_y_m,command_z_m,actual_x_m,actual_y_m,actual_z_m,"
-           "deflection_x_m,deflection_y_m,deflection_z_m,block,planned_feed_mm_min\n";
+    const std::vector<std::string>& columns = TraceColumns();
+    for (std::size_t c = 0; c < columns.size(); ++c) out << (c == 0 ? "" : ",") << columns[c];
+    out << "\n";
     char line[1024];  // 15 numbers of at most 40 characters, a block number
     const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
                                        trace.command_velocity_m_s.size(),

@@ -45,6 +45,9 @@ nlohmann::ordered_json RunJson(const RunResult& result);
 std::size_t WriteTraceCsv(const std::string& path, const Trace& trace,
                           long max_rows = RunLimits{}.max_trace_rows);
 
+// trace.csv's columns in order, as its header names them (the Python module's trace keys).
+const std::vector<std::string>& TraceColumns();
+
 // The stride that keeps at most `max_rows` (>= 2) of `samples` samples: 1 when they fit,
 // else ceil((samples - 1) / (max_rows - 1)): samples 0, stride, 2 stride, ..., which
 // reach to within one stride of the last sample.

@@ -19,6 +19,7 @@
 #include "bench/sim/cosim.h"
 #include "common/csv.h"
 #include "bench/config/key_path.h"
+#include "bench/config/located_run.h"
 #include "bench/config/node_reader.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/config/structure_numbers.h"
@@ -748,7 +749,7 @@ PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std
     outcome.error = Relocated(sweep, point, error).what();
   } catch (const model::SolverError& error) {
     outcome.status = PointOutcome::Status::kSolverFailed;
-    outcome.error = "solver failed: " + error.flag_name() + ": " + error.what();
+    outcome.error = SolverFailureText(error);
   } catch (const std::bad_alloc&) {
     throw;  // the machine's, not the point's: no row, the sweep stops and resumes later
   } catch (const std::exception& error) {
