@@ -63,6 +63,18 @@ def _set_texts(sets: Sets) -> list[str]:
 # its base_dir (default: the current directory).
 _FILE_KEYS = {"scenario": ("machine", "program_file"), "sweep": ("base",), "machine": (),
               "sensitivity": ()}
+# Keys of a machine mapping that name measured or exported data (docs/measured-data.md,
+# docs/scenario-reference.md), relative to the file the machine is in.
+_MACHINE_FILE_KEYS = ("frf_file", "modal_file")
+
+
+def _absolute_machine_files(machine: Mapping[str, Any], base: str) -> dict[str, Any]:
+    machine = dict(machine)
+    for key in _MACHINE_FILE_KEYS:
+        value = machine.get(key)
+        if isinstance(value, (str, os.PathLike)) and not os.path.isabs(os.fspath(value)):
+            machine[key] = os.path.join(base, os.fspath(value))
+    return machine
 
 
 class _DictSource:
@@ -72,6 +84,10 @@ class _DictSource:
         self._dir = tempfile.TemporaryDirectory(prefix="shapebench-")
         base = os.path.abspath(os.fspath(base_dir) if base_dir is not None else os.getcwd())
         content = dict(content)
+        if kind == "machine":
+            content = _absolute_machine_files(content, base)
+        elif kind == "scenario" and isinstance(content.get("machine"), Mapping):
+            content["machine"] = _absolute_machine_files(content["machine"], base)
         for key in _FILE_KEYS[kind]:
             value = content.get(key)
             if kind == "sweep" and key == "base" and isinstance(value, Mapping):
