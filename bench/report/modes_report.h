@@ -25,6 +25,18 @@ void PrintModesTable(std::ostream& out, const std::vector<model::AxisModes>& axe
 // driven axis).
 nlohmann::ordered_json ModesJson(const std::vector<model::AxisModes>& axes, int driven_axis);
 
+// A coupled machine's cross terms (model/coupled_modes.h), after the table above: the
+// static compliance matrix C (m per m/s^2; row b the deflection along b, column a the
+// acceleration along a) and each mode's participation and shape, in the machine's order.
+// Nothing for an uncoupled machine.
+void PrintModesCoupling(std::ostream& out, const model::MultiAxisMachineConfig& machine);
+// Adds to ModesJson's object, for a coupled machine only:
+//   "static_compliance_m_per_m_s2": [[C_xx, C_xy, C_xz], [C_yx, ...], [C_zx, ...]],
+//   "coupling": [{"mode": 1, "frequency_hz", "damping_ratio",
+//                 "participation": {"x", "y", "z"}, "shape": {"x", "y", "z"}}, ...],
+//   "modal_file": the FE export's path, when the modes came from one.
+void AddModesCouplingJson(const model::MultiAxisMachineConfig& machine, nlohmann::ordered_json* json);
+
 // One axis without axis names (the original single-axis shape).
 void PrintModesTable(std::ostream& out, const model::ModalAnalysis& analysis);
 nlohmann::ordered_json ModesJson(const model::ModalAnalysis& analysis);

@@ -55,6 +55,9 @@ TEST(FuzzRegressions, Manifest) { Replay("manifest", ManifestTarget); }
 // Tests that the results rows readers of resume and merge keep the rows findings' good
 // rows or refuse them naming the file, and agree with each other.
 TEST(FuzzRegressions, Rows) { Replay("rows", RowsTarget); }
+// Tests that the FE modal export reader's hostile inputs (empty, no unit row, NaN, inf and
+// overflowing numbers, too many modes or fields) parse or fail with a located ConfigError.
+TEST(FuzzRegressions, ModalFile) { Replay("modal_file", ModalFileTarget); }
 
 }  // namespace
 }  // namespace shapebench::fuzz
