@@ -39,8 +39,8 @@ struct ModalMode {
   double frequency_hz = 25.0;
   double damping_ratio = 0.0;
   double gain = 1.0;  // unused (left at 1) by a coupled mode
-  std::optional<AxisVector> participation;  // how each axis' acceleration excites the mode
-  std::optional<AxisVector> shape;          // tool deflection per unit modal coordinate
+  std::optional<AxisVector> participation{};  // how each axis' acceleration excites the mode
+  std::optional<AxisVector> shape{};          // tool deflection per unit modal coordinate
 
   bool coupled() const { return participation.has_value() || shape.has_value(); }
 
@@ -62,9 +62,9 @@ struct ModalMachineConfig {
   // The YAML key of an FE modal export (bench/config/modal_file_reader.h), beside no `modes`.
   static constexpr const char* kModalFileKey = "modal_file";
 
-  std::vector<ModalMode> modes{ModalMode{}};
+  std::vector<ModalMode> modes = std::vector<ModalMode>(1);  // one default mode
   // The file the modes were read from (`modal_file:`, resolved); empty for YAML modes.
-  std::string modal_file;
+  std::string modal_file{};
 
   template <typename Archive>
   void Serialize(Archive* a) {
