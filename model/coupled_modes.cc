@@ -50,8 +50,16 @@ LinearPlant BuildCoupledModalPlant(const ModalMachineConfig& config, int own_axi
   plant.C = Eigen::MatrixXd::Zero(3, n);
   for (int i = 0; i < num_modes; ++i) {
     const ModalMode& mode = config.modes[i];
-    const Eigen::Vector3d participation = ModeParticipation(mode, own_axis);
-    const Eigen::Vector3d shape = ModeShape(mode, own_axis);
+    Eigen::Vector3d participation = ModeParticipation(mode, own_axis);
+    Eigen::Vector3d shape = ModeShape(mode, own_axis);
+    // q's scale is free: q_i is taken per unit of the largest participation, so that the
+    // states are deflections (an FE export's sqrt(kg) scale would make them 50 times the
+    // tool's), and participation {y: 2}, shape {y: 0.25} is gain 0.5 exactly.
+    const double scale = participation.cwiseAbs().maxCoeff();
+    if (scale > 0.0 && scale != 1.0) {
+      participation /= scale;
+      shape *= scale;
+    }
     const double w = kTwoPi * mode.frequency_hz;
     const int q = 2 * i;  // states [q_i, q_i'], as BuildPlant's modal form
     plant.A(q, q + 1) = 1.0;

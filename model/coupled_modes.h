@@ -26,8 +26,10 @@ Eigen::Matrix3d ModalCompliance(const ModalMachineConfig& config, int own_axis);
 
 // The structure relative to the driven points: inputs the three axes' accelerations,
 // outputs the deflection along x, y, z (3 rows). States [q_i, q_i'] per mode in the
-// config's order, with the very values BuildPlant gives a gain form: a coupled form whose
-// modes all lie along one axis is that axis' gain form, matrix entry for matrix entry.
+// config's order, q_i per unit of the mode's largest |participation_a| (its shape scaled
+// up alike), with the very values BuildPlant gives a gain form: a coupled form whose modes
+// all lie along one axis, each with shape x participation = gain and a participation
+// whose ratio to 1 is a power of 2, is that axis' gain form, matrix entry for matrix entry.
 LinearPlant BuildCoupledModalPlant(const ModalMachineConfig& config, int own_axis);
 
 // The plant's static gain (held acceleration), entry (b, a) computed as LinearPlant::
