@@ -22,7 +22,9 @@ void PrintModesTable(std::ostream& out, const std::vector<model::AxisModes>& axe
 //  "static_deflection_per_accel_s2": <the driven axis'>,
 //  "static_deflection_per_accel_s2_by_axis": {"x": ..., "y": ..., "z": ...}}
 // (modes by axis, then ascending frequency; only modelled axes; 0 for an unmodelled
-// driven axis).
+// driven axis). A coupled machine lists all three axes, each mode's share of the static
+// deflection vector under that axis' acceleration, and |C e_a| as the axis' static
+// deflection (model/coupled_modes.h, AnalyzeCoupledAxis).
 nlohmann::ordered_json ModesJson(const std::vector<model::AxisModes>& axes, int driven_axis);
 
 // A coupled machine's cross terms (model/coupled_modes.h), after the table above: the
