@@ -7,11 +7,11 @@
 
 #include <algorithm>
 #include <array>
-#include <vector>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "common/validation_error.h"
 #include "model/coupled_modes.h"
@@ -193,8 +193,9 @@ void ValidateCoupledPlacement(const MultiAxisMachineConfig& machine) {
     if (!machine.single_form || axis != machine.driven_axis) {
       for (std::size_t i = 0; i < modal->modes.size(); ++i) {
         if (!modal->modes[i].coupled()) continue;
+        const std::string prefix = machine.AxisPrefix(axis);
         throw ValidationError(
-            machine.AxisPrefix(axis) + ".modes[" + std::to_string(i) + "]" +
+            (prefix.empty() ? "" : prefix + ".") + "modes[" + std::to_string(i) + "]" +
                 (modal->modes[i].participation ? ".participation" : ".shape"),
             "coupled modes (participation, shape) belong to the single `modes:` form, which "
             "then models all three axes; under `axes:` each axis has its own independent model "
