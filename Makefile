@@ -54,7 +54,7 @@ test-sanitize: deps
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_scenario fuzz_set fuzz_sweep fuzz_gcode fuzz_manifest fuzz_rows fuzz_uff58
-FUZZ_TARGETS += fuzz_accel_log
+FUZZ_TARGETS += fuzz_accel_log fuzz_modal_file
 fuzz:
 	@scripts/install-deps.sh $(PACKAGES) clang libclang-rt-14-dev
 	@CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Fuzz \

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/config/config_error.h"
+#include "bench/config/modal_file_reader.h"
 #include "bench/config/override.h"
 #include "bench/sim/scenario.h"
 #include "bench/config/scenario_loader.h"
@@ -544,6 +545,36 @@ inline void AccelLogTarget(const std::string& bytes) {
     shares += mode.share;
   }
   if (std::abs(shares - 1.0) > 1e-9) throw Violation{"mode shares that do not sum to 1"};
+}
+
+// FE modal export reader (bench/config/modal_file_reader.h): any bytes are coupled modes
+// or a ConfigError at the file, a line and a column >= 1, naming a column or row; accepted
+// modes number 1 to kMaxModelEntries, each with participation and shape, and pass the
+// modal form's validate() (finite numbers, frequency > 0, damping in [0, 1)).
+inline void ModalFileTarget(const std::string& text) {
+  const std::string file = "fuzz.csv";
+  std::vector<model::ModalMode> modes;
+  try {
+    modes = bench::ParseModalFile(text, file);
+  } catch (const bench::ConfigError& error) {
+    if (error.file() != file || error.line() < 1 || error.column() < 1 || error.key_path().empty()) {
+      throw Violation{"unlocated: " + std::string(error.what())};
+    }
+    return;
+  }
+  if (modes.empty() || modes.size() > model::kMaxModelEntries) {
+    throw Violation{"accepted " + std::to_string(modes.size()) + " modes"};
+  }
+  model::ModalMachineConfig config;
+  config.modes = modes;
+  for (const model::ModalMode& mode : modes) {
+    if (!mode.participation || !mode.shape) throw Violation{"an accepted mode without participation or shape"};
+  }
+  try {
+    config.validate();
+  } catch (const ValidationError& error) {
+    throw Violation{"accepted modes fail validate(): " + std::string(error.what())};
+  }
 }
 
 }  // namespace shapebench::fuzz

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <variant>
 
@@ -13,7 +15,17 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
+// A coupled form spans three axes: BuildMachinePlant and AnalyzeMachineModes build it
+// (model/coupled_modes.h); the one-axis view would drop its cross terms.
+void RefuseCoupled(const ModalMachineConfig& config, const char* what) {
+  if (config.coupled()) {
+    throw std::logic_error(std::string(what) + ": a coupled modal form (participation, shape) spans three axes; "
+                           "use the multi-axis machine (multi_axis_machine.h)");
+  }
+}
+
 LinearPlant BuildFormPlant(const ModalMachineConfig& config) {
+  RefuseCoupled(config, "BuildPlant");
   const int num_modes = static_cast<int>(config.modes.size());
   const int n = 2 * num_modes;
   LinearPlant plant;
@@ -67,6 +79,7 @@ LinearPlant BuildFormPlant(const LumpedMachineConfig& config) {
 }
 
 ModalAnalysis AnalyzeForm(const ModalMachineConfig& config) {
+  RefuseCoupled(config, "AnalyzeModes");
   ModalAnalysis analysis;
   double signed_static = 0.0;
   for (const ModalMode& mode : config.modes) {

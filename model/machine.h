@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -12,17 +13,44 @@
 
 namespace shapebench::model {
 
-// q_i'' + 2 zeta_i w_i q_i' + w_i^2 q_i = -a_base;  deflection = sum(gain_i * q_i)
+// Components along the machine axes x, y, z.
+struct AxisVector {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+
+  template <typename Archive>
+  void Serialize(Archive* a) {
+    a->Visit("x", &x);
+    a->Visit("y", &y);
+    a->Visit("z", &z);
+  }
+};
+
+// One axis (the gain shorthand):
+//   q_i'' + 2 zeta_i w_i q_i' + w_i^2 q_i = -a_base;  deflection = sum(gain_i * q_i)
+// Coupled (participation and shape instead of gain; model/coupled_modes.h):
+//   q_i'' + 2 zeta_i w_i q_i' + w_i^2 q_i = -sum_a participation_a a_a;
+//   deflection_b = sum_i shape_b q_i
+// gain is the coupled form with participation e_axis and shape gain e_axis (axis: the
+// machine's). The scale of q is free: only shape_b participation_a matters (dimensionless;
+// an FE export's mass-normalised phi and Gamma = phi^T M r give it directly).
 struct ModalMode {
   double frequency_hz = 25.0;
   double damping_ratio = 0.0;
-  double gain = 1.0;
+  double gain = 1.0;  // unused (left at 1) by a coupled mode
+  std::optional<AxisVector> participation{};  // how each axis' acceleration excites the mode
+  std::optional<AxisVector> shape{};          // tool deflection per unit modal coordinate
+
+  bool coupled() const { return participation.has_value() || shape.has_value(); }
 
   template <typename Archive>
   void Serialize(Archive* a) {  // the field list (common/field_list.h)
     a->Visit("frequency_hz", &frequency_hz);
     a->Visit("damping_ratio", &damping_ratio);
     a->Visit("gain", &gain);
+    a->Visit("participation", &participation);
+    a->Visit("shape", &shape);
   }
 };
 
@@ -31,13 +59,22 @@ struct ModalMode {
 constexpr std::size_t kMaxModelEntries = 100;
 
 struct ModalMachineConfig {
-  std::vector<ModalMode> modes{ModalMode{}};
+  // The YAML key of an FE modal export (bench/config/modal_file_reader.h), beside no `modes`.
+  static constexpr const char* kModalFileKey = "modal_file";
+
+  std::vector<ModalMode> modes = std::vector<ModalMode>(1);  // one default mode
+  // The file the modes were read from (`modal_file:`, resolved); empty for YAML modes.
+  std::string modal_file{};
 
   template <typename Archive>
   void Serialize(Archive* a) {
     a->Visit("modes", &modes, kMaxModelEntries);
   }
-  // Throws ValidationError naming e.g. "modes[0].frequency_hz".
+  // True when a mode gives participation or shape: the form then models all three axes
+  // (only as a single form; MultiAxisMachineConfig).
+  bool coupled() const;
+  // Throws ValidationError naming e.g. "modes[0].frequency_hz", or "modes[1].shape" for a
+  // mode with participation but no shape.
   void validate() const;
 };
 
@@ -145,6 +182,9 @@ void ForEachMachineForm(F&& f) {
   ForEachMachineForm(f, std::make_index_sequence<std::variant_size_v<MachineConfig::Form>>{});
 }
 
+// One axis' structure (input: that axis' acceleration, output: its deflection). A coupled
+// modal form spans three axes and is built by BuildMachinePlant (multi_axis_machine.h):
+// here it is a std::logic_error, as in AnalyzeModes.
 LinearPlant BuildPlant(const MachineConfig& machine);
 
 struct ModeInfo {

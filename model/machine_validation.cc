@@ -1,5 +1,6 @@
 // validate() of the machine configs: every physically invalid value is rejected with the
 // field that holds it, so the scenario loader can point at the offending YAML line.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -202,6 +203,33 @@ void ValidateDamping(const LumpedMachineConfig& config) {
   }
 }
 
+// A coupled mode (machine.h, ModalMode): participation and shape together, instead of
+// gain (which stays at its default 1), every component finite.
+void ValidateCoupling(const ModalMode& mode, size_t i) {
+  const std::string gain = Indexed(kModes, i, &ModalMode::gain);
+  const std::string participation = Indexed(kModes, i, &ModalMode::participation);
+  const std::string shape = Indexed(kModes, i, &ModalMode::shape);
+  if (!mode.participation || !mode.shape) {
+    const bool has_shape = mode.shape.has_value();
+    throw ValidationError(has_shape ? participation : shape,
+                          std::string("missing: a mode with ") + (has_shape ? "shape" : "participation") +
+                              " needs " + (has_shape ? "participation" : "shape") +
+                              " too ({x, y, z} each), or neither and a gain");
+  }
+  if (mode.gain != 1.0) {
+    throw ValidationError(gain, "is the one-axis shorthand of participation and shape (gain = "
+                                "shape_a x participation_a); give gain, or participation and "
+                                "shape" + Got(mode.gain));
+  }
+  for (const auto& [name, vector] : {std::pair{participation, *mode.participation}, std::pair{shape, *mode.shape}}) {
+    for (double AxisVector::*component : {&AxisVector::x, &AxisVector::y, &AxisVector::z}) {
+      if (!std::isfinite(vector.*component)) {
+        throw ValidationError(name + "." + FieldName(component), "must be finite" + Got(vector.*component));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void ModalMachineConfig::validate() const {
@@ -219,7 +247,12 @@ void ModalMachineConfig::validate() const {
     if (!std::isfinite(mode.gain)) {
       throw ValidationError(Indexed(kModes, i, &ModalMode::gain), "must be finite" + Got(mode.gain));
     }
+    if (mode.coupled()) ValidateCoupling(mode, i);
   }
+}
+
+bool ModalMachineConfig::coupled() const {
+  return std::any_of(modes.begin(), modes.end(), [](const ModalMode& mode) { return mode.coupled(); });
 }
 
 void LumpedMachineConfig::validate() const {

@@ -6,12 +6,15 @@
 #include "common/format.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "common/validation_error.h"
+#include "model/coupled_modes.h"
 #include "model/servo_drive.h"
 
 namespace shapebench::model {
@@ -72,6 +75,90 @@ void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
   }
 }
 
+// How a driven point's acceleration s'' follows from the plant: s'' = states . x +
+// accel a + vel v (the axis' commanded acceleration a and velocity v).
+struct DrivenAcceleration {
+  Eigen::RowVectorXd states;
+  double accel = 1.0;  // the kinematic drive: s'' = a
+  double vel = 0.0;
+};
+
+// The driven point of a rigid servo axis (`servo`, BuildServoAxisPlant without structure)
+// whose states start at `first` of `num_states`: its tool row is the following error
+// e = c x (servo_drive.h, row 1), s = u + e, so s'' = a + e'' with
+//   e' = c (A x + B_a a + B_v v)                  (c B_a = 0: e' has no a term)
+//   e'' = c A A x + (c A B_a + c B_v) a + c A B_v v.
+DrivenAcceleration ServoDrivenAcceleration(const LinearPlant& servo, int first, int num_states) {
+  const Eigen::RowVectorXd c = servo.C.row(1);
+  const Eigen::RowVectorXd ca = c * servo.A;
+  DrivenAcceleration driven;
+  driven.states = Eigen::RowVectorXd::Zero(num_states);
+  driven.states.segment(first, servo.num_states()) = ca * servo.A;
+  driven.accel = 1.0 + (ca * servo.B_accel.col(0))(0) + (c * servo.B_vel.col(0))(0);
+  driven.vel = (ca * servo.B_vel.col(0))(0);
+  return driven;
+}
+
+// Appends the coupled structure (BuildCoupledModalPlant), its input a driven by the driven
+// point's acceleration of axis a (`driven`, over the states before it), its deflection
+// into the deflection and tool-error rows of every axis.
+void AppendCoupledStructure(const LinearPlant& structure, const std::array<DrivenAcceleration, kNumAxes>& driven,
+                            LinearPlant* plant) {
+  const int n0 = plant->num_states();
+  const int ns = structure.num_states();
+  const int n = n0 + ns;
+  auto grow = [&](Eigen::MatrixXd* m, int rows, int cols) {
+    Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(rows, cols);
+    bigger.topLeftCorner(m->rows(), m->cols()) = *m;
+    *m = std::move(bigger);
+  };
+  grow(&plant->A, n, n);
+  grow(&plant->B_accel, n, kNumAxes);
+  grow(&plant->B_vel, n, kNumAxes);
+  grow(&plant->C, kNumOutputRows, n);
+  plant->A.block(n0, n0, ns, ns) = structure.A;
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    const Eigen::VectorXd b = structure.B_accel.col(axis);
+    const DrivenAcceleration& s = driven[axis];
+    // The kinematic drive (s'' = a) adds nothing else: B_accel is then the structure's own.
+    plant->B_accel.block(n0, axis, ns, 1) = s.accel == 1.0 ? b : Eigen::VectorXd(b * s.accel);
+    if (s.vel != 0.0) plant->B_vel.block(n0, axis, ns, 1) = b * s.vel;
+    if (n0 > 0 && !s.states.isZero(0.0)) plant->A.block(n0, 0, ns, n0) += b * s.states;
+  }
+  plant->C.block(kDeflectionRow, n0, kNumAxes, ns) = structure.C;
+  plant->C.block(kToolErrorRow, n0, kNumAxes, ns) = structure.C;
+  plant->state_kinds.insert(plant->state_kinds.end(), structure.state_kinds.begin(), structure.state_kinds.end());
+  plant->max_frequency_rad_s = std::max(plant->max_frequency_rad_s, structure.max_frequency_rad_s);
+  const int group = static_cast<int>(plant->group_frequency_rad_s.size());
+  plant->tolerance_group.resize(n, group);
+  plant->group_frequency_rad_s.push_back(structure.max_frequency_rad_s);
+}
+
+// A coupled machine: each axis' drive first (under the servo its rigid servo states),
+// then the structure driven by the three driven points.
+void BuildCoupledMachinePlant(const ModalMachineConfig& modes, int own_axis, const DriveConfig& drive,
+                              MachinePlant* result) {
+  LinearPlant& plant = result->plant;
+  std::vector<LinearPlant> servos;
+  std::vector<int> first;
+  if (drive.type == DriveType::kServo) {
+    for (int axis = 0; axis < kNumAxes; ++axis) {
+      first.push_back(plant.num_states());
+      servos.push_back(BuildServoAxisPlant(nullptr, drive.servo));
+      AppendAxis(servos.back(), axis, &plant);
+    }
+  }
+  std::array<DrivenAcceleration, kNumAxes> driven;
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    driven[axis].states = Eigen::RowVectorXd::Zero(plant.num_states());
+    if (!servos.empty()) driven[axis] = ServoDrivenAcceleration(servos[axis], first[axis], plant.num_states());
+  }
+  const LinearPlant structure = BuildCoupledModalPlant(modes, own_axis);
+  AppendCoupledStructure(structure, driven, &plant);
+  // The structure relative to the driven points: the same under either drive.
+  result->static_gain = StaticGainByEntry(structure);
+}
+
 }  // namespace
 
 const char* AxisName(int axis) {
@@ -85,6 +172,46 @@ const char* AxisName(int axis) {
 std::string MultiAxisMachineConfig::AxisPrefix(int axis) const {
   return single_form ? std::string() : std::string("axes.") + AxisName(axis);
 }
+
+const ModalMachineConfig* MultiAxisMachineConfig::CoupledModes() const {
+  if (!single_form || driven_axis < 0 || driven_axis >= kNumAxes || !axes[driven_axis]) return nullptr;
+  const auto* modal = std::get_if<ModalMachineConfig>(&axes[driven_axis]->form);
+  return modal != nullptr && modal->coupled() ? modal : nullptr;
+}
+
+bool MultiAxisMachineConfig::Models(int axis) const {
+  return axes[axis].has_value() || CoupledModes() != nullptr;
+}
+
+namespace {
+
+// Coupled modes only in the single form (one model for all axes), where no axis is rigid.
+void ValidateCoupledPlacement(const MultiAxisMachineConfig& machine) {
+  for (int axis = 0; axis < kNumAxes; ++axis) {
+    const auto* modal = machine.axes[axis] ? std::get_if<ModalMachineConfig>(&machine.axes[axis]->form) : nullptr;
+    if (modal == nullptr || !modal->coupled()) continue;
+    if (!machine.single_form || axis != machine.driven_axis) {
+      for (std::size_t i = 0; i < modal->modes.size(); ++i) {
+        if (!modal->modes[i].coupled()) continue;
+        const std::string prefix = machine.AxisPrefix(axis);
+        throw ValidationError(
+            (prefix.empty() ? "" : prefix + ".") + "modes[" + std::to_string(i) + "]" +
+                (modal->modes[i].participation ? ".participation" : ".shape"),
+            "coupled modes (participation, shape) belong to the single `modes:` form, which "
+            "then models all three axes; under `axes:` each axis has its own independent model "
+            "(use gain)");
+      }
+    }
+    for (int other = 0; other < kNumAxes; ++other) {
+      if (!machine.rigid[other]) continue;
+      throw ValidationError("rigid", std::string("axis ") + AxisName(other) +
+                                         " has a model in this machine (its coupled modes model every "
+                                         "axis); only an axis without one can be rigid");
+    }
+  }
+}
+
+}  // namespace
 
 void MultiAxisMachineConfig::validate() const {
   if (driven_axis < 0 || driven_axis >= kNumAxes) {
@@ -108,6 +235,7 @@ void MultiAxisMachineConfig::validate() const {
       throw error.Prefixed(AxisPrefix(axis));
     }
   }
+  ValidateCoupledPlacement(*this);
 }
 
 MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const DriveConfig& drive) {
@@ -119,6 +247,10 @@ MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const Driv
   plant.B_accel = Eigen::MatrixXd::Zero(0, kNumAxes);
   plant.B_vel = Eigen::MatrixXd::Zero(0, kNumAxes);
   plant.C = Eigen::MatrixXd::Zero(2 * kNumAxes, 0);
+  if (const ModalMachineConfig* coupled = machine.CoupledModes()) {
+    BuildCoupledMachinePlant(*coupled, machine.driven_axis, drive, &result);
+    return result;
+  }
   for (int axis = 0; axis < kNumAxes; ++axis) {
     const std::optional<MachineConfig>& structure = machine.axes[axis];
     try {
@@ -138,8 +270,13 @@ MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const Driv
 std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine) {
   machine.validate();
   std::vector<AxisModes> result;
+  const ModalMachineConfig* coupled = machine.CoupledModes();
   for (int axis = 0; axis < kNumAxes; ++axis) {
-    if (machine.axes[axis]) result.push_back({axis, AnalyzeModes(*machine.axes[axis])});
+    if (coupled != nullptr) {
+      result.push_back({axis, AnalyzeCoupledAxis(*coupled, machine.driven_axis, axis)});
+    } else if (machine.axes[axis]) {
+      result.push_back({axis, AnalyzeModes(*machine.axes[axis])});
+    }
   }
   return result;
 }

@@ -1,6 +1,8 @@
 // The machine as the co-simulation sees it: a structural model per axis (X, Y, Z; an
 // axis without one is rigid), uncoupled (the lumped forms have no rotation), each with
-// its drive. The single forms (`modes:` or `bodies:`) model one axis.
+// its drive. The single forms (`modes:` or `bodies:`) model one axis, except a modal form
+// with coupled modes (participation and shape; model/coupled_modes.h): it models all three
+// axes and their cross terms, each axis with its drive.
 #pragma once
 
 #include <array>
@@ -42,6 +44,11 @@ struct MultiAxisMachineConfig {
   void validate() const;
   // The key path prefix of axis `axis`'s fields: "axes.x", or "" for a single form.
   std::string AxisPrefix(int axis) const;
+  // The single modal form with coupled modes (held at axes[driven_axis]); nullptr for any
+  // other machine. Such a machine models every axis.
+  const ModalMachineConfig* CoupledModes() const;
+  // Whether axis `axis` has a structural model (its own, or the coupled modes').
+  bool Models(int axis) const;
 };
 
 // The output layout of MachinePlant::plant.C: kNumOutputRows rows, per axis a deflection
@@ -56,7 +63,8 @@ constexpr int kToolErrorRow = 3;   // rows 3..5: tool relative to the workpiece,
 struct MachinePlant {
   // Inputs: column i of B_accel / B_vel is axis i's commanded acceleration / velocity.
   LinearPlant plant;
-  // Structural deflection per held commanded acceleration (diagonal: axes uncoupled).
+  // Structural deflection per held commanded acceleration, entry (b, a): deflection along
+  // b per m/s^2 along a. Diagonal for uncoupled axes; a coupled machine's cross terms off it.
   Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
 };
 
@@ -66,14 +74,17 @@ struct MachinePlant {
 // rigid axis; servo, BuildServoAxisPlant (servo_drive.h). Inputs of a stateless axis reach
 // no state; a rigid machine under the kinematic drive has no states at all (nothing to
 // integrate: every output is 0). Tolerance groups: one per axis' structure, one per axis'
-// servo.
+// servo. A coupled machine: each axis' drive (nothing, or its rigid servo), then the coupled
+// structure driven by the three driven points' accelerations (deflection in rows 0..2 and
+// 3..5); one tolerance group for the structure.
 MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const DriveConfig& drive);
 
 struct AxisModes {
   int axis = 0;
   ModalAnalysis analysis;
 };
-// The modes of every modelled axis, in axis order.
+// The modes of every modelled axis, in axis order (a coupled machine: all three axes, each
+// mode's share from model/coupled_modes.h AnalyzeCoupledAxis).
 std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine);
 
 // True when no modelled axis has any damping: under the kinematic drive such a structure

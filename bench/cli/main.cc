@@ -369,9 +369,12 @@ int ModesCommand(const ModesArgs& args) {
       LoadMachineAxes(args.file, ParseOverrides(args.sets));
   const std::vector<model::AxisModes> axes = model::AnalyzeMachineModes(machine);
   if (args.json) {
-    std::cout << ModesJson(axes, machine.driven_axis).dump(2) << std::endl;
+    nlohmann::ordered_json json = ModesJson(axes, machine.driven_axis);
+    AddModesCouplingJson(machine, &json);  // a coupled machine's compliance and mode vectors
+    std::cout << json.dump(2) << std::endl;
   } else {
     PrintModesTable(std::cout, axes, machine.driven_axis);
+    PrintModesCoupling(std::cout, machine);
   }
   return kExitOk;
 }

@@ -68,6 +68,10 @@ class ConfigDocument {
   ConfigError ErrorAtPath(const std::string& path, const std::string& message) const;
 
   Origin OriginOf(const std::string& path) const;
+  // The file the value at `path` was read from; for a value a --set gave, the file of the
+  // nearest enclosing value read from one (a relative path it names is relative to that
+  // file: `--set machine.modal_file=x.csv` sits in the machine's file).
+  std::string FileOf(const std::string& path) const;
 
  private:
   void SetOrigin(const std::string& path, Origin origin);

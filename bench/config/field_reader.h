@@ -3,6 +3,7 @@
 // the same way, bounded by the list's maximum length.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -51,6 +52,9 @@ class FieldReader {
 // bench/config/controller_reader.h).
 template <typename Config>
 void ReadSection(const NodeReader& node, Config* config);
+// An optional section (a mode's `participation:`): set when its key is given.
+template <typename Config>
+void ReadSection(const NodeReader& node, std::optional<Config>* config);
 
 // Reads every key of `config`'s field list present in `node`, which may hold only those
 // and `extra_keys` (read by the caller).
@@ -66,6 +70,12 @@ void ReadFields(const NodeReader& node, Config* config, const std::vector<std::s
 template <typename Config>
 void ReadSection(const NodeReader& node, Config* config) {
   ReadFields(node, config);
+}
+
+template <typename Config>
+void ReadSection(const NodeReader& node, std::optional<Config>* config) {
+  config->emplace();
+  ReadFields(node, &**config);
 }
 
 template <typename T>

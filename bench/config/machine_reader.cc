@@ -2,9 +2,11 @@
 
 #include "bench/config/field_reader.h"
 #include "bench/config/frf_machine_reader.h"
+#include "bench/config/modal_file_reader.h"
 
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace shapebench::bench {
@@ -23,17 +25,46 @@ const Choices<int>& AxisChoices() {
   return kChoices;
 }
 
-model::ModalMachineConfig ReadModal(const NodeReader& machine) {
-  model::ModalMachineConfig modal;
-  FieldReader reader(machine);
-  modal.Serialize(&reader);
-  return modal;
-}
-
 // "FILE:LINE:COL" of a node, for a message located elsewhere that names it.
 std::string Where(const NodeReader& node) {
   const ConfigError at = node.Error("");
   return at.file() + ":" + std::to_string(at.line()) + ":" + std::to_string(at.column());
+}
+
+// A coupled mode's keys as written: participation and shape together, without gain (its
+// one-axis shorthand). Under `axes:` (`coupling_allowed` false) neither.
+void CheckModeCoupling(const NodeReader& mode, bool coupling_allowed) {
+  const char* kParticipation = "participation";
+  const char* kShape = "shape";
+  const auto participation = mode.Child(kParticipation);
+  const auto shape = mode.Child(kShape);
+  if (!participation && !shape) return;
+  const NodeReader& given = participation ? *participation : *shape;
+  if (!coupling_allowed) {
+    throw given.Error("coupled modes (participation, shape) belong to the single `modes:` form, which "
+                      "then models all three axes; under `axes:` each axis has its own independent "
+                      "model: use gain");
+  }
+  if (auto gain = mode.Child("gain")) {
+    throw gain->Error("'gain' is the one-axis shorthand of participation and shape (gain = shape_a x "
+                      "participation_a, a the machine's axis); this mode gives " +
+                      std::string(participation ? kParticipation : kShape) + " (at " + Where(given) +
+                      "): give gain, or participation and shape");
+  }
+  if (!participation || !shape) {
+    throw given.Error(std::string("a mode with ") + (participation ? kParticipation : kShape) + " needs " +
+                      (participation ? kShape : kParticipation) + " too ({x, y, z} each), or neither and a gain");
+  }
+}
+
+model::ModalMachineConfig ReadModal(const NodeReader& machine, bool coupling_allowed) {
+  model::ModalMachineConfig modal;
+  FieldReader reader(machine);
+  modal.Serialize(&reader);
+  if (auto modes = machine.Child("modes")) {
+    for (const NodeReader& mode : modes->Elements()) CheckModeCoupling(mode, coupling_allowed);
+  }
+  return modal;
 }
 
 // `damping: {modal: [zeta, ...]}` or `damping: {rayleigh: {alpha, beta}}` (machine.h,
@@ -126,24 +157,35 @@ model::MachineConfig ReadForm(const NodeReader& machine,
     }
   }
   model::MachineConfig config;
-  if (machine.Has("modes")) {
+  const bool top_level = !extra_keys.empty();  // the single form, where 'axes' could stand
+  const char* modal_file_key = model::ModalMachineConfig::kModalFileKey;
+  if (auto file = machine.Child(modal_file_key); file && machine.Has("modes")) {
+    throw file->Error(std::string("'") + modal_file_key + "' and 'modes' (at " + Where(*machine.Child("modes")) +
+                      ") both give the modes; keep one");
+  }
+  if (machine.Has("modes") || machine.Has(modal_file_key)) {
+    const std::string form_key = machine.Has("modes") ? "modes" : modal_file_key;
     for (const auto& key : lumped_keys) {
       if (auto child = machine.Child(key)) {
         throw child->Error("'" + key +
                            "' belongs to the lumped form (bodies, elements, ...); this "
-                           "machine is modal (it has 'modes'): use one form");
+                           "machine is modal (it has '" + form_key + "'): use one form");
       }
     }
-    config.form = ReadModal(machine);
+    if (auto file = machine.Child(modal_file_key)) {
+      config.form = ReadModalFile(*file);
+    } else {
+      config.form = ReadModal(machine, top_level);
+    }
   } else if (machine.Has("bodies")) {
     config.form = ReadLumped(machine);
   } else {
-    const bool top_level = !extra_keys.empty();  // the single form, where 'axes' could stand
     throw machine.Error(
         std::string("expected 'modes' (modal form) or 'bodies' (lumped mass-spring-damper "
                     "form)") +
         (top_level ? ", or 'axes' (one of those per axis x, y, z)" : "") +
-        "; or 'frf_file' (modes identified from measured FRFs)");
+        "; or 'frf_file' (modes identified from measured FRFs)" +
+        (top_level ? "; or 'modal_file' (an FE modal export)" : ""));
   }
   return config;
 }
@@ -169,16 +211,17 @@ void ReadRigid(const NodeReader& machine, model::MultiAxisMachineConfig* config)
   if (!rigid) return;
   for (const NodeReader& entry : rigid->Elements()) {
     const int axis = entry.AsChoice(AxisChoices());
-    if (config->axes[axis]) {
-      throw entry.Error(std::string("axis ") + model::AxisName(axis) +
-                        " has a model in this machine; only an axis without one can be rigid");
+    if (config->Models(axis)) {
+      throw entry.Error(std::string("axis ") + model::AxisName(axis) + " has a model in this machine" +
+                        (config->axes[axis] ? "" : " (its coupled modes model every axis)") +
+                        "; only an axis without one can be rigid");
     }
     config->rigid[axis] = true;
   }
 }
 
 model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
-  std::vector<std::string> single_keys = {"modes", "axis"};
+  std::vector<std::string> single_keys = {"modes", "axis", model::ModalMachineConfig::kModalFileKey};
   const std::vector<std::string> lumped_keys = LumpedKeys();
   single_keys.insert(single_keys.end(), lumped_keys.begin(), lumped_keys.end());
   single_keys.insert(single_keys.end(), FrfFormKeys().begin(), FrfFormKeys().end());
@@ -197,6 +240,11 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   axes.ExpectMap({"x", "y", "z"});
   for (const auto& [name, axis] : AxisChoices()) {
     if (auto form = axes.Child(name)) {
+      if (auto misplaced = form->Child(model::ModalMachineConfig::kModalFileKey)) {
+        throw misplaced->Error(std::string("'") + model::ModalMachineConfig::kModalFileKey +
+                               "' belongs to the single form: an FE export's modes couple the axes, "
+                               "and under 'axes' each axis has its own independent model");
+      }
       if (auto misplaced = form->Child("axis")) {
         throw misplaced->Error("'axis' belongs to the single-axis form; under 'axes' the key (" +
                                name + ") names the axis");
@@ -210,20 +258,47 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
   return config;
 }
 
+// The single form's driven axis: `axis`, or for a coupled modal form (which models every
+// axis) `driven_axis` as well, one of the two.
+void ReadSingleFormAxis(const NodeReader& machine, const model::MachineConfig& form,
+                        model::MultiAxisMachineConfig* config) {
+  const auto* modal = std::get_if<model::ModalMachineConfig>(&form.form);
+  if (auto driven = machine.Child("driven_axis")) {
+    if (modal == nullptr || !modal->coupled()) {
+      throw driven->Error(
+          "'driven_axis' belongs to the multi-axis form (axes:); a single-form machine is "
+          "driven along its 'axis' (default y); a coupled modal machine (participation and "
+          "shape, or a modal_file) may name either");
+    }
+    if (auto axis = machine.Child("axis")) {
+      throw driven->Error("'driven_axis' and 'axis' (at " + Where(*axis) +
+                          ") both name the driven axis; keep one");
+    }
+    machine.Read<int>("driven_axis", AxisChoices(), &config->driven_axis);
+  }
+  machine.Read<int>("axis", AxisChoices(), &config->driven_axis);
+}
+
 }  // namespace
 
 model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
   if (machine.IsMap() && machine.Has("axes")) return ReadAxesForm(machine);
-  if (auto driven = machine.Child("driven_axis")) {
-    throw driven->Error(
-        "'driven_axis' belongs to the multi-axis form (axes:); a single-form machine is "
-        "driven along its 'axis' (default y)");
+  if (!machine.IsMap() || !(machine.Has("modes") || machine.Has(model::ModalMachineConfig::kModalFileKey))) {
+    if (auto driven = machine.Child("driven_axis")) {
+      throw driven->Error(
+          "'driven_axis' belongs to the multi-axis form (axes:); a single-form machine is "
+          "driven along its 'axis' (default y)");
+    }
   }
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = true;
+  // The measured form reads its FRF records along the axis, so it is known before the form.
   if (machine.IsMap()) machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
-  const model::MachineConfig form = ReadForm(machine, {"axis", "stroke", "rigid"}, config.driven_axis);
+  const model::MachineConfig form = ReadForm(
+      machine, {"axis", "driven_axis", "stroke", "rigid", model::ModalMachineConfig::kModalFileKey},
+      config.driven_axis);
+  ReadSingleFormAxis(machine, form, &config);
   ReadStroke(machine, &config);
   config.axes[config.driven_axis] = form;
   ReadRigid(machine, &config);
@@ -232,6 +307,10 @@ model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
 
 model::MachineConfig ReadMachine(const NodeReader& machine) {
   const model::MultiAxisMachineConfig config = ReadMachineAxes(machine);
+  if (config.CoupledModes() != nullptr) {
+    throw machine.Error("the machine's coupled modes span three axes; the single-axis view drops their "
+                        "cross terms (read it with ReadMachineAxes)");
+  }
   const auto& driven = config.axes[config.driven_axis];
   if (!driven) {
     const auto at = machine.Child("driven_axis");

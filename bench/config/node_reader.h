@@ -26,6 +26,7 @@ class NodeReader {
   NodeReader(const ConfigDocument& document, YAML::Node node, std::string path);
 
   const std::string& path() const { return path_; }
+  const ConfigDocument& document() const { return *document_; }
   const YAML::Node& node() const { return node_; }
   bool IsNull() const { return node_.IsNull(); }
   bool IsScalar() const { return node_.IsScalar(); }

@@ -399,14 +399,14 @@ void CheckMovedAxesModelled(const NodeReader& machine, const Scenario& scenario)
   bool any_model = false;
   std::string modelled;
   for (int a = 0; a < model::kNumAxes; ++a) {
-    if (!config.axes[a]) continue;
+    if (!config.Models(a)) continue;
     any_model = true;
     modelled += std::string(modelled.empty() ? "" : ", ") + model::AxisName(a);
   }
   if (!any_model) return;
   const std::array<bool, model::kNumAxes> moved = MovedAxes(scenario.RunProgram());
   for (int a = 0; a < model::kNumAxes; ++a) {
-    if (!moved[a] || config.axes[a] || config.rigid[a]) continue;
+    if (!moved[a] || config.Models(a) || config.rigid[a]) continue;
     const std::string name = model::AxisName(a);
     const ConfigError at = machine.Error("");
     throw machine.Error("the program moves axis " + name + ", which the machine (" + at.file() +
@@ -574,7 +574,8 @@ model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
                                               const std::vector<Override>& overrides) {
   YAML::Node root = ConfigDocument::ParseFile(path);
   const bool machine_file =
-      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes") || HasKey(root, "frf_file");
+      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes") || HasKey(root, "frf_file") ||
+      HasKey(root, model::ModalMachineConfig::kModalFileKey);
   if (!machine_file) {
     const ConfigDocument document = BuildScenarioDocument(path, overrides);
     NodeReader top(document, document.root(), "");
@@ -605,6 +606,11 @@ model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
 model::MachineConfig LoadMachine(const std::string& path,
                                  const std::vector<Override>& overrides) {
   const model::MultiAxisMachineConfig machine = LoadMachineAxes(path, overrides);
+  if (machine.CoupledModes() != nullptr) {
+    throw ConfigError(path, 0, 0, "machine",
+                      "the machine's coupled modes span three axes; the single-axis view drops their "
+                      "cross terms (load it with LoadMachineAxes)");
+  }
   const auto& driven = machine.axes[machine.driven_axis];
   if (!driven) {
     throw ConfigError(path, 0, 0, "machine",

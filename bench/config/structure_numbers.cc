@@ -24,7 +24,29 @@ struct StructureKey {
   std::string field;  // "frequency_hz", ...
   // kModal: damping.modal[index]; kRayleigh: damping.rayleigh.FIELD.
   std::optional<model::LumpedDampingKind> block;
+  // A component (x, y, z) of a coupled mode's participation or shape (`field`).
+  std::string component;
 };
+
+// `modes[i].participation.x` (or shape; x, y, z) of the single form from `path[1]` on.
+std::optional<StructureKey> ParseCouplingKey(const std::vector<PathElement>& path) {
+  model::AxisVector vector;
+  const PathElement& list = path[1];
+  const PathElement& entry = path[2];
+  const PathElement& field = path[3];
+  const PathElement& component = path[4];
+  if (list.key != FieldName(&model::ModalMachineConfig::modes) || list.index || !entry.index ||
+      !entry.key.empty() || field.index || component.index || NumberField(&vector, component.key) == nullptr ||
+      (field.key != FieldName(&model::ModalMode::participation) && field.key != FieldName(&model::ModalMode::shape))) {
+    return std::nullopt;
+  }
+  StructureKey key;
+  key.list = list.key;
+  key.index = *entry.index;
+  key.field = field.key;
+  key.component = component.key;
+  return key;
+}
 
 // `damping.modal[i]` or `damping.rayleigh.alpha|beta` (machine.h, LumpedDamping) from
 // `path[at]` on (three elements); nullopt for anything else.
@@ -60,6 +82,7 @@ bool IsField(const std::string& list, const std::string& field) {
 std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
   const auto path = ParseKeyPath(key_path);
   if (!path || path->empty() || (*path)[0].key != "machine" || (*path)[0].index) return std::nullopt;
+  if (path->size() == 5) return ParseCouplingKey(*path);  // coupled modes: single form only
   StructureKey key;
   std::size_t at = 1;
   if (path->size() == 6 && (*path)[1].key == "axes" && !(*path)[1].index) {
@@ -106,9 +129,27 @@ double* DampingFieldOf(model::MachineConfig& machine, const StructureKey& key) {
   return key.index < modal.size() ? &modal[key.index] : nullptr;
 }
 
+// A coupled mode's participation or shape component; nullptr unless the mode has it. A
+// gain of a coupled mode does not fit either: loaded from its sources, it is the error
+// that names gain beside participation and shape. Modes read from a modal_file have no
+// keys in the YAML to set.
+double* ModalFieldOf(model::ModalMachineConfig& modal, const StructureKey& key) {
+  if (!modal.modal_file.empty() || key.index >= modal.modes.size()) return nullptr;
+  model::ModalMode& mode = modal.modes[key.index];
+  if (key.component.empty()) {
+    if (mode.coupled() && key.field == FieldName(&model::ModalMode::gain)) return nullptr;
+    return ListNumberField(&modal, key.list, key.index, key.field);
+  }
+  std::optional<model::AxisVector>& vector =
+      key.field == FieldName(&model::ModalMode::participation) ? mode.participation : mode.shape;
+  return vector ? NumberField(&*vector, key.component) : nullptr;
+}
+
 // The field, whichever form the axis has; nullptr when the key does not fit it.
 double* FieldOf(model::MachineConfig& machine, const StructureKey& key) {
   if (key.block) return DampingFieldOf(machine, key);
+  if (auto* modal = std::get_if<model::ModalMachineConfig>(&machine.form)) return ModalFieldOf(*modal, key);
+  if (!key.component.empty()) return nullptr;
   return std::visit([&](auto& form) { return ListNumberField(&form, key.list, key.index, key.field); },
                     machine.form);
 }

@@ -17,12 +17,15 @@ namespace shapebench::bench {
 
 // True when `key_path` names one of these numbers (AXIS one of x, y, z, i an index):
 //   machine[.axes.AXIS].modes[i].frequency_hz | damping_ratio | gain
+//   machine.modes[i].participation.x | y | z, machine.modes[i].shape.x | y | z (coupled)
 //   machine[.axes.AXIS].bodies[i].mass_kg
 //   machine[.axes.AXIS].elements[i].stiffness_n_m | damping_n_s_m
 //   machine[.axes.AXIS].damping.modal[i]
 //   machine[.axes.AXIS].damping.rayleigh.alpha | beta
 // A `damping:` number is set only where the axis already has that block (modal, rayleigh)
-// and, for modal, the entry; otherwise the point is loaded from its sources.
+// and, for modal, the entry; a participation or shape component only where the mode has
+// it, a gain only where it has neither, and no number of modes read from a modal_file;
+// otherwise the point is loaded from its sources.
 bool IsStructureNumberKey(const std::string& key_path);
 
 // Sets each of `values` (IsStructureNumberKey keys) on `scenario`. False, with `scenario`

@@ -120,10 +120,28 @@ template <RunPhase P>
   return not_finite;
 }
 
-// The largest deflection a held commanded acceleration gives, in the view.
-double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view) {
+// The largest deflection a held commanded acceleration gives, in the view, and the
+// deflection vector under that acceleration (the first sample reaching it), oriented so that
+// its component in the view (magnitude: along the acceleration) is positive.
+double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
+                          Eigen::Vector3d* vector) {
   double static_m = 0.0;
-  for (std::size_t k = 1; k <= s.n; ++k) static_m = std::max(static_m, std::abs(view.Of(static_gain * s.accel[k])));
+  std::size_t at = 0;
+  for (std::size_t k = 1; k <= s.n; ++k) {
+    const double here = std::abs(view.Of(static_gain * s.accel[k]));
+    if (here > static_m) {
+      static_m = here;
+      at = k;
+    }
+  }
+  *vector = Eigen::Vector3d::Zero();
+  if (at == 0) return static_m;
+  const Eigen::Vector3d deflection = static_gain * s.accel[at];
+  const double along = view.magnitude ? deflection.dot(s.accel[at]) : view.Of(deflection);
+  for (int b = 0; b < 3; ++b) {
+    const double entry = along < 0.0 ? -deflection(b) : deflection(b);
+    (*vector)(b) = entry == 0.0 ? 0.0 : entry;  // no -0 for the axes it does not deflect
+  }
   return static_m;
 }
 
@@ -228,7 +246,11 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
   for (const controller::PathElement& e : path.elements()) {
     if (e.is_arc()) arcs_.push_back({&e, 0.0, 0});
   }
-  result_.metrics.static_displacement_m = StaticDisplacement(samples_, machine_.static_gain, view_);
+  Eigen::Vector3d static_vector;
+  result_.metrics.static_displacement_m = StaticDisplacement(samples_, machine_.static_gain, view_, &static_vector);
+  result_.metrics.static_displacement_x_m = static_vector(0);
+  result_.metrics.static_displacement_y_m = static_vector(1);
+  result_.metrics.static_displacement_z_m = static_vector(2);
   acc_.band = RunWindow::kSettlingBand * result_.metrics.static_displacement_m;
   acc_.quiet_since_tick = window_.motion_ticks;
   SetUpPlant();

@@ -54,6 +54,16 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        &M::peak_deflection_y_m},
       {"peak_deflection_z_m", "m", Better::kLower, "the largest absolute deflection along Z",
        &M::peak_deflection_z_m},
+      {"static_displacement_x_m", "m", Better::kLower,
+       "the X component of the static tool deflection vector C a under the held commanded "
+       "acceleration a that gives static_displacement_m (C: the machine's static compliance, "
+       "cross terms included), signed, oriented so that its component in the output view (the "
+       "magnitude view: along a) is positive; 0 off the moved axis of an uncoupled machine",
+       &M::static_displacement_x_m},
+      {"static_displacement_y_m", "m", Better::kLower, "as static_displacement_x_m, along Y",
+       &M::static_displacement_y_m},
+      {"static_displacement_z_m", "m", Better::kLower, "as static_displacement_x_m, along Z",
+       &M::static_displacement_z_m},
       {"short_block_clamps", "count", Better::kLower,
        "blocks whose feed the short-block clamp lowered (CN104175175, seed 002)",
        &M::short_block_clamps},

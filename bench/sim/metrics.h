@@ -29,6 +29,9 @@ struct Metrics {
   double peak_deflection_x_m = NAN;
   double peak_deflection_y_m = NAN;
   double peak_deflection_z_m = NAN;
+  double static_displacement_x_m = NAN;
+  double static_displacement_y_m = NAN;
+  double static_displacement_z_m = NAN;
   double short_block_clamps = NAN;
   double stroke_overshoot_m = NAN;
   double stroke_alarm = NAN;  // 1 or 0; written as a bool
@@ -56,7 +59,7 @@ struct MetricInfo {
   std::string_view shown_unit() const { return unit == "m" || unit == "s" || unit == "Hz" ? unit : ""; }
 };
 
-inline constexpr std::size_t kNumMetrics = 20;
+inline constexpr std::size_t kNumMetrics = 23;
 
 // Every metric, in the order JSON, tables and results.csv list them.
 const std::array<MetricInfo, kNumMetrics>& MetricTable();

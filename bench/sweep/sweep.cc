@@ -625,8 +625,8 @@ namespace {
 
 // Keys the command (controller::GenerateProgramCommand: controller, program, move, the
 // machine's stroke and driven axis) does not read: the structure (the machine forms' lists,
-// as their field lists name them, and a lumped axis' `damping:` block), the drive, the
-// integrator, the output view, the checks.
+// as their field lists name them, a lumped axis' `damping:` block, a modal form's
+// `modal_file`), the drive, the integrator, the output view, the checks.
 bool PlantOnlyKey(const std::string& key) {
   for (const char* prefix : {"drive", "integrator", "output", "checks"}) {
     if (IsPathPrefix(prefix, key)) return true;
@@ -636,6 +636,7 @@ bool PlantOnlyKey(const std::string& key) {
     for (std::string& list : ListNames<std::decay_t<decltype(form)>>()) lists.push_back(std::move(list));
   });
   lists.emplace_back(model::LumpedDamping::kKey);
+  lists.emplace_back(model::ModalMachineConfig::kModalFileKey);
   for (const std::string& list : lists) {
     if (IsPathPrefix("machine." + list, key)) return true;
     for (const char* axis : {"x", "y", "z"}) {

@@ -43,7 +43,7 @@ TEST(CompareCli, GateFailsForTheWorseAndPassesForTheBetter) {
   EXPECT_NE(better.out.find("baseline   configs/demo.yaml --set controller.pattern.method=none\n"),
             std::string::npos)
       << better.out;
-  EXPECT_NE(better.out.find("motion_time_s          s      lower   0.7          0.74         +0.04"),
+  EXPECT_NE(better.out.find("motion_time_s            s      lower   0.7          0.74         +0.04"),
             std::string::npos)
       << better.out;
 

@@ -61,6 +61,9 @@ TEST(FuzzRegressions, Uff58) { Replay("uff58", Uff58Target); }
 // Tests that the accelerometer log reader's findings are taken, with a finite spectrum
 // and fit, or refused with a ConfigError at a line and column.
 TEST(FuzzRegressions, AccelLog) { Replay("accel_log", AccelLogTarget); }
+// Tests that the FE modal export reader's hostile inputs (empty, no unit row, NaN, inf and
+// overflowing numbers, too many modes or fields) parse or fail with a located ConfigError.
+TEST(FuzzRegressions, ModalFile) { Replay("modal_file", ModalFileTarget); }
 
 }  // namespace
 }  // namespace shapebench::fuzz

@@ -30,10 +30,10 @@ TEST(Report, MetricsTable) {
   std::ostringstream out;
   PrintMetricsTable(out, SomeMetrics());
   const std::string text = out.str();
-  EXPECT_NE(text.find("static_displacement_m  8.1 um\n"), std::string::npos) << text;  // engineering units
-  EXPECT_NE(text.find("peak_ratio             2\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("motion_time_s          1.05 s\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("settling_time_s        n/a\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("static_displacement_m    8.1 um\n"), std::string::npos) << text;  // engineering units
+  EXPECT_NE(text.find("peak_ratio               2\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("motion_time_s            1.05 s\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("settling_time_s          n/a\n"), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'),
             static_cast<long>(Metrics{}.Named().size()));
 }

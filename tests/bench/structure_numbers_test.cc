@@ -85,6 +85,11 @@ INSTANTIATE_TEST_SUITE_P(
                       {{"machine.damping.modal[1]", "0.045"}, {"machine.bodies[2].mass_kg", "40"}},
                       {{"machine.damping.modal[1]", "0.0731"}, {"machine.bodies[2].mass_kg", "35"},
                        {"machine.damping.modal[0]", "1e-3"}}},
+        StructureCase{"coupled_modes", DataPath("sweeps/coupled_two_modes.yaml"),
+                      {{"machine.modes[1].participation.x", "3"}, {"machine.modes[1].shape.z", "6e-4"},
+                       {"machine.modes[0].frequency_hz", "25"}},
+                      {{"machine.modes[1].participation.x", "-4.5"}, {"machine.modes[1].shape.z", "1.25e-3"},
+                       {"machine.modes[0].frequency_hz", "24.5"}}},
         StructureCase{"lumped_rayleigh_damping", DataPath("sweeps/rayleigh_chain.yaml"),
                       {{"machine.damping.rayleigh.alpha", "12"}},
                       {{"machine.damping.rayleigh.alpha", "7.25"},
@@ -100,7 +105,8 @@ TEST(StructureNumbers, KnowsItsKeys) {
         "machine.elements[1].damping_n_s_m", "machine.axes.x.modes[0].frequency_hz",
         "machine.axes.z.bodies[0].mass_kg", "machine.axes.y.elements[2].damping_n_s_m",
         "machine.damping.modal[0]", "machine.axes.x.damping.modal[2]",
-        "machine.damping.rayleigh.alpha", "machine.axes.z.damping.rayleigh.beta"}) {
+        "machine.damping.rayleigh.alpha", "machine.axes.z.damping.rayleigh.beta",
+        "machine.modes[1].participation.x", "machine.modes[0].shape.z"}) {
     EXPECT_TRUE(IsStructureNumberKey(key)) << key;
   }
   for (const char* key :
@@ -110,7 +116,9 @@ TEST(StructureNumbers, KnowsItsKeys) {
         "machine.axes.x", "machine.modes[0].mass_kg", "drive.position_gain", "machine",
         "machine.damping.modal", "machine.damping.rayleigh", "machine.damping.rayleigh.gamma",
         "machine.damping.rayleigh[0]", "machine.damping.modal.alpha", "machine.damping[0].modal",
-        "machine.damping.modal[0].x", "machine.axes.x.damping.rayleigh[1]"}) {
+        "machine.damping.modal[0].x", "machine.axes.x.damping.rayleigh[1]",
+        "machine.modes[0].shape.w", "machine.modes[0].shape", "machine.axes.x.modes[0].shape.x",
+        "machine.modes[0].gain.x", "machine.bodies[0].shape.x"}) {
     EXPECT_FALSE(IsStructureNumberKey(key)) << key;
   }
 }
@@ -134,6 +142,21 @@ TEST(StructureNumbers, LeavesWhatTheLoaderRefusesToIt) {
     Scenario scenario = loaded;
     EXPECT_FALSE(SetStructureNumbers(&scenario, {bad})) << bad.key_path << "=" << bad.value_yaml;
   }
+}
+
+// Tests that a coupled mode's numbers are set only where the loader would read them the
+// same: a gain beside participation and shape, a component of a vector the mode does not
+// have, and any number of modes from a modal_file (no key in the YAML) go to the loader.
+TEST(StructureNumbers, LeavesCouplingTheLoaderRefusesToIt) {
+  const Scenario coupled = LoadScenario(DataPath("sweeps/coupled_two_modes.yaml"), {});
+  Scenario with_gain = coupled;
+  EXPECT_FALSE(SetStructureNumbers(&with_gain, {{"machine.modes[0].gain", "0.5"}}));
+  Scenario gain = LoadScenario(DataPath("sweeps/sdof_method1.yaml"), {});
+  EXPECT_FALSE(SetStructureNumbers(&gain, {{"machine.modes[0].shape.y", "2"}}));  // a gain mode
+  Scenario from_file = LoadScenario(kSource + "/configs/scenarios/fe_modes.yaml", {});
+  EXPECT_FALSE(SetStructureNumbers(&from_file, {{"machine.modes[0].frequency_hz", "24"}}));
+  Scenario still = coupled;
+  EXPECT_TRUE(SetStructureNumbers(&still, {{"machine.modes[1].shape.x", "2e-3"}}));
 }
 
 // Tests that a damping-block number is set only where the axis has that very block and
