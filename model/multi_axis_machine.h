@@ -12,6 +12,7 @@
 #include "model/drive.h"
 #include "model/linear_plant.h"
 #include "model/machine.h"
+#include "model/nonlinear_plant.h"
 
 namespace shapebench::model {
 
@@ -56,6 +57,9 @@ constexpr int kToolErrorRow = 3;   // rows 3..5: tool relative to the workpiece,
 struct MachinePlant {
   // Inputs: column i of B_accel / B_vel is axis i's commanded acceleration / velocity.
   LinearPlant plant;
+  // The nonlinear elements of every axis (friction, backlash, the servo's force limit:
+  // docs/nonlinear.md) over plant's augmented state; empty for a linear machine.
+  std::vector<NonlinearElement> nonlinear;
   // Structural deflection per held commanded acceleration (diagonal: axes uncoupled).
   Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
 };

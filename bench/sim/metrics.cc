@@ -75,11 +75,38 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
   return table;
 }
 
+const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable() {
+  using M = Metrics;
+  static const std::array<MetricInfo, kNumNonlinearMetrics> table = {{
+      {"dead_band_m", "m", Better::kLower,
+       "the final resting deflection: the absolute deflection in the view at the run's last "
+       "sample, where friction left the structure stuck (n/a for a linear plant, which comes "
+       "to rest at 0)",
+       &M::dead_band_m},
+      {"quadrant_glitch_m", "m", Better::kLower,
+       "on arcs: the largest radial spike at an axis reversal, the actual radius's largest "
+       "deviation within +-5 degrees of each angle where the tangent lies along an axis (at "
+       "least 5 degrees inside the arc), from the arc's mean radial deviation outside those "
+       "windows; n/a without such a reversal or for a linear plant",
+       &M::quadrant_glitch_m},
+  }};
+  return table;
+}
+
 const MetricInfo* FindMetric(std::string_view name) {
   for (const MetricInfo& info : MetricTable()) {
     if (info.name == name) return &info;
   }
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    if (info.name == name) return &info;
+  }
   return nullptr;
+}
+
+std::vector<std::string> AllMetricNames() {
+  std::vector<std::string> names = MetricNames();
+  for (const MetricInfo& info : NonlinearMetricTable()) names.emplace_back(info.name);
+  return names;
 }
 
 std::vector<std::string> MetricNames() {
