@@ -203,7 +203,9 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
     const double w = value_[i];
     switch (e.config.kind) {
       case NonlinearKind::kFriction:
-        g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : w;
+        // Falling through 0 only (RootDirections): a sliding element's s w reaching 0 (it
+        // stops), a stuck one's holding force reaching F_s. LuGre: w, either way (the kink).
+        g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : Sticks(e) ? e.mode * w : w;
         break;
       case NonlinearKind::kBacklash:
         g[e.root] = w - 0.5 * e.config.backlash_m;
@@ -215,6 +217,14 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
         break;
     }
   }
+}
+
+std::vector<int> NonlinearDynamics::RootDirections() const {
+  std::vector<int> directions(num_roots_, 0);
+  for (const Element& e : elements_) {
+    if (Sticks(e)) directions[e.root] = -1;
+  }
+  return directions;
 }
 
 void NonlinearDynamics::Jacobian(const double* y, double* jac) {
@@ -324,6 +334,7 @@ void NonlinearDynamics::Project(double* y) {
 
 bool NonlinearDynamics::HandleRoots(const int* found, double* y) {
   Forces(y);
+
   bool changed = false;
   bool sticks = false;
   for (int i = 0; i < num_elements(); ++i) {

@@ -45,6 +45,10 @@ class NonlinearDynamics {
   // impulses for elements that stick (y changed in place). True when a mode changed.
   bool HandleRoots(const int* found, double* y);
 
+  // Per root function: -1 where only a falling crossing is an event (CVodeSetRootDirection:
+  // a sliding element's s w, a stuck one's F_s - |F*|), 0 for either way.
+  std::vector<int> RootDirections() const;
+
   void Rhs(const double* y, double* ydot);
   void Roots(const double* y, double* g);
   // Dense, column-major, size() x size().

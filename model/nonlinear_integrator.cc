@@ -94,6 +94,8 @@ NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, 
     // A root function at 0 where integration (re)starts (a stuck element's w, an edge just
     // reached) is expected: CVODE waits for it to move away before looking again.
     Check(CVodeSetNoInactiveRootWarn(mem), "CVodeSetNoInactiveRootWarn");
+    std::vector<int> directions = dynamics_.RootDirections();
+    Check(CVodeSetRootDirection(mem, directions.data()), "CVodeSetRootDirection");
   }
   Reset(Eigen::VectorXd::Zero(num_inputs_));
 }

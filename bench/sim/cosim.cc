@@ -32,8 +32,8 @@ struct ArcWindow {
   long samples = 0;
 };
 
-// The deflection of a nonlinear plant after motion end, in the view: its extremes and its
-// last value (residual_amplitude_m about the final rest, dead_band_m).
+// The deflection of a nonlinear plant after motion end, in the view: its extremes
+// (residual_amplitude_m, half their difference) and its last value (dead_band_m).
 struct FreeResponse {
   double min = HUGE_VAL;
   double max = -HUGE_VAL;
@@ -641,10 +641,11 @@ void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
 }
 
 // A nonlinear plant (docs/metrics.md): the residual from its free response after motion end
-// about where it comes to rest, the rest itself, and the quadrant glitches of its arcs.
+// (half its peak-to-peak: one undamped mode's amplitude exactly), where it comes to rest, and
+// the quadrant glitches of its arcs.
 void CoSimulation::FinishNonlinearMetrics(Metrics* m) const {
   if (free_.any) {
-    m->residual_amplitude_m = std::max(free_.max - free_.last, free_.last - free_.min);
+    m->residual_amplitude_m = 0.5 * (free_.max - free_.min);
     m->residual_ratio = m->static_displacement_m > 0.0 ? m->residual_amplitude_m / m->static_displacement_m : NAN;
     m->dead_band_m = std::abs(free_.last);
   }

@@ -19,7 +19,9 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "its state then (input 0 after): with A = V diag(lambda) V^-1 and x = V z, per pole of "
        "the plant the modulus of 2 C v z (a pair) or of C v z (a real pole) in the output view, "
        "summed (one modal mode: abs(gain) sqrt(q^2 + ((q' + zeta w q) / w_d)^2)); a bound of "
-       "every later deflection",
+       "every later deflection. A plant with nonlinear elements has no modes: half the "
+       "peak-to-peak of its deflection sampled from motion end to the run's end (its free "
+       "response; one undamped mode's amplitude exactly)",
        &M::residual_amplitude_m},
       {"residual_ratio", "1", Better::kLower,
        "residual_amplitude_m / static_displacement_m (the input-shaping literature's residual "
@@ -35,7 +37,8 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "the amplitude of the free vibration about the cruise equilibrium (the static state at the "
        "cruise velocity, x_eq = -A^-1 B_vel v), as residual_amplitude_m, from the state one "
        "lowest-mode period into each stretch where the commanded feed stays constant and non-zero "
-       "for at least that long; the largest stretch's, / static_displacement_m",
+       "for at least that long; the largest stretch's, / static_displacement_m (n/a for a plant "
+       "with nonlinear elements)",
        &M::cruise_residual_ratio},
       {"motion_time_s", "s", Better::kLower, "when commanded motion ends", &M::motion_time_s},
       {"settling_time_s", "s", Better::kLower,
