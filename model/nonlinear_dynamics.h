@@ -31,6 +31,9 @@ class NonlinearDynamics {
   int size() const { return nz_ + num_bristles_; }  // y = [z; zeta]
   int num_roots() const { return num_roots_; }
   int num_elements() const { return static_cast<int>(elements_.size()); }
+  // Element i's mode (the plant's order): friction +-1 sliding, 0 stuck (LuGre 0);
+  // backlash and the force limit -1, 0 (within), +1.
+  int mode(int i) const { return elements_[i].mode; }
   // The bristle states' scale (F_s / sigma0 per LuGre element), for tolerances.
   std::vector<double> BristleScales() const;
 
