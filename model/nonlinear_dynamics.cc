@@ -205,7 +205,12 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
       case NonlinearKind::kFriction:
         // Falling through 0 only (RootDirections): a sliding element's s w reaching 0 (it
         // stops), a stuck one's holding force reaching F_s. LuGre: w, either way (the kink).
-        g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : Sticks(e) ? e.mode * w : w;
+        // F_s = 0 (then F_c = 0): the force does not depend on the direction; nothing to find.
+        if (Sticks(e) && e.config.friction.StaticN() == 0.0) {
+          g[e.root] = 1.0;
+        } else {
+          g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : Sticks(e) ? e.mode * w : w;
+        }
         break;
       case NonlinearKind::kBacklash:
         g[e.root] = w - 0.5 * e.config.backlash_m;

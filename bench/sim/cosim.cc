@@ -48,16 +48,17 @@ struct FreeResponse {
 };
 
 // quadrant_glitch_m on one arc: the axis reversals (tangent along an axis) at least 5
-// degrees inside the arc, the largest and smallest actual radius within +-5 degrees of
-// each, the mean actual radius outside them (the arc's baseline).
+// degrees inside the arc, the largest and smallest radial deviation (actual radius less
+// programmed) within +-5 degrees of each, and the deviations over the arc's middle half
+// (by the command's path position, as radial_error_m), whose median is the baseline: robust
+// to the spikes themselves, clear of the arc's start and end.
 struct ReversalWindows {
   static constexpr double kHalfWidthRad = 5.0 * 3.14159265358979323846 / 180.0;
   const controller::PathElement* arc = nullptr;
-  std::vector<double> angle_rad;  // the reversals' angles about the centre (atan2 range)
+  std::vector<double> angle_rad;  // the reversals' angles on the arc's turn
   std::vector<double> max_radius_m;
   std::vector<double> min_radius_m;
-  double sum_outside_m = 0.0;
-  long outside = 0;
+  std::vector<double> middle_m;  // deviations over the middle half
 
   explicit ReversalWindows(const controller::PathElement& element);
   void Add(double path_s, const Eigen::Vector3d& actual);
@@ -87,21 +88,22 @@ void ReversalWindows::Add(double path_s, const Eigen::Vector3d& actual) {
   const double fraction = e.sweep_rad != 0.0 ? std::clamp((angle - e.start_angle_rad) / e.sweep_rad, 0.0, 1.0) : 0.0;
   const double programmed = e.start_radius_m + (e.end_radius_m - e.start_radius_m) * fraction;
   const double deviation = std::hypot(dx, dy) - programmed;
+  if (u >= 0.25 && u <= 0.75) middle_m.push_back(deviation);
   for (std::size_t i = 0; i < angle_rad.size(); ++i) {
     if (std::abs(angle - angle_rad[i]) <= kHalfWidthRad) {
       max_radius_m[i] = std::max(max_radius_m[i], deviation);
       min_radius_m[i] = std::min(min_radius_m[i], deviation);
-      return;
     }
   }
-  sum_outside_m += deviation;
-  ++outside;
 }
 
 double ReversalWindows::Glitch() const {
   double glitch = NAN;
-  if (outside == 0) return glitch;
-  const double baseline = sum_outside_m / static_cast<double>(outside);
+  if (middle_m.empty()) return glitch;
+  std::vector<double> sorted = middle_m;
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  const double baseline = *mid;
   for (std::size_t i = 0; i < angle_rad.size(); ++i) {
     if (max_radius_m[i] < min_radius_m[i]) continue;  // no sample in this window
     const double spike = std::max(max_radius_m[i] - baseline, baseline - min_radius_m[i]);

@@ -89,8 +89,8 @@ const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable() {
       {"quadrant_glitch_m", "m", Better::kLower,
        "on arcs: the largest radial spike at an axis reversal, the actual radius's largest "
        "deviation within +-5 degrees of each angle where the tangent lies along an axis (at "
-       "least 5 degrees inside the arc), from the arc's mean radial deviation outside those "
-       "windows; n/a without such a reversal or for a linear plant",
+       "least 5 degrees inside the arc), from the median radial deviation over the arc's "
+       "middle half; n/a without such a reversal or for a linear plant",
        &M::quadrant_glitch_m},
   }};
   return table;

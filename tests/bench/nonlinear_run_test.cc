@@ -175,5 +175,36 @@ TEST(NonlinearCrossCheck, TheLinearPartIsCheckedThroughTheNonlinearIntegrator) {
   EXPECT_GT(run.stats.events, 0);
 }
 
+// Tests drive.force_limit_n: a rigid servo axis (100 kg on the motor) asked for 50 m/s^2 by
+// its command while its motor may push 500 N: the motor's acceleration (second differences
+// of the actual position over a period: a mean of the acceleration, and 1e-10 m of
+// interpolation error is 1e-4 m/s^2 of it) reaches 5 m/s^2 = F_limit / m and never exceeds
+// it by more than 0.1%.
+TEST(DriveForceLimit, CapsTheMotorAcceleration) {
+  Scenario s;
+  s.machine.axes = {};
+  s.machine.rigid[s.machine.driven_axis] = true;
+  s.drive.type = model::DriveType::kServo;
+  s.drive.servo.motor_mass_kg = 100.0;
+  s.drive.servo.force_limit_n = 500.0;
+  s.controller.period_s = 0.001;
+  s.controller.feed_mm_min = 30000;
+  s.controller.accel_time_s = 0.01;
+  s.move.distance_mm = 100;
+  s.integrator.method = model::IntegratorMethod::kAuto;
+  s.integrator.output_substeps = 10;
+  const RunResult run = RunScenario(s);
+  const Trace& t = run.trace;
+  const std::size_t step = 10;  // a whole period: CVODE's 1e-8 on the positions stays 1e-3 of it
+  const double h = t.time_s[step] - t.time_s[0];
+  double largest = 0.0;
+  for (std::size_t i = step; i + step < t.time_s.size(); ++i) {
+    const double a = (t.actual_m[i + step](1) - 2.0 * t.actual_m[i](1) + t.actual_m[i - step](1)) / (h * h);
+    largest = std::max(largest, std::abs(a));
+  }
+  EXPECT_NEAR(largest, 5.0, 5e-3);
+  EXPECT_GT(run.stats.events, 0);  // the limit reached and left
+}
+
 }  // namespace
 }  // namespace shapebench::bench
