@@ -252,8 +252,17 @@ std::string Seconds(double seconds) {
   return text;
 }
 
+model::MachinePlant BuildMachineAt(const Scenario& scenario) {
+  try {
+    return model::BuildMachinePlant(scenario.machine, scenario.drive);
+  } catch (const ValidationError& error) {
+    // The drive is validated already: what is left is the structure's (machine.elements[i]).
+    throw error.Prefixed("machine");
+  }
+}
+
 void CheckPlantFinite(const Scenario& scenario) {
-  const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
+  const model::MachinePlant plant = BuildMachineAt(scenario);
   if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
       !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
       !plant.static_gain.allFinite()) {
