@@ -63,6 +63,7 @@ NonlinearDynamics::NonlinearDynamics(const NonlinearPlant& plant) {
   coupling_ = rows.transpose() * columns;
   force_.assign(count, 0.0);
   value_.assign(count, 0.0);
+  rate_.assign(count, 0.0);
   grads_ = Eigen::MatrixXd::Zero(size(), count);
 }
 
@@ -177,7 +178,14 @@ void NonlinearDynamics::Forces(const double* y) {
   for (int i = 0; i < num_elements(); ++i) {
     const Element& e = elements_[i];
     value_[i] = e.row.Dot(y);
-    if (!Stuck(e)) force_[i] = Force(e, value_[i], y, nullptr, nullptr);
+    if (e.bristle >= 0) {
+      // LuGre: the bristle rate once (its exp), for the force and for zeta' (Rhs).
+      const FrictionConfig& f = e.config.friction;
+      rate_[i] = BristleRate(e, value_[i], y[nz_ + e.bristle], nullptr, nullptr);
+      force_[i] = f.sigma0_n_m * y[nz_ + e.bristle] + f.sigma1_n_s_m * rate_[i] + f.viscous_n_s_m * value_[i];
+    } else if (!Stuck(e)) {
+      force_[i] = Force(e, value_[i], y, nullptr, nullptr);
+    }
   }
   if (!stuck_.empty()) SolveStuck(y);
 }
@@ -192,7 +200,7 @@ void NonlinearDynamics::Rhs(const double* y, double* ydot) {
   for (int i = 0; i < num_elements(); ++i) {
     const Element& e = elements_[i];
     for (std::size_t k = 0; k < e.column.index.size(); ++k) ydot[e.column.index[k]] += e.column.value[k] * force_[i];
-    if (e.bristle >= 0) ydot[nz_ + e.bristle] = BristleRate(e, value_[i], y[nz_ + e.bristle], nullptr, nullptr);
+    if (e.bristle >= 0) ydot[nz_ + e.bristle] = rate_[i];
   }
 }
 
@@ -222,6 +230,38 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
         break;
     }
   }
+}
+
+std::vector<std::vector<int>> NonlinearDynamics::Blocks() const {
+  const int n = size();
+  std::vector<int> parent(n);
+  for (int i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  auto join = [&](int a, int b) { parent[find(a)] = find(b); };
+  for (int r = 0; r < nz_; ++r) {
+    for (const auto& entry : a_sparse_[r]) join(r, entry.first);
+  }
+  for (const Element& e : elements_) {
+    std::vector<int> touched = e.row.index;
+    touched.insert(touched.end(), e.row_a.index.begin(), e.row_a.index.end());
+    touched.insert(touched.end(), e.column.index.begin(), e.column.index.end());
+    if (e.bristle >= 0) touched.push_back(nz_ + e.bristle);
+    for (int i : touched) join(i, touched.front());  // (an element touches its row at least)
+  }
+  std::vector<std::vector<int>> blocks;
+  std::vector<int> block_of(n, -1);
+  for (int i = 0; i < n; ++i) {
+    const int root = find(i);
+    if (block_of[root] < 0) {
+      block_of[root] = static_cast<int>(blocks.size());
+      blocks.emplace_back();
+    }
+    blocks[block_of[root]].push_back(i);
+  }
+  return blocks;
 }
 
 std::vector<int> NonlinearDynamics::RootDirections() const {

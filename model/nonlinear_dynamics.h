@@ -48,6 +48,10 @@ class NonlinearDynamics {
   // impulses for elements that stick (y changed in place). True when a mode changed.
   bool HandleRoots(const int* found, double* y);
 
+  // The groups of states of y the Jacobian couples (connected components of its sparsity:
+  // the linear part's, each element's row, column and bristle together), ascending.
+  std::vector<std::vector<int>> Blocks() const;
+
   // Per root function: -1 where only a falling crossing is an event (CVodeSetRootDirection:
   // a sliding element's s w, a stuck one's F_s - |F*|), 0 for either way.
   std::vector<int> RootDirections() const;
@@ -105,6 +109,7 @@ class NonlinearDynamics {
   Eigen::MatrixXd grads_;  // Jacobian scratch: dF_e/dy per element (columns)
   std::vector<double> force_;
   std::vector<double> value_;  // row z per element
+  std::vector<double> rate_;   // LuGre: zeta' per element (Forces)
 };
 
 }  // namespace shapebench::model

@@ -1,6 +1,7 @@
 // CVODE on a plant with nonlinear elements (model/nonlinear_plant.h, docs/nonlinear.md):
-// BDF with a dense Newton solver and the plant's own Jacobian (the friction laws are stiff:
-// LuGre's bristles, a stuck element's holding force), root finding (CVodeRootInit) at the
+// BDF with Newton's method on the plant's own Jacobian (the friction laws are stiff:
+// LuGre's bristles, a stuck element's holding force), solved by blocks (BlockLuSolver: the
+// axes are uncoupled), root finding (CVodeRootInit) at the
 // elements' switching points (stick and slip, the gap's edges, the force limit), each
 // event a restart from the state there with the new modes. Output substeps come from
 // CVODE's interpolation (CV_NORMAL). A separate class from CvodeIntegrator, whose tuned path
@@ -53,8 +54,8 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   struct Memory;  // CVODE's context, vectors, matrix, solver and memory
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* user_data);
   static int RootFn(double t, N_Vector y, double* gout, void* user_data);
-  static int Jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data, N_Vector tmp1,
-                      N_Vector tmp2, N_Vector tmp3);
+  static int LinSys(double t, N_Vector y, N_Vector fy, SUNMatrix a, booleantype jok, booleantype* jcur,
+                    double gamma, void* user_data, N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
   static void RecordError(int code, const char* module, const char* function, char* msg, void* user_data);
   double TimeAt(long count) const { return static_cast<double>(count) * period_s_ / substeps_; }
   void ApplyInput(const double* drive_accel);
@@ -71,8 +72,10 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   Eigen::MatrixXd C_;
   Eigen::MatrixXd B_z_;
   Eigen::VectorXd accel_;
+  double restart_jump_m_s2_;     // a larger change of the held acceleration restarts CVODE
   Eigen::VectorXd all_outputs_;  // scratch: every output of a substep
   NonlinearDynamics dynamics_;
+  Eigen::MatrixXd jacobian_;  // the last Jacobian (LinSys), dense, column-major
   std::vector<int> roots_found_;
   bool need_reinit_ = false;
   bool stop_set_ = false;
