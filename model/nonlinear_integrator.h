@@ -72,7 +72,6 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   Eigen::MatrixXd C_;
   Eigen::MatrixXd B_z_;
   Eigen::VectorXd accel_;
-  double restart_jump_m_s2_;     // a larger change of the held acceleration restarts CVODE
   Eigen::VectorXd all_outputs_;  // scratch: every output of a substep
   NonlinearDynamics dynamics_;
   Eigen::MatrixXd jacobian_;  // the last Jacobian (LinSys), dense, column-major
