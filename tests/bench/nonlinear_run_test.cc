@@ -206,5 +206,26 @@ TEST(DriveForceLimit, CapsTheMotorAcceleration) {
   EXPECT_GT(run.stats.events, 0);  // the limit reached and left
 }
 
+// Tests the drive's friction and force limit keys: they need the servo (named so under the
+// kinematic drive) with a velocity loop, a misspelt friction key gets a did-you-mean, and a
+// negative limit is refused at its key.
+TEST(NonlinearRun, DriveFrictionKeysAreValidatedWhereTheyStand) {
+  ScratchDir dir;
+  auto load = [&](const std::string& name, const std::string& drive) {
+    const std::string path = dir.Write(name, "machine: {axes: {}}\ndrive: " + drive + "\nmove: {distance_mm: 10}\n");
+    return std::make_pair(path, testing::ErrorOf([&] { LoadScenario(path, {}); }));
+  };
+  auto [p1, e1] = load("1.yaml", "{type: kinematic, friction: {model: coulomb, coulomb_n: 40}}");
+  ExpectError(e1, p1, 2, 36, "drive.friction", "'friction' is a servo setting; it needs type: servo");
+  auto [p2, e2] = load("2.yaml", "{type: servo, velocity_loop_hz: 0, friction: {model: coulomb, coulomb_n: 40}}");
+  ExpectError(e2, p2, 2, 53, "drive.friction", "needs a velocity loop (velocity_loop_hz > 0)");
+  auto [p3, e3] = load("3.yaml", "{type: servo, friction: {model: coulomb, coulomb: 40}}");
+  ExpectError(e3, p3, 2, 49, "drive.friction.coulomb", "did you mean 'coulomb_n'?");
+  auto [p4, e4] = load("4.yaml", "{type: servo, force_limit_n: -5}");
+  ExpectError(e4, p4, 2, 37, "drive.force_limit_n", "must be finite and >= 0");
+  auto [p5, e5] = load("5.yaml", "{type: servo, friction: {model: stribeck, coulomb_n: 40, static_n: 30}}");
+  ExpectError(e5, p5, 2, 75, "drive.friction.static_n", "must be >= coulomb_n (40)");
+}
+
 }  // namespace
 }  // namespace shapebench::bench
