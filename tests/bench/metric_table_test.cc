@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/report/html_report.h"
 #include "bench/report/report.h"
 
 namespace shapebench::bench {
@@ -93,7 +94,8 @@ TEST(MetricTable, GlossaryInTheDocsIsTheTable) {
 // Tests that the nonlinear plants' metrics are complete rows of their own: unique names
 // that no MetricTable() row has, a unit matching the suffix, a field of their own; FindMetric
 // finds them, MetricNames() (every run's columns) leaves them out and AllMetricNames() has
-// them; JSON and the table leave them out where undefined and write them where defined.
+// them; JSON, the table and the HTML report's table leave them out where undefined and
+// write them where defined.
 TEST(MetricTable, NonlinearMetricsAreRowsOfTheirOwn) {
   std::set<std::string_view> names;
   for (const MetricInfo& info : MetricTable()) names.insert(info.name);
@@ -122,6 +124,9 @@ TEST(MetricTable, NonlinearMetricsAreRowsOfTheirOwn) {
   std::ostringstream with;
   PrintMetricsTable(with, metrics);
   EXPECT_NE(with.str().find("dead_band_m"), std::string::npos);
+  const HtmlTable html = MetricsHtmlTable(metrics);
+  ASSERT_EQ(html.rows.size(), kNumMetrics + 1);  // the HTML report's table likewise
+  EXPECT_EQ(html.rows.back().front(), "dead_band_m");
 }
 
 }  // namespace
