@@ -65,7 +65,8 @@ fuzz:
 
 # `make bench`: Google Benchmark over benchmarks/cases/ (case 1 one mode, case 2
 # the moving column with the servo, case 3 a 1000-point sweep, CVODE's choices at equal
-# accuracy), the Python baselines on case 1 (scripts/baseline.py; needs python3-scipy and
+# accuracy, case 4 the moving column with LuGre guides on a 10 s circle), the Python
+# baselines on cases 1 and 4 (scripts/baseline.py; needs python3-scipy and
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
 # resident memory; a few minutes), then one table of it all (scripts/baseline_table.py),
 # then four Python threads running at once against one (benchmarks/python_threads.py: the
@@ -80,7 +81,8 @@ bench: deps
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target shapebench shapebench_benchmarks shapebench_py
 	@mkdir -p $(BENCH_OUT)
 	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --export_case1=$(BENCH_OUT)/case1.json
-	@/usr/bin/python3 scripts/baseline.py $(BENCH_OUT)/case1.json > $(BENCH_OUT)/baseline.json
+	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --export_case4=$(BENCH_OUT)/case4.json
+	@/usr/bin/python3 scripts/baseline.py $(BENCH_OUT)/case1.json $(BENCH_OUT)/case4.json > $(BENCH_OUT)/baseline.json
 	@$(BUILD_DIR)/benchmarks/shapebench_benchmarks --benchmark_out=$(BENCH_OUT)/benchmarks.json \
 	  --benchmark_out_format=json > $(BENCH_OUT)/benchmarks.txt
 	@rm -rf $(BENCH_OUT)/million

@@ -4,6 +4,8 @@
 //   case 2  the moving-column machine (X, Y, Z), servo drive, the pocket corner
 //           (configs/scenarios/pocket_corner.yaml with drive.type servo)
 //   case 3  a 1000-point natural-period sweep of case 1 (case3_sweep.yaml), 1 and 2 jobs
+//   case 4  the moving column with LuGre friction on its X and Y guides on a 10 s circle
+//           (case4_lugre_circle.yaml): a plant with nonlinear elements, CVODE with events
 //
 // Each reports the time per run, runs per second (items_per_second) and, for CVODE, its
 // internal steps and right-hand-side evaluations per simulated second. BM_CvodeTuning
@@ -12,6 +14,7 @@
 // (case 3: every point's within kCase3TargetError).
 // Extra options (before Google Benchmark's own):
 //   --export_case1=FILE   writes case 1's command and plant for scripts/baseline.py, exits
+//   --export_case4=FILE   the same for case 4 (plant, elements, command, shapebench's answer)
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
@@ -28,12 +31,14 @@
 #include <string>
 #include <vector>
 
+#include "bench/sim/command_samples.h"
 #include "bench/sim/cosim.h"
 #include "bench/config/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
 #include "model/cvode_cross_check.h"
 #include "model/multi_axis_machine.h"
+#include "model/cvode_integrator.h"
 
 namespace {
 
@@ -160,6 +165,33 @@ void Case3(benchmark::State& state, const std::string& method) {
 }
 void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
 void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }
+
+// ---- Case 4: a plant with nonlinear elements ----
+
+Scenario Case4() { return LoadScenario(kSource + "/benchmarks/cases/case4_lugre_circle.yaml", {}); }
+
+// Case 4 as a run: time per run, the points (output samples) per second and how much faster
+// than real time (simulated seconds per CPU second), CVODE's work per simulated second.
+void BM_Case4_LugreCircle(benchmark::State& state) {
+  const Scenario scenario = Case4();
+  RunResult last;
+  for (auto _ : state) {
+    last = RunScenario(scenario, RunOptions{false});
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+  const double points = last.simulated_s / scenario.controller.period_s * last.substeps;
+  state.counters["sim_s"] = last.simulated_s;
+  state.counters["points"] = points;
+  state.counters["points_per_s"] =
+      benchmark::Counter(points * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["real_time_factor"] =
+      benchmark::Counter(last.simulated_s * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["steps_per_sim_s"] = last.stats.steps / last.simulated_s;
+  state.counters["rhs_per_sim_s"] = last.stats.rhs_evals / last.simulated_s;
+  state.counters["events"] = static_cast<double>(last.stats.events);
+  state.counters["peak_ratio"] = last.metrics.peak_ratio;
+}
 
 // ---- The CVODE cross-check (model/cvode_cross_check.h) ----
 
@@ -380,6 +412,67 @@ int ExportCase1(const std::string& path) {
   return out ? 0 : 1;
 }
 
+// Case 4 for scripts/baseline.py: the plant the run integrates (its Z axis, which the
+// circle never moves, left out: it stays at rest, cosim.cc's IdleAxesRigid), its LuGre
+// elements, CVODE's tolerances, the command's acceleration per tick and axis, and
+// shapebench's X and Y deflection at every tick's end.
+void WriteMatrix(std::ostream& out, const char* name, const Eigen::MatrixXd& m) {
+  out << "  \"" << name << "\": [";
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    out << (r > 0 ? ", " : "") << "[";
+    for (Eigen::Index c = 0; c < m.cols(); ++c) out << (c > 0 ? ", " : "") << m(r, c);
+    out << "]";
+  }
+  out << "],\n";
+}
+
+int ExportCase4(const std::string& path) {
+  const Scenario scenario = Case4();
+  const RunResult run = RunScenario(scenario);
+  model::MultiAxisMachineConfig machine = scenario.machine;
+  machine.axes[2].reset();
+  const model::MachinePlant plant = model::BuildMachinePlant(machine, scenario.drive);
+  const CommandSamples samples = SampleCommand(run.command);
+  // As the run's: the scales of CoSimulation::SetUpPlant (the bristles' atol is the script's).
+  const Eigen::VectorXd atol = model::CvodeAbsoluteTolerances(
+      plant.plant, scenario.integrator, std::max(samples.max_accel_m_s2, 1e-12), samples.max_speed_m_s);
+  std::ofstream out(path);
+  out.precision(17);
+  out << "{\n  \"period_s\": " << run.command.period_s << ",\n  \"substeps\": " << run.substeps
+      << ",\n  \"simulated_ticks\": " << std::lround(run.simulated_s / run.command.period_s)
+      << ",\n  \"rtol\": " << scenario.integrator.rtol << ",\n";
+  WriteMatrix(out, "A", plant.plant.A);
+  WriteMatrix(out, "B_accel", plant.plant.B_accel);
+  WriteMatrix(out, "B_vel", plant.plant.B_vel);
+  WriteMatrix(out, "C_deflection", plant.plant.C.topRows(2));  // X and Y deflection rows
+  WriteMatrix(out, "atol", atol.transpose());  // x, then the 3 drive velocities
+  out << "  \"atol_scale\": " << scenario.integrator.atol_scale << ",\n";
+  out << "  \"elements\": [";
+  for (std::size_t i = 0; i < plant.nonlinear.size(); ++i) {
+    const model::NonlinearElement& e = plant.nonlinear[i];
+    const model::FrictionConfig& f = e.friction;
+    out << (i > 0 ? ", " : "") << "{\"coulomb_n\": " << f.coulomb_n << ", \"static_n\": " << f.StaticN()
+        << ", \"stribeck_velocity_m_s\": " << f.stribeck_velocity_m_s << ", \"viscous_n_s_m\": " << f.viscous_n_s_m
+        << ", \"sigma0_n_m\": " << f.sigma0_n_m << ", \"sigma1_n_s_m\": " << f.sigma1_n_s_m << ", \"row_x\": [";
+    for (Eigen::Index k = 0; k < e.row_x.size(); ++k) out << (k > 0 ? ", " : "") << e.row_x(k);
+    out << "], \"row_v\": [" << e.row_v(0) << ", " << e.row_v(1) << ", " << e.row_v(2) << "], \"column_x\": [";
+    for (Eigen::Index k = 0; k < e.column_x.size(); ++k) out << (k > 0 ? ", " : "") << e.column_x(k);
+    out << "]}";
+  }
+  out << "],\n  \"accel_m_s2\": [";
+  for (std::size_t k = 1; k <= run.command.num_ticks(); ++k) {
+    out << (k > 1 ? ", " : "") << "[" << run.command.axes[0].accel_m_s2(k) << ", " << run.command.axes[1].accel_m_s2(k) << "]";
+  }
+  out << "],\n  \"shapebench_deflection_m\": [";
+  for (std::size_t i = static_cast<std::size_t>(run.substeps), k = 0; i < run.trace.time_s.size();
+       i += static_cast<std::size_t>(run.substeps), ++k) {
+    const Eigen::Vector3d& d = run.trace.deflection_axes_m[i];
+    out << (k > 0 ? ", " : "") << "[" << d(0) << ", " << d(1) << "]";
+  }
+  out << "]\n}\n";
+  return out ? 0 : 1;
+}
+
 }  // namespace
 
 // Case 1's two targets: the median of five repetitions (one run of a few seconds can
@@ -394,6 +487,7 @@ BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRea
 BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
 BENCHMARK(BM_CvodeCrossCheck)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CvodeTuning)->Apply(TuningArgs)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Case4_LugreCircle)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
 int main(int argc, char** argv) {
   std::vector<char*> rest;
@@ -401,6 +495,8 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const std::string flag = "--export_case1=";
     if (arg.compare(0, flag.size(), flag) == 0) return ExportCase1(arg.substr(flag.size()));
+    const std::string flag4 = "--export_case4=";
+    if (arg.compare(0, flag4.size(), flag4) == 0) return ExportCase4(arg.substr(flag4.size()));
     rest.push_back(argv[i]);
   }
   int count = static_cast<int>(rest.size());

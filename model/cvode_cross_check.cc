@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/format.h"
+#include "model/nonlinear_integrator.h"
 
 namespace shapebench::model {
 namespace {
@@ -98,7 +99,7 @@ std::string CacheKey(const LinearPlant& plant, const IntegratorConfig& config, d
 
 CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfig& config,
                                  double period_s, int substeps, double scale_accel_m_s2,
-                                 double scale_velocity_m_s) {
+                                 double scale_velocity_m_s, CheckedIntegrator which) {
   IntegratorConfig cvode = config;
   cvode.method = IntegratorMethod::kCvode;
   IntegratorConfig exact = config;
@@ -106,8 +107,13 @@ CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfi
   const Eigen::VectorXcd poles = plant.A.eigenvalues();
   const long half_ticks = HalfPulseTicks(poles, period_s);
   auto run = [&](const IntegratorConfig& c) {
-    auto integrator = MakeIntegrator(plant, c, period_s, substeps, scale_accel_m_s2,
-                                     scale_velocity_m_s);
+    std::unique_ptr<PlantIntegrator> integrator;
+    if (which == CheckedIntegrator::kNonlinear && c.method == IntegratorMethod::kCvode) {
+      integrator = std::make_unique<NonlinearCvodeIntegrator>(NonlinearPlant{plant, {}}, c, period_s, substeps,
+                                                              scale_accel_m_s2, scale_velocity_m_s);
+    } else {
+      integrator = MakeIntegrator(plant, c, period_s, substeps, scale_accel_m_s2, scale_velocity_m_s);
+    }
     return RunSample(integrator.get(), plant.num_inputs(), scale_accel_m_s2, half_ticks);
   };
   const std::vector<double> reference = run(exact);
@@ -148,7 +154,7 @@ CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfi
 
 CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const IntegratorConfig& config,
                                        double period_s, int substeps, double scale_accel_m_s2,
-                                       double scale_velocity_m_s) {
+                                       double scale_velocity_m_s, CheckedIntegrator checked) {
   static std::mutex mutex;
   static std::map<std::string, CrossCheckResult> cache;
   constexpr std::size_t kMaxEntries = 4096;  // a sweep over the plant: bounded memory
@@ -157,7 +163,8 @@ CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const Integrato
   // speed to acceleration) stands for every run of this plant, up to rounding.
   const double velocity_per_accel =
       scale_accel_m_s2 > 0.0 ? scale_velocity_m_s / scale_accel_m_s2 : scale_velocity_m_s;
-  const std::string key = CacheKey(plant, config, period_s, substeps, 1.0, velocity_per_accel);
+  std::string key = CacheKey(plant, config, period_s, substeps, 1.0, velocity_per_accel);
+  if (checked == CheckedIntegrator::kNonlinear) key += "nonlinear";
   {
     std::lock_guard<std::mutex> lock(mutex);
     const auto found = cache.find(key);
@@ -165,7 +172,7 @@ CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const Integrato
   }
   // Computed outside the lock: two threads may both compute one key, with equal results.
   const CrossCheckResult result =
-      CrossCheckCvode(plant, config, period_s, substeps, 1.0, velocity_per_accel);
+      CrossCheckCvode(plant, config, period_s, substeps, 1.0, velocity_per_accel, checked);
   std::lock_guard<std::mutex> lock(mutex);
   if (cache.size() >= kMaxEntries) cache.clear();
   cache.emplace(key, result);
@@ -173,9 +180,10 @@ CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const Integrato
 }
 
 std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorConfig& config,
-                              double run_s) {
+                              double run_s, CheckedIntegrator checked) {
   const double predicted = result.Predicted(run_s);
-  const bool adams = config.lmm == CvodeLmm::kAdams;
+  const bool nonlinear = checked == CheckedIntegrator::kNonlinear;
+  const bool adams = config.lmm == CvodeLmm::kAdams && !nonlinear;
   if (!result.solver_failure.empty()) {
     return "CVODE failed on the cross-check pulse (" + result.solver_failure +
            "), so its accuracy on this plant is unknown (docs/accuracy.md); use "
@@ -184,6 +192,11 @@ std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorCo
   std::string text = "CVODE (integrator.rtol " + FormatNumber(config.rtol) + ", lmm " +
                      (adams ? "adams" : "bdf") + ") disagrees with the exact discretisation of "
                      "this linear plant: ";
+  if (nonlinear) {
+    text = "CVODE (integrator.rtol " + FormatNumber(config.rtol) + ", BDF as for nonlinear elements) "
+           "disagrees with the exact discretisation of this plant's linear part (its nonlinear "
+           "elements left out; docs/nonlinear.md): ";
+  }
   if (!std::isfinite(predicted)) {
     text += "non-finite values on the check pulse";
   } else {
@@ -195,7 +208,8 @@ std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorCo
           FormatNumber(kCvodeMetricAccuracy) + " of the exact path; docs/accuracy.md). "
           "Tighten integrator.rtol";
   if (adams) text += ", use integrator.lmm: bdf if a mode is stiff";
-  text += ", or use integrator.method: exact (or auto); integrator.cross_check: warn runs anyway";
+  text += nonlinear ? "; integrator.cross_check: warn runs anyway"
+                    : ", or use integrator.method: exact (or auto); integrator.cross_check: warn runs anyway";
   return text;
 }
 

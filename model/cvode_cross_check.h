@@ -45,22 +45,30 @@ struct CrossCheckResult {
   }
 };
 
+// Which CVODE integrator is checked: CvodeIntegrator (a linear plant), or the integrator
+// of a plant with nonlinear elements (NonlinearCvodeIntegrator: BDF, root finding, CVODE's
+// interpolation) on that plant's linear part, the elements left out (docs/nonlinear.md:
+// what a nonlinear run is promised).
+enum class CheckedIntegrator { kLinear, kNonlinear };
+
 // Runs the sample through CVODE (`config` as the run gives it) and through the exact
 // discretisation, with the run's period, substeps and tolerance scales (an acceleration
 // scale of 0 is taken as 1).
 CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfig& config,
                                  double period_s, int substeps, double scale_accel_m_s2,
-                                 double scale_velocity_m_s);
+                                 double scale_velocity_m_s,
+                                 CheckedIntegrator checked = CheckedIntegrator::kLinear);
 
 // The same, remembered per distinct (plant, settings): the points of a sweep that do not
 // change the plant pay for it once. Thread-safe; the result does not depend on which
 // thread computes it first.
 CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const IntegratorConfig& config,
                                        double period_s, int substeps, double scale_accel_m_s2,
-                                       double scale_velocity_m_s);
+                                       double scale_velocity_m_s,
+                                       CheckedIntegrator checked = CheckedIntegrator::kLinear);
 
 // What a user reads when the check fails: the disagreement, the allowance and the ways out.
 std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorConfig& config,
-                              double run_s);
+                              double run_s, CheckedIntegrator checked = CheckedIntegrator::kLinear);
 
 }  // namespace shapebench::model

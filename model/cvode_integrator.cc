@@ -295,6 +295,13 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
                                                     const IntegratorConfig& config,
                                                     double scale_accel_m_s2,
                                                     double scale_velocity_m_s) const {
+  return CvodeAbsoluteTolerances(plant, config, scale_accel_m_s2, scale_velocity_m_s);
+}
+
+Eigen::VectorXd CvodeAbsoluteTolerances(const LinearPlant& plant, const IntegratorConfig& config,
+                                        double scale_accel_m_s2, double scale_velocity_m_s) {
+  const int num_states = plant.num_states();
+  const int num_inputs = plant.num_inputs();
   // One column per driven axis: the static state under that axis' acceleration alone.
   const auto lu = plant.A.fullPivLu();
   const Eigen::MatrixXd x_static = lu.solve(-plant.B_accel) * scale_accel_m_s2;
@@ -302,8 +309,8 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
   // held acceleration adds through the velocity ramping meanwhile (x = p + q t with
   // A q = -B_vel a, A p = q - B_accel a): under a servo's ideal inner loops the structure
   // sees the acceleration only through that.
-  Eigen::MatrixXd x_static_v = Eigen::MatrixXd::Zero(num_states_, num_inputs_);
-  Eigen::MatrixXd x_ramp = Eigen::MatrixXd::Zero(num_states_, num_inputs_);
+  Eigen::MatrixXd x_static_v = Eigen::MatrixXd::Zero(num_states, num_inputs);
+  Eigen::MatrixXd x_ramp = Eigen::MatrixXd::Zero(num_states, num_inputs);
   if (scale_velocity_m_s > 0.0) {
     const Eigen::MatrixXd x_per_velocity = lu.solve(-plant.B_vel);
     x_static_v = x_per_velocity * scale_velocity_m_s;
@@ -311,7 +318,7 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
   }
   const int groups = plant.NumToleranceGroups();
   std::vector<double> position_m(groups, 0.0);
-  for (int i = 0; i < num_states_; ++i) {
+  for (int i = 0; i < num_states; ++i) {
     if (plant.state_kinds[i] == StateKind::kPosition) {
       double& scale = position_m[plant.ToleranceGroup(i)];
       scale = std::max(scale, x_static.row(i).cwiseAbs().maxCoeff());
@@ -326,8 +333,8 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
     base[g] = config.rtol * config.atol_scale * position_m[g];
     velocity[g] = base[g] * std::max(plant.GroupFrequency(g), 1.0);
   }
-  Eigen::VectorXd atol(num_states_ + num_inputs_);
-  for (int i = 0; i < num_states_; ++i) {
+  Eigen::VectorXd atol(num_states + num_inputs);
+  for (int i = 0; i < num_states; ++i) {
     const int g = plant.ToleranceGroup(i);
     atol(i) = plant.state_kinds[i] == StateKind::kPosition ? base[g] : velocity[g];
   }
@@ -335,7 +342,7 @@ Eigen::VectorXd CvodeIntegrator::AbsoluteTolerances(const LinearPlant& plant,
   // and it reaches the deflection only through B_vel (damping over mass, at most ~2 w); the
   // velocity-state tolerance (the tightest group's) keeps its share of the deflection error
   // below `base`.
-  atol.tail(num_inputs_).setConstant(*std::min_element(velocity.begin(), velocity.end()));
+  atol.tail(num_inputs).setConstant(*std::min_element(velocity.begin(), velocity.end()));
   return atol;
 }
 

@@ -32,6 +32,11 @@ struct WorkspaceReturn {
 };
 }  // namespace cvode_detail
 
+// CVODE's absolute tolerance per state of the augmented state [x; v] (the comment of its
+// definition in cvode_integrator.cc says how), shared with the nonlinear integrator.
+Eigen::VectorXd CvodeAbsoluteTolerances(const LinearPlant& plant, const IntegratorConfig& config,
+                                        double scale_accel_m_s2, double scale_velocity_m_s);
+
 class CvodeIntegrator final : public PlantIntegrator {
  public:
   CvodeIntegrator(const LinearPlant& plant, const IntegratorConfig& config, double period_s,

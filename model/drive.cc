@@ -32,6 +32,21 @@ void ServoConfig::validate() const {
   if (!(motor_mass_kg > 0.0) || !std::isfinite(motor_mass_kg)) {
     throw ValidationError("motor_mass_kg", "must be finite and > 0" + Got(motor_mass_kg));
   }
+  try {
+    friction.validate();
+  } catch (const ValidationError& error) {
+    throw error.Prefixed("friction");
+  }
+  if (!(force_limit_n >= 0.0) || !std::isfinite(force_limit_n)) {
+    throw ValidationError("force_limit_n",
+                          "must be finite and >= 0 (N, the motor force's limit; 0 = none)" + Got(force_limit_n));
+  }
+  // An ideal velocity loop makes the motor a velocity source: no force would slow it.
+  if (velocity_loop_hz == 0.0 && (friction.present() || force_limit_n > 0.0)) {
+    throw ValidationError(friction.present() ? "friction" : "force_limit_n",
+                          "needs a velocity loop (velocity_loop_hz > 0): under ideal inner loops "
+                          "(velocity_loop_hz: 0) the motor is a velocity source that no force slows");
+  }
 }
 
 void DriveConfig::validate() const {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "common/field_list.h"
+#include "model/friction.h"
 
 namespace shapebench::model {
 
@@ -19,6 +20,12 @@ struct ServoConfig {
   // a velocity source and the axis a first-order lag of time constant 1/Kp).
   double velocity_loop_hz = 200.0;
   double motor_mass_kg = 40.0;  // rotor and screw inertia reflected to the axis
+  // Friction on the driven point's motion relative to what the drive is mounted on (the
+  // table's guideways, the screw's bearings: docs/nonlinear.md), in the motor's force
+  // balance; and the motor force's saturation, |F_m| <= force_limit_n (0: no limit). Both
+  // need a velocity loop (velocity_loop_hz > 0): an ideal loop is a velocity source.
+  FrictionConfig friction{};
+  double force_limit_n = 0.0;
   void validate() const;        // throws ValidationError naming the field
 
   // The servo's keys sit beside `type` in the `drive:` mapping.
@@ -28,7 +35,10 @@ struct ServoConfig {
     a->Visit("velocity_feedforward", &velocity_feedforward);
     a->Visit("velocity_loop_hz", &velocity_loop_hz);
     a->Visit("motor_mass_kg", &motor_mass_kg);
+    a->Visit("friction", &friction);
+    a->Visit("force_limit_n", &force_limit_n);
   }
+  bool nonlinear() const { return friction.present() || force_limit_n > 0.0; }
 };
 
 // kinematic: the driven point follows the command exactly, the command's acceleration

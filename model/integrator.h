@@ -16,8 +16,9 @@
 namespace shapebench::model {
 
 // kAuto: the exact discretisation for a linear plant (every plant LinearPlant describes is
-// linear: the machine forms, both drives), CVODE for a plant with a nonlinear element (none
-// exists yet; MakeIntegrator resolves kAuto with ResolveMethod).
+// linear: the machine forms, both drives), CVODE for a plant with a nonlinear element
+// (MakeIntegrator resolves kAuto with ResolveMethod; model/nonlinear_integrator.h's
+// MakePlantIntegrator takes a plant with elements to CVODE and refuses exact for it).
 enum class IntegratorMethod { kCvode, kExact, kAuto };
 enum class CvodeLmm { kAdams, kBdf };
 // What a run does when CVODE disagrees with the exact discretisation of its linear plant
@@ -103,6 +104,7 @@ struct IntegratorStats {
   long steps = 0;
   long rhs_evals = 0;
   long reinits = 0;
+  long events = 0;  // root returns of a plant with nonlinear elements (stick, slip, contact)
 };
 
 // CVODE trouble: `flag_name` is CVODE's own name for the return flag (CV_TOO_MUCH_WORK...).

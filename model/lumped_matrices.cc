@@ -97,12 +97,17 @@ LumpedMatrices AssembleLumped(const LumpedMachineConfig& config) {
     m.C_u = -(m.C * m.g);
     m.velocity_load = Eigen::VectorXd::Zero(n);
   }
-  m.rigid_stretch.resize(static_cast<Eigen::Index>(config.elements.size()));
-  for (std::size_t i = 0; i < config.elements.size(); ++i) {
-    const LumpedElement& e = config.elements[i];
+  const auto num_elements = static_cast<Eigen::Index>(config.elements.size());
+  m.rigid_stretch.resize(num_elements);
+  m.element_D.resize(num_elements, n);
+  m.element_d.resize(num_elements);
+  for (Eigen::Index i = 0; i < num_elements; ++i) {
+    const LumpedElement& e = config.elements[static_cast<std::size_t>(i)];
     const EndpointMap from = mapper.Map(e.from);
     const EndpointMap to = mapper.Map(e.to);
-    m.rigid_stretch(static_cast<Eigen::Index>(i)) = (from.D - to.D).dot(m.g) + (from.d - to.d);
+    m.element_D.row(i) = from.D - to.D;
+    m.element_d(i) = from.d - to.d;
+    m.rigid_stretch(i) = (from.D - to.D).dot(m.g) + (from.d - to.d);
   }
   const EndpointMap body = mapper.Map(config.output_body);
   const EndpointMap relative = mapper.Map(config.output_relative_to);

@@ -31,6 +31,9 @@ struct LumpedMatrices {
   // C g + C_u = 0, and the force the elements exert on the driven point is
   // -(K_u^T y + C_u^T y'), independent of the driven point's own position.
   Eigen::VectorXd rigid_stretch;
+  // Per element (config order): its stretch as element_D.row(i) q + element_d(i) u.
+  Eigen::MatrixXd element_D;
+  Eigen::VectorXd element_d;
 };
 
 // `config` must have passed validate() (K positive definite).

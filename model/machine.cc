@@ -131,6 +131,7 @@ bool FormConservesEnergy(const ModalMachineConfig& config) {
 bool FormConservesEnergy(const LumpedMachineConfig& config) {
   for (const LumpedElement& element : config.elements) {
     if (element.damping_n_s_m != 0.0) return false;
+    if (element.friction.present()) return false;  // dissipates while it slides
   }
   const LumpedDamping& damping = config.damping;
   switch (damping.kind) {

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "model/friction.h"
 #include "model/linear_plant.h"
 
 namespace shapebench::model {
@@ -91,12 +92,18 @@ struct LumpedBody {
 
 // A spring and/or a parallel viscous damper between two endpoints. An endpoint is a body
 // name, "ground" (the floor) or "driven" (the point the drive moves: the ball-screw nut).
+// Two nonlinear kinds (docs/nonlinear.md), acting on the relative motion of the two ends:
+// a friction element (`friction:`, nothing else) and a spring with backlash (backlash_m > 0:
+// no force while the stretch d lies within the gap, |d| <= backlash_m / 2, contact with
+// stiffness_n_m outside it, force k (|d| - b/2) sign(d)).
 struct LumpedElement {
   std::string name;
   std::string from;
   std::string to;
   double stiffness_n_m = 0.0;
   double damping_n_s_m = 0.0;
+  double backlash_m = 0.0;  // the whole play b; 0: a plain spring
+  FrictionConfig friction{};  // model none: no friction
 
   template <typename Archive>
   void Serialize(Archive* a) {
@@ -105,7 +112,10 @@ struct LumpedElement {
     a->Visit("to", &to);
     a->Visit("stiffness_n_m", &stiffness_n_m);
     a->Visit("damping_n_s_m", &damping_n_s_m);
+    a->Visit("backlash_m", &backlash_m);
+    a->Visit("friction", &friction);
   }
+  bool nonlinear() const { return friction.present() || backlash_m > 0.0; }
 };
 
 // C = alpha M + beta K: zeta_i = alpha / (2 w_i) + beta w_i / 2 at each undamped mode w_i.

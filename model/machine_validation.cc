@@ -97,6 +97,40 @@ void ValidateBodies(const LumpedMachineConfig& config,
   }
 }
 
+// A friction element is friction alone; a backlash element a contact spring alone
+// (docs/nonlinear.md): a dashpot beside either would act inside the gap or add to the
+// friction law, so it goes into an element of its own.
+void ValidateNonlinearElement(const LumpedElement& e, size_t i) {
+  if (e.friction.present()) {
+    for (double LumpedElement::*field :
+         {&LumpedElement::stiffness_n_m, &LumpedElement::damping_n_s_m, &LumpedElement::backlash_m}) {
+      if (e.*field != 0.0) {
+        throw ValidationError(Indexed(kElements, i, field),
+                              "must be 0 in a friction element (\"" + e.name +
+                                  "\" has friction:); put a spring or damper in an element of its own" +
+                                  Got(e.*field));
+      }
+    }
+  }
+  try {
+    e.friction.validate();
+  } catch (const ValidationError& error) {
+    throw error.Prefixed(Indexed(kElements, i, &LumpedElement::friction));
+  }
+  if (e.backlash_m > 0.0) {
+    if (!(e.stiffness_n_m > 0.0)) {
+      throw ValidationError(Indexed(kElements, i, &LumpedElement::stiffness_n_m),
+                            "must be > 0 in an element with backlash_m (the contact stiffness "
+                            "outside the gap)" + Got(e.stiffness_n_m));
+    }
+    if (e.damping_n_s_m != 0.0) {
+      throw ValidationError(Indexed(kElements, i, &LumpedElement::damping_n_s_m),
+                            "must be 0 in an element with backlash_m (a dashpot would act inside "
+                            "the gap); put it in an element of its own" + Got(e.damping_n_s_m));
+    }
+  }
+}
+
 void ValidateElements(const LumpedMachineConfig& config,
                       const std::unordered_map<std::string, int>& index) {
   auto check_endpoint = [&](size_t i, std::string LumpedElement::*field) {
@@ -124,10 +158,12 @@ void ValidateElements(const LumpedMachineConfig& config,
     }
     check_coefficient(i, &LumpedElement::stiffness_n_m);
     check_coefficient(i, &LumpedElement::damping_n_s_m);
-    if (e.stiffness_n_m == 0.0 && e.damping_n_s_m == 0.0) {
+    check_coefficient(i, &LumpedElement::backlash_m);
+    ValidateNonlinearElement(e, i);
+    if (e.stiffness_n_m == 0.0 && e.damping_n_s_m == 0.0 && !e.friction.present()) {
       throw ValidationError(Indexed(kElements, i),
                             "stiffness_n_m and damping_n_s_m are both 0; give at least one "
-                            "a positive value");
+                            "a positive value (or a friction: {model: ...})");
     }
     touches_driven = touches_driven || e.from == "driven" || e.to == "driven";
   }

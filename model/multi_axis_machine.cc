@@ -21,24 +21,46 @@ namespace shapebench::model {
 namespace {
 
 // One axis: 1 input column, output rows [deflection; tool relative to the command].
-LinearPlant BuildAxisPlant(const std::optional<MachineConfig>& structure,
-                           const DriveConfig& drive) {
+NonlinearPlant BuildAxisPlant(const std::optional<MachineConfig>& structure,
+                              const DriveConfig& drive) {
   if (drive.type == DriveType::kServo) {
-    return BuildServoAxisPlant(structure ? &*structure : nullptr, drive.servo);
+    return BuildServoAxis(structure ? &*structure : nullptr, drive.servo);
   }
-  LinearPlant plant;
+  NonlinearPlant axis;
+  LinearPlant& plant = axis.linear;
   if (!structure) {  // rigid under the kinematic drive: it follows the command exactly
     plant.A = Eigen::MatrixXd::Zero(0, 0);
     plant.B_accel = Eigen::MatrixXd::Zero(0, 1);
     plant.B_vel = Eigen::MatrixXd::Zero(0, 1);
     plant.C = Eigen::MatrixXd::Zero(2, 0);
-    return plant;
+    return axis;
   }
   plant = BuildPlant(*structure);
   const Eigen::MatrixXd c = plant.C;
   plant.C.resize(2, c.cols());
   plant.C << c, c;  // the driven point is the command: no following error
-  return plant;
+  axis.elements = BuildStructureElements(*structure);
+  return axis;
+}
+
+// Axis `axis`'s elements (over its block's states n0.., its input 0) into the machine's.
+void AppendElements(const std::vector<NonlinearElement>& elements, int axis, int n0, int n,
+                    const std::string& prefix, std::vector<NonlinearElement>* out) {
+  for (const NonlinearElement& e : elements) {
+    NonlinearElement moved = e;
+    const auto nb = static_cast<int>(e.row_x.size());
+    moved.row_x = Eigen::VectorXd::Zero(n);
+    moved.row_x.segment(n0, nb) = e.row_x;
+    moved.column_x = Eigen::VectorXd::Zero(n);
+    moved.column_x.segment(n0, nb) = e.column_x;
+    moved.row_v = Eigen::VectorXd::Zero(kNumAxes);
+    moved.row_v(axis) = e.row_v(0);
+    // The structure's own fields get the machine's prefix; the drive's name the axis.
+    moved.name = e.name.rfind("drive.", 0) == 0
+                     ? e.name + " (axis " + AxisName(axis) + ")"
+                     : (prefix.empty() ? "machine." : "machine." + prefix + ".") + e.name;
+    out->push_back(std::move(moved));
+  }
 }
 
 // Appends `block` (one input, two output rows) as axis `axis` of `plant`.
@@ -254,7 +276,15 @@ MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const Driv
   for (int axis = 0; axis < kNumAxes; ++axis) {
     const std::optional<MachineConfig>& structure = machine.axes[axis];
     try {
-      AppendAxis(BuildAxisPlant(structure, drive), axis, &plant);
+      const NonlinearPlant block = BuildAxisPlant(structure, drive);
+      const int n0 = plant.num_states();
+      AppendAxis(block.linear, axis, &plant);
+      for (NonlinearElement& e : result.nonlinear) {  // earlier axes': the states grew
+        e.row_x.conservativeResizeLike(Eigen::VectorXd::Zero(plant.num_states()));
+        e.column_x.conservativeResizeLike(Eigen::VectorXd::Zero(plant.num_states()));
+      }
+      AppendElements(block.elements, axis, n0, plant.num_states(), machine.AxisPrefix(axis),
+                     &result.nonlinear);
       if (structure) {
         // The structure relative to the driven point: the same under either drive.
         result.static_gain(axis, axis) = BuildPlant(*structure).StaticGain()(0, 0);

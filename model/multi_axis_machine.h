@@ -14,6 +14,7 @@
 #include "model/drive.h"
 #include "model/linear_plant.h"
 #include "model/machine.h"
+#include "model/nonlinear_plant.h"
 
 namespace shapebench::model {
 
@@ -63,6 +64,9 @@ constexpr int kToolErrorRow = 3;   // rows 3..5: tool relative to the workpiece,
 struct MachinePlant {
   // Inputs: column i of B_accel / B_vel is axis i's commanded acceleration / velocity.
   LinearPlant plant;
+  // The nonlinear elements of every axis (friction, backlash, the servo's force limit:
+  // docs/nonlinear.md) over plant's augmented state; empty for a linear machine.
+  std::vector<NonlinearElement> nonlinear;
   // Structural deflection per held commanded acceleration, entry (b, a): deflection along
   // b per m/s^2 along a. Diagonal for uncoupled axes; a coupled machine's cross terms off it.
   Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();

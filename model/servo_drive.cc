@@ -10,6 +10,7 @@
 #include "common/format.h"
 #include "common/validation_error.h"
 #include "model/lumped_matrices.h"
+#include "model/nonlinear_plant.h"
 
 namespace shapebench::model {
 namespace {
@@ -33,6 +34,9 @@ void CoupleForm(const LumpedMachineConfig& lumped, bool needs_free_following,
   const int nb = static_cast<int>(m.mass_kg.size());
   if (needs_free_following) {
     for (int i = 0; i < m.rigid_stretch.size(); ++i) {
+      // A friction element has no spring or dashpot: its force depends on the relative
+      // velocity alone, which the servo's states hold (nonlinear_plant.h).
+      if (lumped.elements[i].friction.present()) continue;
       // g entries are O(1) (rigid motion per unit driven motion), so is the stretch.
       if (std::abs(m.rigid_stretch(i)) > 1e-9) {
         const LumpedElement& e = lumped.elements[i];
@@ -63,9 +67,17 @@ StructureCoupling Couple(const MachineConfig& structure, bool needs_free_followi
   return coupling;
 }
 
-}  // namespace
+// What the servo's nonlinear elements need beside its plant (servo_drive.h's notation).
+struct ServoCoupling {
+  Eigen::RowVectorXd sd_x;     // s' = sd_x x + sd_v v
+  double sd_v = 0.0;
+  Eigen::VectorXd motor_column;  // x' per unit force on the motor (0: ideal inner loops)
+  Eigen::RowVectorXd force_x;    // F_m = force_x x + force_v v (finite loop)
+  double force_v = 0.0;
+};
 
-LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfig& servo) {
+LinearPlant BuildServoAxisModel(const MachineConfig* structure, const ServoConfig& servo,
+                                ServoCoupling* out) {
   servo.validate();
   const bool ideal = servo.velocity_loop_hz == 0.0;
   StructureCoupling coupling;
@@ -125,6 +137,14 @@ LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfi
     sdd_x(ied) = -kv / m_m;
     sdd_x(iz) = ki / m_m;
     sdd_v = -kv * (1.0 - ff) / m_m;
+    out->motor_column = Eigen::VectorXd::Zero(n);
+    out->motor_column.head(ns) = b_a / m_m;
+    out->motor_column(ied) = 1.0 / m_m;
+    out->force_x = Eigen::RowVectorXd::Zero(n);
+    out->force_x(ie) = -kv * kp;
+    out->force_x(ied) = -kv;
+    out->force_x(iz) = ki;
+    out->force_v = -kv * (1.0 - ff);
     // s' = v + e'
     sd_x(ied) = 1.0;
     sd_v = 1.0;
@@ -158,7 +178,66 @@ LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfi
   plant.tolerance_group.resize(n, structure_groups);
   if (structure_groups > 0) plant.group_frequency_rad_s.push_back(s.max_frequency_rad_s);
   plant.group_frequency_rad_s.push_back(velocity_frequency);
+  out->sd_x = sd_x;
+  out->sd_v = sd_v;
+  if (ideal) out->motor_column = Eigen::VectorXd::Zero(n);
   return plant;
+}
+
+// A structure element (BuildStructureElements: over the structure's states, its velocity
+// input the driven point's) moved onto the servo axis' states: the driven point moves at
+// s' = sd_x x + sd_v v, and with a velocity loop the motor feels the element's force times
+// its share of the driven point.
+NonlinearElement OnServoAxis(NonlinearElement e, const ServoCoupling& c) {
+  const int ns = static_cast<int>(e.row_x.size());
+  const double r_v = e.row_v(0);
+  Eigen::VectorXd row_x = r_v * c.sd_x.transpose();
+  row_x.head(ns) += e.row_x;
+  Eigen::VectorXd column_x = -e.driven_share * c.motor_column;
+  column_x.head(ns) += e.column_x;
+  e.row_x = row_x;
+  e.row_v(0) = r_v * c.sd_v;
+  e.column_x = column_x;
+  return e;
+}
+
+}  // namespace
+
+LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfig& servo) {
+  ServoCoupling coupling;
+  return BuildServoAxisModel(structure, servo, &coupling);
+}
+
+NonlinearPlant BuildServoAxis(const MachineConfig* structure, const ServoConfig& servo) {
+  ServoCoupling c;
+  NonlinearPlant axis;
+  axis.linear = BuildServoAxisModel(structure, servo, &c);
+  if (structure != nullptr) {
+    for (NonlinearElement& e : BuildStructureElements(*structure)) {
+      axis.elements.push_back(OnServoAxis(std::move(e), c));
+    }
+  }
+  if (servo.friction.present()) {
+    NonlinearElement friction;
+    friction.kind = NonlinearKind::kFriction;
+    friction.name = "drive.friction";
+    friction.friction = servo.friction;
+    friction.row_x = c.sd_x.transpose();
+    friction.row_v = Eigen::VectorXd::Constant(1, c.sd_v);
+    friction.column_x = -c.motor_column;
+    axis.elements.push_back(std::move(friction));
+  }
+  if (servo.force_limit_n > 0.0) {
+    NonlinearElement limit;
+    limit.kind = NonlinearKind::kSaturation;
+    limit.name = "drive.force_limit_n";
+    limit.limit_n = servo.force_limit_n;
+    limit.row_x = c.force_x.transpose();
+    limit.row_v = Eigen::VectorXd::Constant(1, c.force_v);
+    limit.column_x = c.motor_column;
+    axis.elements.push_back(std::move(limit));
+  }
+  return axis;
 }
 
 }  // namespace shapebench::model

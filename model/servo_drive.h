@@ -50,6 +50,7 @@
 #include "model/drive.h"
 #include "model/linear_plant.h"
 #include "model/machine.h"
+#include "model/nonlinear_plant.h"
 
 namespace shapebench::model {
 
@@ -61,5 +62,12 @@ namespace shapebench::model {
 // Throws ValidationError: the structure's own (its field names), "elements[i]" when a
 // finite velocity loop meets an element the rigid motion stretches.
 LinearPlant BuildServoAxisPlant(const MachineConfig* structure, const ServoConfig& servo);
+
+// The same plant with its nonlinear elements (docs/nonlinear.md): the structure's
+// (BuildStructureElements, moved onto the servo's states: their velocity input is the
+// motor's s' = v + e', and with a velocity loop the motor feels the force of an element
+// attached to "driven"), then the drive's own: `friction` on s' in the motor's force
+// balance (m_m s'' = F_m - F_r - F_friction) and the force limit (F_m clamped).
+NonlinearPlant BuildServoAxis(const MachineConfig* structure, const ServoConfig& servo);
 
 }  // namespace shapebench::model

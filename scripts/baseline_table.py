@@ -24,6 +24,9 @@ TARGETS = {
     "numpy_over_exact": 20.0,        # at least
     "baseline_peak": 1e-6,           # |peak_ratio - shapebench's|
     "memory_mb": 200.0,              # at most, 1,000,000-point sweep
+    "case4_real_time": 50.0,         # at least: simulated seconds per CPU second
+    "scipy_over_case4": 20.0,        # at least
+    "case4_agreement": 1e-3,         # at most: of the deflection scale
 }
 
 
@@ -157,6 +160,28 @@ def main(argv):
     if c2c:
         add("case 2, shapebench CVODE (rtol 1e-8)", seconds(c2c), exact2, c2c, c2c.get("peak_ratio"),
             "metrics within %.1e of exact" % c2c.get("error_vs_exact", float("nan")))
+
+    # Case 4: a plant with nonlinear elements (LuGre guides on the moving column, 10 s circle).
+    c4 = find(bench, "BM_Case4_LugreCircle")
+    scipy4 = baseline.get("case4")
+    if c4:
+        s = seconds(c4)
+        factor = c4.get("sim_s", 0.0) / s
+        add("case 4, shapebench CVODE with events (LuGre, 10 s circle)", s, None, c4, c4.get("peak_ratio"),
+            "%s points/s, %.1fx faster than real time, %d events" % (
+                fmt_num(c4.get("points", 0.0) / s), factor, int(c4.get("events", 0))))
+        checks.append(("case 4 >= 50x faster than real time", factor >= TARGETS["case4_real_time"],
+                       "%.1fx" % factor))
+    if scipy4:
+        add("case 4, scipy solve_ivp Radau with events", scipy4["seconds_per_run"], None, None, None,
+            "%d events; deflection within %.1e of the scale from shapebench's" % (
+                scipy4["events"], scipy4["max_difference_over_deflection_scale"]))
+        checks.append(("case 4 same answer as scipy within 1e-3 of the deflection scale",
+                       scipy4["max_difference_over_deflection_scale"] <= TARGETS["case4_agreement"],
+                       "%.1e" % scipy4["max_difference_over_deflection_scale"]))
+        if c4:
+            r = scipy4["seconds_per_run"] / seconds(c4)
+            checks.append(("case 4 >= 20x faster than scipy Radau", r >= TARGETS["scipy_over_case4"], "%.0fx" % r))
 
     sweep = {}
     cpu = {}

@@ -118,6 +118,10 @@ Gate ParseGate(const std::string& text) {
   Gate gate;
   gate.text = text;
   gate.info = FindMetric(name);
+  // compare covers MetricTable(), not the nonlinear plants' own metrics.
+  const bool compared = gate.info != nullptr && gate.info >= MetricTable().data() &&
+                        gate.info < MetricTable().data() + MetricTable().size();
+  if (!compared) gate.info = nullptr;
   if (gate.info == nullptr) {
     const std::vector<std::string> names = MetricNames();
     const std::vector<std::string> closest = ClosestNames(name, names);

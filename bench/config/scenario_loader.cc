@@ -24,6 +24,7 @@
 #include "controller/path_geometry.h"
 #include "controller/shaper_registry.h"
 #include "controller/vibration_suppression_pattern.h"
+#include "model/nonlinear_integrator.h"
 
 namespace shapebench::bench {
 namespace {
@@ -134,9 +135,17 @@ model::DriveConfig ReadDrive(const NodeReader& drive) {
   try {
     config.validate();
   } catch (const ValidationError& error) {
-    // Its field is the YAML key (a default is always valid, so the key is there).
-    const auto child = drive.Child(error.field());
-    throw (child ? *child : drive).Error(error.message());
+    // Its field is the YAML key path (a default is always valid, so the key is there; a
+    // nested one, friction.coulomb_n, as deep as it is given).
+    NodeReader at = drive;
+    std::string field = error.field();
+    for (std::size_t dot; !field.empty(); field = dot == std::string::npos ? "" : field.substr(dot + 1)) {
+      dot = field.find('.');
+      const auto child = at.Child(field.substr(0, dot));
+      if (!child) break;
+      at = *child;
+    }
+    throw at.Error(error.message());
   }
   return config;
 }
@@ -202,7 +211,7 @@ CheckBand ReadCheckBand(const NodeReader& band, const YAML::Node& root) {
 // `root` is the scenario's whole tree (a band's key is looked up there); null for a
 // sweep's checks, which take no band.
 std::vector<Check> ReadChecksEntry(const NodeReader& checks, const YAML::Node* root) {
-  checks.ExpectMap(MetricNames());
+  checks.ExpectMap(AllMetricNames());
   std::vector<Check> result;
   for (const auto& [metric, bounds] : checks.Entries()) {
     if (root == nullptr) {
@@ -243,8 +252,17 @@ std::string Seconds(double seconds) {
   return text;
 }
 
+model::MachinePlant BuildMachineAt(const Scenario& scenario) {
+  try {
+    return model::BuildMachinePlant(scenario.machine, scenario.drive);
+  } catch (const ValidationError& error) {
+    // The drive is validated already: what is left is the structure's (machine.elements[i]).
+    throw error.Prefixed("machine");
+  }
+}
+
 void CheckPlantFinite(const Scenario& scenario) {
-  const model::MachinePlant plant = model::BuildMachinePlant(scenario.machine, scenario.drive);
+  const model::MachinePlant plant = BuildMachineAt(scenario);
   if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
       !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
       !plant.static_gain.allFinite()) {
@@ -252,6 +270,12 @@ void CheckPlantFinite(const Scenario& scenario) {
                           "degenerate model: its state-space matrices or static gain are not "
                           "finite (a frequency, stiffness, damping or gain too large, or a "
                           "mass too small, for double precision)");
+  }
+  // integrator.method: exact cannot take a nonlinear element (docs/nonlinear.md).
+  try {
+    model::CheckMethodFitsPlant(scenario.integrator.method, plant.nonlinear);
+  } catch (const ValidationError& error) {
+    throw error.Prefixed("integrator");
   }
 }
 

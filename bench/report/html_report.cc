@@ -162,10 +162,15 @@ std::pair<std::string, std::string> EngineeringValue(double value, std::string_v
 HtmlTable MetricsHtmlTable(const Metrics& metrics) {
   HtmlTable table;
   table.header = {"metric", "value", "unit", "lower/higher is better", "meaning"};
-  for (const MetricInfo& info : MetricTable()) {
+  auto add = [&](const MetricInfo& info) {
     const auto [number, unit] = EngineeringValue(metrics.*info.field, info.unit);
     table.rows.push_back({std::string(info.name), number, unit, std::string(BetterName(info.better)),
                           std::string(info.description)});
+  };
+  for (const MetricInfo& info : MetricTable()) add(info);
+  // A nonlinear plant's own metrics where defined, as the text table has them.
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    if (!std::isnan(metrics.*info.field)) add(info);
   }
   return table;
 }

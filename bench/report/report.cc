@@ -18,7 +18,7 @@ std::string MetricUnit(const std::string& name) {
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
   std::size_t width = 0;
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
-  for (const MetricInfo& info : MetricTable()) {
+  auto print = [&](const MetricInfo& info) {
     const double value = metrics.*info.field;
     out << std::left << std::setw(static_cast<int>(width) + 2) << info.name;
     if (std::isnan(value)) {
@@ -28,6 +28,11 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
     } else {
       out << EngineeringText(value, info.unit) << "\n";  // um, mm, ms: JSON keeps SI
     }
+  };
+  for (const MetricInfo& info : MetricTable()) print(info);
+  // A nonlinear plant's own metrics, where defined (a linear run's table is as it was).
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    if (!std::isnan(metrics.*info.field)) print(info);
   }
 }
 
@@ -43,6 +48,10 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
     } else {
       json[name] = nullptr;
     }
+  }
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    const double value = metrics.*info.field;
+    if (std::isfinite(value)) json[std::string(info.name)] = value;  // absent where n/a
   }
   return json;
 }

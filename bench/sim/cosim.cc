@@ -20,6 +20,7 @@
 #include "controller/stroke_end.h"
 #include "model/cvode_cross_check.h"
 #include "model/multi_axis_machine.h"
+#include "model/nonlinear_integrator.h"
 
 namespace shapebench::bench {
 namespace {
@@ -30,6 +31,86 @@ struct ArcWindow {
   double sum_radius_m = 0.0;
   long samples = 0;
 };
+
+// The deflection of a nonlinear plant after motion end, in the view: its extremes
+// (residual_amplitude_m, half their difference) and its last value (dead_band_m).
+struct FreeResponse {
+  double min = HUGE_VAL;
+  double max = -HUGE_VAL;
+  double last = 0.0;
+  bool any = false;
+  void Add(double d) {
+    min = std::min(min, d);
+    max = std::max(max, d);
+    last = d;
+    any = true;
+  }
+};
+
+// quadrant_glitch_m on one arc: the axis reversals (tangent along an axis) at least 5
+// degrees inside the arc, the largest and smallest radial deviation (actual radius less
+// programmed) within +-5 degrees of each, and the deviations over the arc's middle half
+// (by the command's path position, as radial_error_m), whose median is the baseline: robust
+// to the spikes themselves, clear of the arc's start and end.
+struct ReversalWindows {
+  static constexpr double kHalfWidthRad = 5.0 * 3.14159265358979323846 / 180.0;
+  const controller::PathElement* arc = nullptr;
+  std::vector<double> angle_rad;  // the reversals' angles on the arc's turn
+  std::vector<double> max_radius_m;
+  std::vector<double> min_radius_m;
+  std::vector<double> middle_m;  // deviations over the middle half
+
+  explicit ReversalWindows(const controller::PathElement& element);
+  void Add(double path_s, const Eigen::Vector3d& actual);
+  double Glitch() const;  // NaN without a reversal or a baseline
+};
+
+ReversalWindows::ReversalWindows(const controller::PathElement& element) : arc(&element) {
+  const double quarter = 0.5 * 3.14159265358979323846;
+  const double a0 = element.start_angle_rad;
+  const double a1 = a0 + element.sweep_rad;
+  const double lo = std::min(a0, a1) + kHalfWidthRad;
+  const double hi = std::max(a0, a1) - kHalfWidthRad;
+  for (double k = std::ceil(lo / quarter); k * quarter <= hi; k += 1.0) angle_rad.push_back(k * quarter);
+  max_radius_m.assign(angle_rad.size(), -HUGE_VAL);
+  min_radius_m.assign(angle_rad.size(), HUGE_VAL);
+}
+
+void ReversalWindows::Add(double path_s, const Eigen::Vector3d& actual) {
+  const controller::PathElement& e = *arc;
+  if (path_s < e.start_s_m || path_s > e.end_s_m() || !(e.length_m > 0.0)) return;
+  const double u = (path_s - e.start_s_m) / e.length_m;
+  const double commanded = e.start_angle_rad + u * e.sweep_rad;
+  const double dx = actual(e.axis0) - e.center_m(e.axis0);
+  const double dy = actual(e.axis1) - e.center_m(e.axis1);
+  // The sample's angle on the commanded angle's turn (the command and the tool are close).
+  const double angle = commanded + std::remainder(std::atan2(dy, dx) - commanded, 2.0 * 3.14159265358979323846);
+  const double fraction = e.sweep_rad != 0.0 ? std::clamp((angle - e.start_angle_rad) / e.sweep_rad, 0.0, 1.0) : 0.0;
+  const double programmed = e.start_radius_m + (e.end_radius_m - e.start_radius_m) * fraction;
+  const double deviation = std::hypot(dx, dy) - programmed;
+  if (u >= 0.25 && u <= 0.75) middle_m.push_back(deviation);
+  for (std::size_t i = 0; i < angle_rad.size(); ++i) {
+    if (std::abs(angle - angle_rad[i]) <= kHalfWidthRad) {
+      max_radius_m[i] = std::max(max_radius_m[i], deviation);
+      min_radius_m[i] = std::min(min_radius_m[i], deviation);
+    }
+  }
+}
+
+double ReversalWindows::Glitch() const {
+  double glitch = NAN;
+  if (middle_m.empty()) return glitch;
+  std::vector<double> sorted = middle_m;
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  const double baseline = *mid;
+  for (std::size_t i = 0; i < angle_rad.size(); ++i) {
+    if (max_radius_m[i] < min_radius_m[i]) continue;  // no sample in this window
+    const double spike = std::max(max_radius_m[i] - baseline, baseline - min_radius_m[i]);
+    if (std::isnan(glitch) || spike > glitch) glitch = spike;
+  }
+  return glitch;
+}
 
 // The contour error of a sample: its distance from the programmed path, squared (the
 // largest distance is the square root of the largest square, bit for bit: norm() is the
@@ -120,6 +201,23 @@ template <RunPhase P>
   return not_finite;
 }
 
+// The machine a nonlinear run integrates: an axis the command never moves starts at rest
+// and is never driven, so its structure, its servo and its elements stay exactly at rest
+// (every element's force is 0 there): it is left out like a rigid axis, whose outputs are
+// the same exact zeros. A third fewer states on an XY program of a three-axis machine.
+model::MachinePlant IdleAxesRigid(const Scenario& scenario, const CommandSamples& samples) {
+  model::MultiAxisMachineConfig machine = scenario.machine;
+  for (int axis = 0; axis < model::kNumAxes; ++axis) {
+    bool idle = true;
+    for (std::size_t k = 0; k <= samples.n && idle; ++k) {
+      idle = samples.accel[k](axis) == 0.0 && samples.velocity[k](axis) == 0.0;
+    }
+    // Coupled modes sit at the driven axis but answer every axis: never left out.
+    if (idle && machine.CoupledModes() == nullptr) machine.axes[axis].reset();
+  }
+  return model::BuildMachinePlant(machine, scenario.drive);
+}
+
 // The largest deflection a held commanded acceleration gives, in the view, and the
 // deflection vector under that acceleration (the first sample reaching it), oriented so that
 // its component in the view (magnitude: along the acceleration) is positive.
@@ -185,7 +283,9 @@ class CoSimulation {
               const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
   void ProbeMotionEnd();
   void ProbeCruise(std::size_t k);
+  void TrackFreeResponse(std::size_t k, bool others_zero);
   void FinishMetrics(Metrics* m) const;
+  void FinishNonlinearMetrics(Metrics* m) const;
 
   const Scenario& scenario_;
   const controller::MultiAxisCommand& command_;
@@ -194,6 +294,9 @@ class CoSimulation {
   const double dt_;
   const ContourGauge contour_gauge_;
   const model::MachinePlant machine_;
+  // What a nonlinear run integrates: machine_ without the structures of axes the command
+  // never moves (IdleAxesRigid).
+  model::MachinePlant integrated_;
   const model::MachineDynamics dynamics_;
   const CommandSamples samples_;
   const OutputView view_;
@@ -221,6 +324,11 @@ class CoSimulation {
   bool holds_ = false;           // the integrator integrates across held inputs (SameInput)
   std::size_t next_change_ = 0;  // the first tick after k whose acceleration differs from a_k
   RunAccumulator acc_;
+  // A plant with nonlinear elements (docs/nonlinear.md): its free response after motion
+  // end, sample by sample (the residual and the dead band), and its quadrant glitches.
+  bool nonlinear_ = false;
+  FreeResponse free_;
+  std::vector<ReversalWindows> glitches_;
   Eigen::Vector3d peak_axes_ = Eigen::Vector3d::Zero();
   double overshoot_ = 0.0;
   double travelled_m_ = 0.0;  // the command's distance along its own path (magnitude view)
@@ -243,8 +351,10 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
       window_(PlanRunWindow(scenario, samples_, dynamics_, dt_)),
       has_stroke_(std::any_of(scenario.machine.stroke_m.begin(), scenario.machine.stroke_m.end(),
                               [](const auto& limits) { return limits.has_value(); })) {
+  nonlinear_ = !machine_.nonlinear.empty();
   for (const controller::PathElement& e : path.elements()) {
     if (e.is_arc()) arcs_.push_back({&e, 0.0, 0});
+    if (e.is_arc() && nonlinear_) glitches_.emplace_back(e);
   }
   Eigen::Vector3d static_vector;
   result_.metrics.static_displacement_m = StaticDisplacement(samples_, machine_.static_gain, view_, &static_vector);
@@ -263,15 +373,22 @@ void CoSimulation::SetUpPlant() {
   substeps_ = scenario_.integrator.output_substeps > 0 ? scenario_.integrator.output_substeps
                                                        : AutoSubsteps(dynamics_, dt_);
   result_.substeps = substeps_;
-  const model::LinearPlant& plant = machine_.plant;
+  if (nonlinear_) integrated_ = IdleAxesRigid(scenario_, samples_);
+  const model::LinearPlant& plant = nonlinear_ ? integrated_.plant : machine_.plant;
   if (plant.num_states() > 0) {
     const double scale_accel = std::max(samples_.max_accel_m_s2, 1e-12);
     CrossCheckCvode(plant, scale_accel);
-    integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_, scale_accel,
-                                        samples_.max_speed_m_s);
+    if (nonlinear_) {
+      // CVODE with events; its free response is read sample by sample (TrackFreeResponse).
+      integrator_ = model::MakePlantIntegrator({plant, integrated_.nonlinear}, scenario_.integrator, dt_, substeps_,
+                                               scale_accel, samples_.max_speed_m_s);
+    } else {
+      integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_, scale_accel,
+                                          samples_.max_speed_m_s);
+      residual_vibration_ = std::make_unique<ResidualVibration>(plant, view_);
+    }
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
     holds_ = integrator_->UsesInputHolds();
-    residual_vibration_ = std::make_unique<ResidualVibration>(plant, view_);
   }
   rows_ = plant.num_outputs();
   width_ = rows_;
@@ -285,16 +402,21 @@ void CoSimulation::SetUpPlant() {
 // refused, or warned about.
 void CoSimulation::CrossCheckCvode(const model::LinearPlant& plant, double scale_accel) {
   const model::IntegratorConfig& config = scenario_.integrator;
+  // A plant with nonlinear elements runs on CVODE whatever auto says; its linear part is
+  // checked through the same integrator (docs/nonlinear.md).
+  const model::CheckedIntegrator checked =
+      nonlinear_ ? model::CheckedIntegrator::kNonlinear : model::CheckedIntegrator::kLinear;
   if (config.cross_check == model::CrossCheckPolicy::kOff ||
-      model::ResolveMethod(config.method, plant) != model::IntegratorMethod::kCvode) {
+      (!nonlinear_ && model::ResolveMethod(config.method, plant) != model::IntegratorMethod::kCvode)) {
     return;
   }
+  model::CheckMethodFitsPlant(config.method, integrated_.nonlinear);
   const model::CrossCheckResult check = model::CachedCrossCheckCvode(
-      plant, config, dt_, substeps_, scale_accel, samples_.max_speed_m_s);
+      plant, config, dt_, substeps_, scale_accel, samples_.max_speed_m_s, checked);
   // The metrics are read up to the end of the residual window.
   const double run_s = static_cast<double>(window_.window_end()) * dt_;
   if (check.Passed(run_s)) return;
-  std::string message = model::CrossCheckMessage(check, config, run_s);
+  std::string message = model::CrossCheckMessage(check, config, run_s, checked);
   if (!check.solver_failure.empty()) {
     // The run's own CVODE failure, if it has one, is the better report: it comes first.
     unchecked_ = std::move(message);
@@ -399,6 +521,22 @@ void CoSimulation::Tick(std::size_t k) {
   } else {
     SampleTick<RunPhase::kTail>(k, others_zero);
   }
+  if (nonlinear_ && k >= window_.motion_ticks) TrackFreeResponse(k, others_zero);
+}
+
+// A nonlinear plant's deflection in the view from the end of motion on (at the motion-end
+// tick only its last sample, as the residual window counts it).
+void CoSimulation::TrackFreeResponse(std::size_t k, bool others_zero) {
+  const int first = k == window_.motion_ticks ? substeps_ - 1 : 0;
+  for (int j = first; j < substeps_; ++j) {
+    if (others_zero) {
+      free_.Add(outputs_[static_cast<std::size_t>(j * width_ + deflection_at_)]);
+    } else {
+      const double* out = outputs_.data() + static_cast<std::ptrdiff_t>(j) * rows_;
+      free_.Add(view_.Of(Eigen::Vector3d(out[model::kDeflectionRow], out[model::kDeflectionRow + 1],
+                                         out[model::kDeflectionRow + 2])));
+    }
+  }
 }
 
 template <RunPhase P>
@@ -452,6 +590,7 @@ void CoSimulation::SampleGeneral(std::size_t k, TickAccumulator* tick) {
     }
     peak_axes_ = peak_axes_.cwiseMax(deflection.cwiseAbs());
     if (has_stroke_) overshoot_ = std::max(overshoot_, controller::StrokeOvershoot(p, scenario_.machine.stroke_m));
+    for (ReversalWindows& g : glitches_) g.Add(path_s, actual);
     for (ArcWindow& w : arcs_) {
       const double from_start = path_s - w.arc->start_s_m;
       if (from_start >= 0.25 * w.arc->length_m && from_start <= 0.75 * w.arc->length_m) {
@@ -481,9 +620,11 @@ void CoSimulation::ProbeCruise(std::size_t k) {
   ++next_probe_;
   next_probe_tick_ = next_probe_ < window_.cruise_probe_ticks.size() ? window_.cruise_probe_ticks[next_probe_]
                                                                       : std::numeric_limits<std::size_t>::max();
+  // A nonlinear plant's state does not split into modes: no cruise amplitude (n/a).
   const double amplitude =
       residual_vibration_ ? ResidualVibration::Total(residual_vibration_->Amplitudes(
                                 integrator_->PlantState(), samples_.velocity[k]))
+      : nonlinear_        ? NAN
                           : 0.0;
   // The largest; a failed split (NaN) stays.
   if (next_probe_ == 1 || std::isnan(amplitude) || amplitude > cruise_m_) cruise_m_ = amplitude;
@@ -544,6 +685,21 @@ void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
       kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
 }
 
+// A nonlinear plant (docs/metrics.md): the residual from its free response after motion end
+// (half its peak-to-peak: one undamped mode's amplitude exactly), where it comes to rest, and
+// the quadrant glitches of its arcs.
+void CoSimulation::FinishNonlinearMetrics(Metrics* m) const {
+  if (free_.any) {
+    m->residual_amplitude_m = 0.5 * (free_.max - free_.min);
+    m->residual_ratio = m->static_displacement_m > 0.0 ? m->residual_amplitude_m / m->static_displacement_m : NAN;
+    m->dead_band_m = std::abs(free_.last);
+  }
+  for (const ReversalWindows& g : glitches_) {
+    const double glitch = g.Glitch();
+    if (!std::isnan(glitch) && !(glitch <= m->quadrant_glitch_m)) m->quadrant_glitch_m = glitch;
+  }
+}
+
 void CoSimulation::FinishMetrics(Metrics* m) const {
   Eigen::Vector3d peak_axes = peak_axes_;
   if (single_.axis >= 0) peak_axes(single_.axis) = std::max(peak_axes(single_.axis), acc_.peak);
@@ -561,6 +717,7 @@ void CoSimulation::FinishMetrics(Metrics* m) const {
     const double error = programmed - w.sum_radius_m / static_cast<double>(w.samples);
     if (std::isnan(m->radial_error_m) || std::abs(error) > std::abs(m->radial_error_m)) m->radial_error_m = error;
   }
+  if (nonlinear_) FinishNonlinearMetrics(m);
   m->peak_deflection_x_m = peak_axes(0);
   m->peak_deflection_y_m = peak_axes(1);
   m->peak_deflection_z_m = peak_axes(2);

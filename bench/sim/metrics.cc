@@ -19,7 +19,9 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "its state then (input 0 after): with A = V diag(lambda) V^-1 and x = V z, per pole of "
        "the plant the modulus of 2 C v z (a pair) or of C v z (a real pole) in the output view, "
        "summed (one modal mode: abs(gain) sqrt(q^2 + ((q' + zeta w q) / w_d)^2)); a bound of "
-       "every later deflection",
+       "every later deflection. A plant with nonlinear elements has no modes: half the "
+       "peak-to-peak of its deflection sampled from motion end to the run's end (its free "
+       "response; one undamped mode's amplitude exactly)",
        &M::residual_amplitude_m},
       {"residual_ratio", "1", Better::kLower,
        "residual_amplitude_m / static_displacement_m (the input-shaping literature's residual "
@@ -35,7 +37,8 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "the amplitude of the free vibration about the cruise equilibrium (the static state at the "
        "cruise velocity, x_eq = -A^-1 B_vel v), as residual_amplitude_m, from the state one "
        "lowest-mode period into each stretch where the commanded feed stays constant and non-zero "
-       "for at least that long; the largest stretch's, / static_displacement_m",
+       "for at least that long; the largest stretch's, / static_displacement_m (n/a for a plant "
+       "with nonlinear elements)",
        &M::cruise_residual_ratio},
       {"motion_time_s", "s", Better::kLower, "when commanded motion ends", &M::motion_time_s},
       {"settling_time_s", "s", Better::kLower,
@@ -85,11 +88,38 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
   return table;
 }
 
+const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable() {
+  using M = Metrics;
+  static const std::array<MetricInfo, kNumNonlinearMetrics> table = {{
+      {"dead_band_m", "m", Better::kLower,
+       "the final resting deflection: the absolute deflection in the view at the run's last "
+       "sample, where friction left the structure stuck (n/a for a linear plant, which comes "
+       "to rest at 0)",
+       &M::dead_band_m},
+      {"quadrant_glitch_m", "m", Better::kLower,
+       "on arcs: the largest radial spike at an axis reversal, the actual radius's largest "
+       "deviation within +-5 degrees of each angle where the tangent lies along an axis (at "
+       "least 5 degrees inside the arc), from the median radial deviation over the arc's "
+       "middle half; n/a without such a reversal or for a linear plant",
+       &M::quadrant_glitch_m},
+  }};
+  return table;
+}
+
 const MetricInfo* FindMetric(std::string_view name) {
   for (const MetricInfo& info : MetricTable()) {
     if (info.name == name) return &info;
   }
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    if (info.name == name) return &info;
+  }
   return nullptr;
+}
+
+std::vector<std::string> AllMetricNames() {
+  std::vector<std::string> names = MetricNames();
+  for (const MetricInfo& info : NonlinearMetricTable()) names.emplace_back(info.name);
+  return names;
 }
 
 std::vector<std::string> MetricNames() {

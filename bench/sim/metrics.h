@@ -37,6 +37,9 @@ struct Metrics {
   double stroke_alarm = NAN;  // 1 or 0; written as a bool
   double pattern_frequency_hz = NAN;
   double pattern_damping_ratio = NAN;
+  // Of plants with nonlinear elements only (NonlinearMetricTable()).
+  double dead_band_m = NAN;
+  double quadrant_glitch_m = NAN;
 
   // (name, value) in MetricTable() order.
   std::vector<std::pair<std::string, double>> Named() const;
@@ -64,11 +67,19 @@ inline constexpr std::size_t kNumMetrics = 23;
 // Every metric, in the order JSON, tables and results.csv list them.
 const std::array<MetricInfo, kNumMetrics>& MetricTable();
 
-// The row of `name`; nullptr when there is none.
+// The metrics of a plant with nonlinear elements (docs/nonlinear.md): NaN for every other
+// run, and then left out of JSON and the metrics table (a linear run's output stays as it
+// was); checks and a sweep's `metrics:` may name them (a linear run's value is n/a).
+inline constexpr std::size_t kNumNonlinearMetrics = 2;
+const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable();
+
+// The row of `name` in either table; nullptr when there is none.
 const MetricInfo* FindMetric(std::string_view name);
 
 // The metric names in table order.
 std::vector<std::string> MetricNames();
+// Those and the nonlinear plants' (what checks and a sweep's `metrics:` accept).
+std::vector<std::string> AllMetricNames();
 
 std::string_view BetterName(Better better);  // "lower" | "higher"
 

@@ -225,7 +225,7 @@ std::uint64_t CountPoints(const std::vector<SweepAxis>& axes, const NodeReader& 
 }
 
 std::vector<std::string> ReadMetrics(const NodeReader& node) {
-  const std::vector<std::string> names = MetricNames();
+  const std::vector<std::string> names = AllMetricNames();
   std::vector<std::string> metrics;
   for (const NodeReader& element : node.Elements()) {
     const std::string name = element.AsString();

@@ -2,6 +2,7 @@
 // columns, checks, and the glossary in docs/metrics.md.
 #include "bench/sim/metrics.h"
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/report/html_report.h"
 #include "bench/report/report.h"
 
 namespace shapebench::bench {
@@ -82,9 +84,49 @@ TEST(MetricTable, GlossaryInTheDocsIsTheTable) {
   }
   std::string expected;
   for (const MetricInfo& info : MetricTable()) expected += GlossaryRow(info) + "\n";
+  // Then the table of the metrics of plants with nonlinear elements.
+  for (const MetricInfo& info : NonlinearMetricTable()) expected += GlossaryRow(info) + "\n";
   std::string actual;
   for (const std::string& row : rows) actual += row + "\n";
   EXPECT_EQ(actual, expected) << "docs/metrics.md's glossary should read:\n" << expected;
+}
+
+// Tests that the nonlinear plants' metrics are complete rows of their own: unique names
+// that no MetricTable() row has, a unit matching the suffix, a field of their own; FindMetric
+// finds them, MetricNames() (every run's columns) leaves them out and AllMetricNames() has
+// them; JSON, the table and the HTML report's table leave them out where undefined and
+// write them where defined.
+TEST(MetricTable, NonlinearMetricsAreRowsOfTheirOwn) {
+  std::set<std::string_view> names;
+  for (const MetricInfo& info : MetricTable()) names.insert(info.name);
+  const std::vector<std::string> main_names = MetricNames();
+  const std::vector<std::string> all = AllMetricNames();
+  EXPECT_EQ(all.size(), kNumMetrics + kNumNonlinearMetrics);
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    EXPECT_TRUE(names.insert(info.name).second) << info.name;
+    EXPECT_EQ(info.unit, "m") << info.name;
+    EXPECT_FALSE(info.description.empty());
+    EXPECT_EQ(FindMetric(info.name), &info);
+    for (const MetricInfo& other : MetricTable()) EXPECT_NE(other.field, info.field) << info.name;
+    EXPECT_EQ(std::count(main_names.begin(), main_names.end(), std::string(info.name)), 0);
+    EXPECT_EQ(std::count(all.begin(), all.end(), std::string(info.name)), 1);
+  }
+  Metrics metrics;
+  EXPECT_EQ(MetricsJson(metrics).size(), kNumMetrics);
+  std::ostringstream table;
+  PrintMetricsTable(table, metrics);
+  EXPECT_EQ(table.str().find("dead_band_m"), std::string::npos);
+  metrics.dead_band_m = 1.5e-6;
+  const auto json = MetricsJson(metrics);
+  EXPECT_EQ(json.size(), kNumMetrics + 1);
+  EXPECT_EQ(json["dead_band_m"].get<double>(), 1.5e-6);
+  EXPECT_FALSE(json.contains("quadrant_glitch_m"));
+  std::ostringstream with;
+  PrintMetricsTable(with, metrics);
+  EXPECT_NE(with.str().find("dead_band_m"), std::string::npos);
+  const HtmlTable html = MetricsHtmlTable(metrics);
+  ASSERT_EQ(html.rows.size(), kNumMetrics + 1);  // the HTML report's table likewise
+  EXPECT_EQ(html.rows.back().front(), "dead_band_m");
 }
 
 }  // namespace

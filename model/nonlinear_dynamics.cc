@@ -1,0 +1,410 @@
+// NonlinearDynamics: the equations are in nonlinear_dynamics.h and docs/nonlinear.md.
+#include "model/nonlinear_dynamics.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shapebench::model {
+namespace {
+
+double Sign(double x) { return x > 0.0 ? 1.0 : x < 0.0 ? -1.0 : 0.0; }
+
+}  // namespace
+
+void NonlinearDynamics::Sparse::Assign(const Eigen::VectorXd& v) {
+  index.clear();
+  value.clear();
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (v(i) != 0.0) {
+      index.push_back(static_cast<int>(i));
+      value.push_back(v(i));
+    }
+  }
+}
+
+double NonlinearDynamics::Sparse::Dot(const double* x) const {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < index.size(); ++k) sum += value[k] * x[index[k]];
+  return sum;
+}
+
+NonlinearDynamics::NonlinearDynamics(const NonlinearPlant& plant) {
+  const LinearPlant& p = plant.linear;
+  const int n = p.num_states();
+  const int m = p.num_inputs();
+  nz_ = n + m;
+  a_z_ = p.AugmentedA();
+  a_sparse_.resize(nz_);
+  for (int i = 0; i < nz_; ++i) {
+    for (int j = 0; j < nz_; ++j) {
+      if (a_z_(i, j) != 0.0) a_sparse_[i].emplace_back(j, a_z_(i, j));
+    }
+  }
+  forcing_ = Eigen::VectorXd::Zero(nz_);
+  const int count = static_cast<int>(plant.elements.size());
+  Eigen::MatrixXd rows(nz_, count);
+  Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(nz_, count);
+  for (int i = 0; i < count; ++i) {
+    const NonlinearElement& config = plant.elements[i];
+    rows.col(i) << config.row_x, config.row_v;
+    columns.col(i).head(n) = config.column_x;
+    Element e;
+    e.config = config;
+    e.row.Assign(rows.col(i));
+    e.column.Assign(columns.col(i));
+    e.row_a.Assign(a_z_.transpose() * rows.col(i));
+    if (config.kind == NonlinearKind::kFriction && config.friction.model == FrictionModel::kLuGre) {
+      e.bristle = num_bristles_++;
+    }
+    e.root = num_roots_;
+    num_roots_ += config.kind == NonlinearKind::kFriction ? 1 : 2;
+    elements_.push_back(std::move(e));
+  }
+  coupling_ = rows.transpose() * columns;
+  force_.assign(count, 0.0);
+  value_.assign(count, 0.0);
+  rate_.assign(count, 0.0);
+  grads_ = Eigen::MatrixXd::Zero(size(), count);
+}
+
+std::vector<double> NonlinearDynamics::BristleScales() const {
+  std::vector<double> scales;
+  for (const Element& e : elements_) {
+    if (e.bristle >= 0) scales.push_back(e.config.friction.StaticN() / e.config.friction.sigma0_n_m);
+  }
+  return scales;
+}
+
+void NonlinearDynamics::SetForcing(const Eigen::VectorXd& forcing) {
+  forcing_ = forcing;
+  for (Element& e : elements_) e.row_forcing = e.row.Dot(forcing_.data());
+}
+
+double NonlinearDynamics::BristleRate(const Element& e, double w, double zeta, double* dw,
+                                      double* dzeta) const {
+  const FrictionConfig& f = e.config.friction;
+  const double g = f.SlidingLevel(w);
+  const double aw = std::abs(w);
+  if (dw != nullptr) {
+    *dw = 1.0 - f.sigma0_n_m * zeta * (Sign(w) * g - aw * f.SlidingLevelSlope(w)) / (g * g);
+    *dzeta = -f.sigma0_n_m * aw / g;
+  }
+  return w - f.sigma0_n_m * aw * zeta / g;
+}
+
+double NonlinearDynamics::Force(const Element& e, double w, const double* y, double* dw,
+                                double* dzeta) const {
+  double slope = 0.0;
+  double slope_zeta = 0.0;
+  double force = 0.0;
+  const NonlinearElement& c = e.config;
+  switch (c.kind) {
+    case NonlinearKind::kFriction: {
+      const FrictionConfig& f = c.friction;
+      if (e.bristle >= 0) {
+        const double zeta = y[nz_ + e.bristle];
+        double rate_w = 0.0;
+        double rate_zeta = 0.0;
+        const double rate = BristleRate(e, w, zeta, &rate_w, &rate_zeta);
+        force = f.sigma0_n_m * zeta + f.sigma1_n_s_m * rate + f.viscous_n_s_m * w;
+        slope = f.sigma1_n_s_m * rate_w + f.viscous_n_s_m;
+        slope_zeta = f.sigma0_n_m + f.sigma1_n_s_m * rate_zeta;
+      } else {
+        const double s = static_cast<double>(e.mode);
+        force = s * f.SlidingLevel(w) + f.viscous_n_s_m * w;
+        slope = s * f.SlidingLevelSlope(w) + f.viscous_n_s_m;
+      }
+      break;
+    }
+    case NonlinearKind::kBacklash:
+      // k (|d| - b/2) sign(d) - k d: -k d in the gap, -k b/2 sign(d) in contact.
+      if (e.mode == 0) {
+        force = -c.stiffness_n_m * w;
+        slope = -c.stiffness_n_m;
+      } else {
+        force = -0.5 * c.stiffness_n_m * c.backlash_m * e.mode;
+      }
+      break;
+    case NonlinearKind::kSaturation:
+      if (e.mode != 0) {
+        force = e.mode * c.limit_n - w;
+        slope = -1.0;
+      }
+      break;
+  }
+  if (dw != nullptr) {
+    *dw = slope;
+    *dzeta = slope_zeta;
+  }
+  return force;
+}
+
+void NonlinearDynamics::RebuildStuckSet() {
+  stuck_.clear();
+  for (int i = 0; i < num_elements(); ++i) {
+    if (Stuck(elements_[i])) stuck_.push_back(i);
+  }
+  const int s = static_cast<int>(stuck_.size());
+  stuck_rhs_.resize(s);
+  if (s < 2) return;
+  Eigen::MatrixXd g(s, s);
+  for (int a = 0; a < s; ++a) {
+    for (int b = 0; b < s; ++b) g(a, b) = coupling_(stuck_[a], stuck_[b]);
+  }
+  // Two stuck elements in parallel make G_SS singular: the least-norm split of the force.
+  stuck_solver_.compute(g);
+}
+
+// The stuck forces F_S keep every stuck w' = row_a z + row . forcing + sum_j G_ij F_j at 0.
+void NonlinearDynamics::SolveStuck(const double* y) {
+  const int s = static_cast<int>(stuck_.size());
+  for (int a = 0; a < s; ++a) {
+    const int i = stuck_[a];
+    double rate = elements_[i].row_a.Dot(y) + elements_[i].row_forcing;
+    for (int j = 0; j < num_elements(); ++j) {
+      if (!Stuck(elements_[j])) rate += coupling_(i, j) * force_[j];
+    }
+    stuck_rhs_(a) = -rate;
+  }
+  if (s == 1) {
+    force_[stuck_[0]] = stuck_rhs_(0) / coupling_(stuck_[0], stuck_[0]);
+    return;
+  }
+  const Eigen::VectorXd f = stuck_solver_.solve(stuck_rhs_);
+  for (int a = 0; a < s; ++a) force_[stuck_[a]] = f(a);
+}
+
+void NonlinearDynamics::Forces(const double* y) {
+  for (int i = 0; i < num_elements(); ++i) {
+    const Element& e = elements_[i];
+    value_[i] = e.row.Dot(y);
+    if (e.bristle >= 0) {
+      // LuGre: the bristle rate once (its exp), for the force and for zeta' (Rhs).
+      const FrictionConfig& f = e.config.friction;
+      rate_[i] = BristleRate(e, value_[i], y[nz_ + e.bristle], nullptr, nullptr);
+      force_[i] = f.sigma0_n_m * y[nz_ + e.bristle] + f.sigma1_n_s_m * rate_[i] + f.viscous_n_s_m * value_[i];
+    } else if (!Stuck(e)) {
+      force_[i] = Force(e, value_[i], y, nullptr, nullptr);
+    }
+  }
+  if (!stuck_.empty()) SolveStuck(y);
+}
+
+void NonlinearDynamics::Rhs(const double* y, double* ydot) {
+  Forces(y);
+  for (int r = 0; r < nz_; ++r) {
+    double sum = forcing_[r];
+    for (const auto& [c, a] : a_sparse_[r]) sum += a * y[c];
+    ydot[r] = sum;
+  }
+  for (int i = 0; i < num_elements(); ++i) {
+    const Element& e = elements_[i];
+    for (std::size_t k = 0; k < e.column.index.size(); ++k) ydot[e.column.index[k]] += e.column.value[k] * force_[i];
+    if (e.bristle >= 0) ydot[nz_ + e.bristle] = rate_[i];
+  }
+}
+
+void NonlinearDynamics::Roots(const double* y, double* g) {
+  Forces(y);
+  for (int i = 0; i < num_elements(); ++i) {
+    const Element& e = elements_[i];
+    const double w = value_[i];
+    switch (e.config.kind) {
+      case NonlinearKind::kFriction:
+        // Falling through 0 only (RootDirections): a sliding element's s w reaching 0 (it
+        // stops), a stuck one's holding force reaching F_s. LuGre: w, either way (the kink).
+        // F_s = 0 (then F_c = 0): the force does not depend on the direction; nothing to find.
+        if (Sticks(e) && e.config.friction.StaticN() == 0.0) {
+          g[e.root] = 1.0;
+        } else {
+          g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : Sticks(e) ? e.mode * w : w;
+        }
+        break;
+      case NonlinearKind::kBacklash:
+        g[e.root] = w - 0.5 * e.config.backlash_m;
+        g[e.root + 1] = w + 0.5 * e.config.backlash_m;
+        break;
+      case NonlinearKind::kSaturation:
+        g[e.root] = w - e.config.limit_n;
+        g[e.root + 1] = w + e.config.limit_n;
+        break;
+    }
+  }
+}
+
+std::vector<std::vector<int>> NonlinearDynamics::Blocks() const {
+  const int n = size();
+  std::vector<int> parent(n);
+  for (int i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  auto join = [&](int a, int b) { parent[find(a)] = find(b); };
+  for (int r = 0; r < nz_; ++r) {
+    for (const auto& entry : a_sparse_[r]) join(r, entry.first);
+  }
+  for (const Element& e : elements_) {
+    std::vector<int> touched = e.row.index;
+    touched.insert(touched.end(), e.row_a.index.begin(), e.row_a.index.end());
+    touched.insert(touched.end(), e.column.index.begin(), e.column.index.end());
+    if (e.bristle >= 0) touched.push_back(nz_ + e.bristle);
+    for (int i : touched) join(i, touched.front());  // (an element touches its row at least)
+  }
+  std::vector<std::vector<int>> blocks;
+  std::vector<int> block_of(n, -1);
+  for (int i = 0; i < n; ++i) {
+    const int root = find(i);
+    if (block_of[root] < 0) {
+      block_of[root] = static_cast<int>(blocks.size());
+      blocks.emplace_back();
+    }
+    blocks[block_of[root]].push_back(i);
+  }
+  return blocks;
+}
+
+std::vector<int> NonlinearDynamics::RootDirections() const {
+  std::vector<int> directions(num_roots_, 0);
+  for (const Element& e : elements_) {
+    if (Sticks(e)) directions[e.root] = -1;
+  }
+  return directions;
+}
+
+void NonlinearDynamics::Jacobian(const double* y, double* jac) {
+  const int size_y = size();
+  Eigen::Map<Eigen::MatrixXd> J(jac, size_y, size_y);
+  J.setZero();
+  J.topLeftCorner(nz_, nz_) = a_z_;
+  Forces(y);
+  grads_.setZero();
+  for (int i = 0; i < num_elements(); ++i) {
+    const Element& e = elements_[i];
+    if (Stuck(e)) continue;
+    double dw = 0.0;
+    double dzeta = 0.0;
+    Force(e, value_[i], y, &dw, &dzeta);
+    for (std::size_t k = 0; k < e.row.index.size(); ++k) grads_(e.row.index[k], i) = dw * e.row.value[k];
+    if (e.bristle >= 0) {
+      grads_(nz_ + e.bristle, i) = dzeta;
+      double rate_w = 0.0;
+      double rate_zeta = 0.0;
+      BristleRate(e, value_[i], y[nz_ + e.bristle], &rate_w, &rate_zeta);
+      for (std::size_t k = 0; k < e.row.index.size(); ++k) J(nz_ + e.bristle, e.row.index[k]) = rate_w * e.row.value[k];
+      J(nz_ + e.bristle, nz_ + e.bristle) = rate_zeta;
+    }
+  }
+  if (!stuck_.empty()) {
+    // dF_S/dy = -G_SS^-1 (row_a + sum over the others of G_Sj dF_j/dy).
+    const int s = static_cast<int>(stuck_.size());
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(s, size_y);
+    for (int a = 0; a < s; ++a) {
+      const Element& e = elements_[stuck_[a]];
+      for (std::size_t k = 0; k < e.row_a.index.size(); ++k) rhs(a, e.row_a.index[k]) -= e.row_a.value[k];
+      for (int j = 0; j < num_elements(); ++j) {
+        if (!Stuck(elements_[j])) rhs.row(a) -= coupling_(stuck_[a], j) * grads_.col(j).transpose();
+      }
+    }
+    const Eigen::MatrixXd grad = s == 1 ? Eigen::MatrixXd(rhs / coupling_(stuck_[0], stuck_[0]))
+                                        : Eigen::MatrixXd(stuck_solver_.solve(rhs));
+    for (int a = 0; a < s; ++a) grads_.col(stuck_[a]) = grad.row(a).transpose();
+  }
+  for (int i = 0; i < num_elements(); ++i) {
+    const Element& e = elements_[i];
+    for (std::size_t k = 0; k < e.column.index.size(); ++k) {
+      J.row(e.column.index[k]) += e.column.value[k] * grads_.col(i).transpose();
+    }
+  }
+}
+
+void NonlinearDynamics::InitModes(const double* y) {
+  for (int i = 0; i < num_elements(); ++i) {
+    Element& e = elements_[i];
+    const double w = e.row.Dot(y);
+    const NonlinearElement& c = e.config;
+    switch (c.kind) {
+      case NonlinearKind::kFriction:
+        e.mode = w != 0.0 || !(c.friction.StaticN() > 0.0) ? (w < 0.0 ? -1 : 1) : 0;
+        break;
+      case NonlinearKind::kBacklash:
+        e.mode = std::abs(w) <= 0.5 * c.backlash_m ? 0 : static_cast<int>(Sign(w));
+        break;
+      case NonlinearKind::kSaturation:
+        e.mode = std::abs(w) <= c.limit_n ? 0 : static_cast<int>(Sign(w));
+        break;
+    }
+  }
+  Settle(y);
+}
+
+// A stuck element holds while |F*| <= F_s; one with F_s = 0 holds nothing (it would stay
+// stuck at F* = 0, where |F*| = F_s has no crossing to find).
+bool NonlinearDynamics::Settle(const double* y) {
+  bool changed = false;
+  for (;;) {
+    RebuildStuckSet();
+    if (stuck_.empty()) return changed;
+    Forces(y);
+    int worst = -1;
+    double excess = 0.0;
+    for (int i : stuck_) {
+      const double f_s = elements_[i].config.friction.StaticN();
+      const double over = std::abs(force_[i]) - f_s;
+      if ((over > 0.0 || f_s == 0.0) && (worst < 0 || over > excess)) {
+        worst = i;
+        excess = over;
+      }
+    }
+    if (worst < 0) return changed;
+    elements_[worst].mode = force_[worst] < 0.0 ? -1 : 1;  // slides the way F* pushes
+    changed = true;
+  }
+}
+
+bool NonlinearDynamics::ReleaseOverloaded(const double* y) { return Settle(y); }
+
+void NonlinearDynamics::Project(double* y) {
+  const int s = static_cast<int>(stuck_.size());
+  if (s == 0) return;
+  Eigen::VectorXd w(s);
+  for (int a = 0; a < s; ++a) w(a) = -elements_[stuck_[a]].row.Dot(y);
+  const Eigen::VectorXd impulse = s == 1 ? Eigen::VectorXd(w / coupling_(stuck_[0], stuck_[0]))
+                                         : Eigen::VectorXd(stuck_solver_.solve(w));
+  for (int a = 0; a < s; ++a) {
+    const Element& e = elements_[stuck_[a]];
+    for (std::size_t k = 0; k < e.column.index.size(); ++k) y[e.column.index[k]] += e.column.value[k] * impulse(a);
+  }
+}
+
+bool NonlinearDynamics::HandleRoots(const int* found, double* y) {
+  Forces(y);
+
+  bool changed = false;
+  bool sticks = false;
+  for (int i = 0; i < num_elements(); ++i) {
+    Element& e = elements_[i];
+    const int first = found[e.root];
+    const int second = e.config.kind == NonlinearKind::kFriction ? 0 : found[e.root + 1];
+    if (first == 0 && second == 0) continue;
+    changed = true;  // at least a restart (LuGre: the kink of |w|)
+    if (Sticks(e)) {
+      if (e.mode != 0) {
+        e.mode = 0;  // w reached 0: stuck, unless Settle finds F* beyond F_s
+        sticks = true;
+      } else {
+        e.mode = force_[i] < 0.0 ? -1 : 1;
+      }
+    } else if (e.config.kind != NonlinearKind::kFriction) {
+      // The upper edge (+b/2, +L) rising enters +1, falling leaves it; the lower alike.
+      if (first != 0) e.mode = first > 0 ? 1 : 0;
+      if (second != 0) e.mode = second < 0 ? -1 : 0;
+    }
+  }
+  RebuildStuckSet();
+  if (sticks) Project(y);
+  Settle(y);
+  return changed;
+}
+
+}  // namespace shapebench::model
