@@ -160,6 +160,12 @@ class Result {
                                                                         : value.get<double>();
       metrics[py::str(std::string(info.name))] = py::float_(number);
     }
+    // A nonlinear plant's own metrics (dead_band_m, quadrant_glitch_m): present exactly
+    // where RunJson has them (absent from a linear run's, as in `run --json`).
+    for (const bench::MetricInfo& info : bench::NonlinearMetricTable()) {
+      const std::string name(info.name);
+      if (json_.contains(name)) metrics[py::str(name)] = py::float_(json_.at(name).get<double>());
+    }
     return metrics;
   }
 
