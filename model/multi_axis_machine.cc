@@ -63,12 +63,10 @@ void AppendElements(const std::vector<NonlinearElement>& elements, int axis, int
   }
 }
 
-// Appends `block` (one input, two output rows) as axis `axis` of `plant`.
-void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
-  const int n0 = plant->num_states();
-  const int nb = block.num_states();
-  const int n = n0 + nb;
-  auto grow = [&](Eigen::MatrixXd* m, int rows, int cols) {
+// Grows `plant` to n states (the new rows and columns zero), keeping its inputs (one per
+// axis) and output rows (kNumOutputRows).
+void GrowPlant(int n, LinearPlant* plant) {
+  auto grow = [](Eigen::MatrixXd* m, int rows, int cols) {
     Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(rows, cols);
     bigger.topLeftCorner(m->rows(), m->cols()) = *m;
     *m = std::move(bigger);
@@ -76,7 +74,15 @@ void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
   grow(&plant->A, n, n);
   grow(&plant->B_accel, n, kNumAxes);
   grow(&plant->B_vel, n, kNumAxes);
-  grow(&plant->C, 2 * kNumAxes, n);
+  grow(&plant->C, kNumOutputRows, n);
+}
+
+// Appends `block` (one input, two output rows) as axis `axis` of `plant`.
+void AppendAxis(const LinearPlant& block, int axis, LinearPlant* plant) {
+  const int n0 = plant->num_states();
+  const int nb = block.num_states();
+  const int n = n0 + nb;
+  GrowPlant(n, plant);
   if (nb > 0) {  // a rigid axis: no blocks (row() of an empty matrix offsets a null pointer)
     plant->A.block(n0, n0, nb, nb) = block.A;
     plant->B_accel.block(n0, axis, nb, 1) = block.B_accel;
@@ -129,15 +135,7 @@ void AppendCoupledStructure(const LinearPlant& structure, const std::array<Drive
   const int n0 = plant->num_states();
   const int ns = structure.num_states();
   const int n = n0 + ns;
-  auto grow = [&](Eigen::MatrixXd* m, int rows, int cols) {
-    Eigen::MatrixXd bigger = Eigen::MatrixXd::Zero(rows, cols);
-    bigger.topLeftCorner(m->rows(), m->cols()) = *m;
-    *m = std::move(bigger);
-  };
-  grow(&plant->A, n, n);
-  grow(&plant->B_accel, n, kNumAxes);
-  grow(&plant->B_vel, n, kNumAxes);
-  grow(&plant->C, kNumOutputRows, n);
+  GrowPlant(n, plant);
   plant->A.block(n0, n0, ns, ns) = structure.A;
   for (int axis = 0; axis < kNumAxes; ++axis) {
     const Eigen::VectorXd b = structure.B_accel.col(axis);
