@@ -111,7 +111,8 @@ TEST(IdentifyCli, RealMeasuredBeam) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json parsed = nlohmann::json::parse(result.out);
   // The oracle: local maxima of the driving-point |H| standing out of their +-10 lines.
-  const Uff58Record& record = ReadUff58(file).records[0];
+  const Uff58File read = ReadUff58(file);  // kept: the record below refers into it
+  const Uff58Record& record = read.records[0];
   std::vector<double> peaks;
   for (std::size_t i = 10; i + 10 < record.values.size(); ++i) {
     bool top = true;
