@@ -40,19 +40,73 @@ bool Factor(double* a, int* pivot, int n) {
   return true;
 }
 
-// Solves with Factor's result, x in place.
-void Substitute(const double* a, const int* pivot, int n, double* x) {
+// Factor's result without its zeros, in Substitute's order: the nonzero multipliers of L
+// column by column, the nonzero entries of U above its diagonal row by row. The Newton
+// matrix of a lumped machine stays sparse through its LU (a position row is I and -gamma I;
+// a body's velocity row reaches its neighbours only), and CVODE solves several times per
+// factorisation.
+struct Compact {
+  std::vector<int> l_start;  // per column k: its multipliers l_index/l_value[l_start[k]..l_start[k+1])
+  std::vector<int> l_index;
+  std::vector<double> l_value;
+  std::vector<int> u_start;  // per row k, the same for U
+  std::vector<int> u_index;
+  std::vector<double> u_value;
+  std::vector<double> inverse_diagonal;
+  std::vector<int> pivot;
+
+  explicit Compact(int n)
+      : l_start(static_cast<std::size_t>(n + 1)),
+        l_index(static_cast<std::size_t>(n * n)),
+        l_value(static_cast<std::size_t>(n * n)),
+        u_start(static_cast<std::size_t>(n + 1)),
+        u_index(static_cast<std::size_t>(n * n)),
+        u_value(static_cast<std::size_t>(n * n)),
+        inverse_diagonal(static_cast<std::size_t>(n)),
+        pivot(static_cast<std::size_t>(n)) {}
+};
+
+void Compress(const double* a, int n, Compact& c) {
+  int l = 0;
+  int u = 0;
+  c.l_start[0] = 0;
+  c.u_start[0] = 0;
+  for (int k = 0; k < n; ++k) {
+    for (int i = k + 1; i < n; ++i) {
+      const double value = a[i * n + k];
+      if (value != 0.0) {
+        c.l_index[l] = i;
+        c.l_value[l++] = value;
+      }
+    }
+    c.l_start[k + 1] = l;
+    for (int j = k + 1; j < n; ++j) {
+      const double value = a[k * n + j];
+      if (value != 0.0) {
+        c.u_index[u] = j;
+        c.u_value[u++] = value;
+      }
+    }
+    c.u_start[k + 1] = u;
+    c.inverse_diagonal[k] = a[k * n + k];
+  }
+}
+
+// Solves with Factor's result (compressed), x in place. The terms left out are exact zeros:
+// the dense loops' values (x - 0 y is x for finite y; a zero result may differ in sign).
+void Substitute(const Compact& c, int n, double* x) {
   // The rows were swapped whole (L's multipliers with them): P first, then L, then U.
   for (int k = 0; k < n; ++k) {
-    if (pivot[k] != k) std::swap(x[k], x[pivot[k]]);
+    if (c.pivot[k] != k) std::swap(x[k], x[c.pivot[k]]);
   }
   for (int k = 0; k < n; ++k) {
-    for (int i = k + 1; i < n; ++i) x[i] -= a[i * n + k] * x[k];
+    const double xk = x[k];
+    for (int p = c.l_start[k]; p < c.l_start[k + 1]; ++p) x[c.l_index[p]] -= c.l_value[p] * xk;
   }
   for (int k = n - 1; k >= 0; --k) {
     double sum = x[k];
-    for (int j = k + 1; j < n; ++j) sum -= a[k * n + j] * x[j];
-    x[k] = sum * a[k * n + k];
+    for (int p = c.u_start[k]; p < c.u_start[k + 1]; ++p) sum -= c.u_value[p] * x[c.u_index[p]];
+    x[k] = sum * c.inverse_diagonal[k];
   }
 }
 
@@ -61,7 +115,7 @@ void Substitute(const double* a, const int* pivot, int n, double* x) {
 struct BlockLuSolver::Factors {
   std::vector<std::vector<int>> blocks;
   std::vector<std::vector<double>> lu;  // each block's matrix, row-major, then its LU in place
-  std::vector<std::vector<int>> pivots;
+  std::vector<Compact> compact;         // each block's LU without its zeros (Solve's)
   std::vector<double> scratch;
 };
 
@@ -70,7 +124,7 @@ BlockLuSolver::BlockLuSolver(SUNContext context, std::vector<std::vector<int>> b
   std::size_t largest = 0;
   for (const std::vector<int>& block : blocks) {
     factors_->lu.emplace_back(block.size() * block.size());
-    factors_->pivots.emplace_back(block.size());
+    factors_->compact.emplace_back(static_cast<int>(block.size()));
     largest = std::max(largest, block.size());
   }
   factors_->scratch.resize(largest);
@@ -98,7 +152,8 @@ int BlockLuSolver::Setup(SUNLinearSolver solver, SUNMatrix matrix) {
       for (int c = 0; c < n; ++c) m[r * n + c] = a[block[c] * rows + block[r]];
     }
     // A singular block fails the setup: CVODE then shrinks the step.
-    if (!Factor(m, f.pivots[k].data(), n)) return SUNLS_LUFACT_FAIL;
+    if (!Factor(m, f.compact[k].pivot.data(), n)) return SUNLS_LUFACT_FAIL;
+    Compress(m, n, f.compact[k]);
   }
   return SUNLS_SUCCESS;
 }
@@ -112,7 +167,7 @@ int BlockLuSolver::Solve(SUNLinearSolver solver, SUNMatrix /*matrix*/, N_Vector 
     const std::vector<int>& block = f.blocks[k];
     const int n = static_cast<int>(block.size());
     for (int i = 0; i < n; ++i) v[i] = in[block[i]];
-    Substitute(f.lu[k].data(), f.pivots[k].data(), n, v);
+    Substitute(f.compact[k], n, v);
     for (int i = 0; i < n; ++i) out[block[i]] = v[i];
   }
   return SUNLS_SUCCESS;

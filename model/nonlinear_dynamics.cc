@@ -205,7 +205,13 @@ void NonlinearDynamics::Rhs(const double* y, double* ydot) {
 }
 
 void NonlinearDynamics::Roots(const double* y, double* g) {
-  Forces(y);
+  // Only a stuck element's root reads a force (its holding force, which depends on the
+  // others'); without one the roots need the rows alone (no LuGre exp at every output).
+  if (stuck_.empty()) {
+    for (int i = 0; i < num_elements(); ++i) value_[i] = elements_[i].row.Dot(y);
+  } else {
+    Forces(y);
+  }
   for (int i = 0; i < num_elements(); ++i) {
     const Element& e = elements_[i];
     const double w = value_[i];
