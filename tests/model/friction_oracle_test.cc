@@ -92,16 +92,23 @@ TEST(FrictionOracle, SteadySlidingFollowsTheStribeckCurve) {
 }
 
 // Tests LuGre's presliding: from rest, the drive creeping at 1 um/s loads the bristles, and
-// the body's displacement x at friction force F (the spring's, quasi-static) is the closed
-// form of dz/dx = 1 - sigma0 z / F_s (|w| << v_s, so g = F_s): x = -(F_s/sigma0) ln(1 - F/F_s)
-// within 1% for F up to 0.1 F_c; and F / sigma0 within 1% where that form is (F <= 0.015
-// F_s: the log's second term is F/(2 F_s) of it, 0.75% there; at 0.1 F_c it is 3%).
+// the body's displacement x at friction force F (the spring's, quasi-static: the body's
+// speed is creep / 11, so sigma1 z' and sigma2 w are 2e-4 N) follows the LuGre law under a
+// force ramp. At a speed w far below v_s, dz/dx = 1 - sigma0 z / g with g = g(w) the Stribeck
+// curve's value (here F_s less 4e-5 N), so x = -(g / sigma0) ln(1 - F / g) exactly; checked
+// within 1% for every F up to 0.1 F_c. Its series, x = (F / sigma0)(1 + F / (2 g) + ...),
+// puts F / sigma0 off by about F / (2 g): the linear presliding F / sigma0 holds within 1%
+// only up to F of about 0.02 g, not up to 0.1 F_c (there it is 3% off, F_c < g). So F / sigma0
+// is checked within 1% where the closed form itself is within 0.75% of it, and at the
+// largest F the departure from F / sigma0 is checked to be the log's, F / (2 g) within 10%.
 TEST(FrictionOracle, LuGrePreslidingIsTheBristleDeflection) {
   // No damper: the spring alone carries the friction force (the bristles' sigma1 damps).
   constexpr double kSpringNM = 1.0e6;
   const NonlinearPlant plant = BodyOnGround(Friction(FrictionModel::kLuGre), kSpringNM, 0.0);
   const double period_s = 0.001;
   const double creep_m_s = 1e-6;
+  // The Stribeck curve at the creep speed (the body is slower: g is closer still to F_s).
+  const double g = kCoulombN + (kStaticN - kCoulombN) * std::exp(-std::pow(creep_m_s / kStribeckMS, 2));
   auto integrator = Integrator(plant, period_s);
   integrator->Reset(Eigen::Vector3d::Zero());
   std::vector<double> out(static_cast<std::size_t>(integrator->num_outputs()));
@@ -112,6 +119,8 @@ TEST(FrictionOracle, LuGrePreslidingIsTheBristleDeflection) {
   const long ticks = 8000;  // 8 s: F reaches 0.11 F_c
   int checked = 0;
   int linear = 0;
+  double last_force = 0.0;
+  double last_departure = 0.0;
   for (long k = 2; k <= ticks; ++k) {
     integrator->AdvancePeriod(zero, ticks - k + 1, out.data());
     if (k % 500 != 0) continue;
@@ -120,16 +129,23 @@ TEST(FrictionOracle, LuGrePreslidingIsTheBristleDeflection) {
     const double force = -kSpringNM * y;
     const double x = creep_m_s * (t - 0.5 * period_s) + y;  // the body's own displacement
     if (force > 0.1 * kCoulombN) break;
-    const double closed = -(kStaticN / kSigma0NM) * std::log(1.0 - force / kStaticN);
+    const double closed = -(g / kSigma0NM) * std::log(1.0 - force / g);
     EXPECT_NEAR(x, closed, 0.01 * closed) << "F = " << force << " N";
-    if (force <= 0.015 * kStaticN) {
-      EXPECT_NEAR(x, force / kSigma0NM, 0.01 * force / kSigma0NM) << "F = " << force;
+    const double linear_m = force / kSigma0NM;
+    if (std::abs(closed - linear_m) <= 0.0075 * linear_m) {
+      EXPECT_NEAR(x, linear_m, 0.01 * linear_m) << "F = " << force;
       ++linear;
     }
+    last_force = force;
+    last_departure = (x - linear_m) / linear_m;
     ++checked;
   }
   EXPECT_GE(checked, 10);
   EXPECT_GE(linear, 2);
+  // Near 0.1 F_c: F / sigma0 is off by the log's F / (2 g), about 3%, beyond 1%.
+  EXPECT_GT(last_force, 0.09 * kCoulombN);
+  EXPECT_NEAR(last_departure, last_force / (2.0 * g), 0.1 * last_force / (2.0 * g));
+  EXPECT_GT(last_departure, 0.01);
 }
 
 // ---- Stick-slip at low feed: the body pulled through its spring by the drive at speed V ----
