@@ -50,7 +50,10 @@ std::pair<double, double> CruiseDeflections(const Trace& trace) {
 
 // Tests that a reversal loses b + 2 F/k of table position within 1e-3 of it (the cruises'
 // means: the contact's ringing is damped out by then), each way b/2 + F/k; and without play
-// 2 F/k (the contact's stretch alone).
+// 2 F/k (the contact's stretch alone). Counted from the unloaded contact point instead (the
+// nut at the outgoing flank with no force: table less command -b/2, the F/k the outgoing
+// contact gives back as it unloads left out), the table's lead on the way back is b + F/k:
+// the play plus the stretch of the flank that pushes it back; also within 1e-3.
 TEST(Backlash, AReversalLosesThePlayAndTheContactStretch) {
   const RunResult run = RunScenario(LoadScenario(ReversalFile(), {}));
   const auto [out, back] = CruiseDeflections(run.trace);
@@ -58,6 +61,9 @@ TEST(Backlash, AReversalLosesThePlayAndTheContactStretch) {
   EXPECT_NEAR(back - out, lost, 1e-3 * lost);
   EXPECT_NEAR(out, -0.5 * lost, 1e-3 * lost);  // lagging on the way out
   EXPECT_NEAR(back, 0.5 * lost, 1e-3 * lost);  // leading on the way back
+  const double from_unloaded = kPlayM + kFrictionN / kContactNM;  // 12 um
+  EXPECT_NEAR(back - (-0.5 * kPlayM), from_unloaded, 1e-3 * from_unloaded);
+  EXPECT_NEAR((back - out) - kFrictionN / kContactNM, from_unloaded, 1e-3 * from_unloaded);
   const RunResult tight = RunScenario(LoadScenario(ReversalFile(), {{"machine.elements[0].backlash_m", "0"}}));
   const auto [tight_out, tight_back] = CruiseDeflections(tight.trace);
   const double stretch = 2.0 * kFrictionN / kContactNM;
