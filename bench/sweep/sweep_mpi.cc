@@ -210,7 +210,9 @@ class Coordinator {
       const auto start = std::chrono::steady_clock::now();
       std::size_t at = 0;
       if (tag == kHello) {
-        slots_[static_cast<std::size_t>(source)] = static_cast<int>(std::max<std::uint64_t>(1, GetU64(bytes, &at)));
+        const int slots = static_cast<int>(std::clamp<std::uint64_t>(GetU64(bytes, &at), 1, 4096));
+        std::lock_guard<std::mutex> lock(mutex_);  // TakeChunk reads slots_ on the local threads
+        slots_[static_cast<std::size_t>(source)] = slots;
         ++hellos_;
       } else if (tag == kResult) {
         const std::uint64_t begin = GetU64(bytes, &at);
@@ -285,7 +287,7 @@ class Coordinator {
   const std::uint64_t end_;
   const EncodedWork& work_;
   const EncodedConsume& consume_;
-  std::vector<int> slots_;        // each rank's threads (0: no hello yet)
+  std::vector<int> slots_;        // each rank's threads (0: no hello yet); written under mutex_
   std::vector<int> outstanding_;  // each rank's chunks not yet returned
   int hellos_ = 0;
   std::mutex mutex_;
