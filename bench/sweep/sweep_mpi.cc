@@ -7,6 +7,13 @@
 #include "bench/sweep/distribute.h"
 
 #ifdef SHAPEBENCH_HAVE_MPI
+// Only MPI's C API: never its deprecated C++ bindings (warnings, another library).
+#ifndef OMPI_SKIP_MPICXX
+#define OMPI_SKIP_MPICXX 1
+#endif
+#ifndef MPICH_SKIP_MPICXX
+#define MPICH_SKIP_MPICXX 1
+#endif
 #include <fcntl.h>
 #include <mpi.h>
 #include <signal.h>
@@ -149,8 +156,11 @@ class Coordinator {
   }
 
   // The next chunk [*begin, *begin + *count) under mutex_; false when none may start now:
-  // all handed out, stopping, or more than a window of points ahead of the writer.
+  // all handed out, stopping, more than a window of points ahead of the writer, or not
+  // every rank has said hello yet. (The last costs one round trip at the start; then the
+  // first chunks are sized for every thread of the run, and every rank gets its share.)
   bool TakeChunk(std::uint64_t* begin, std::uint64_t* count) {
+    if (hellos_ < ranks_ - 1) return false;
     std::uint64_t threads = static_cast<std::uint64_t>(jobs_);
     for (const int slots : slots_) threads += static_cast<std::uint64_t>(slots);
     const std::uint64_t window = std::max<std::uint64_t>(4096, 4 * kMaxChunk * threads);
@@ -211,9 +221,12 @@ class Coordinator {
       std::size_t at = 0;
       if (tag == kHello) {
         const int slots = static_cast<int>(std::clamp<std::uint64_t>(GetU64(bytes, &at), 1, 4096));
-        std::lock_guard<std::mutex> lock(mutex_);  // TakeChunk reads slots_ on the local threads
-        slots_[static_cast<std::size_t>(source)] = slots;
-        ++hellos_;
+        {
+          std::lock_guard<std::mutex> lock(mutex_);  // TakeChunk reads these on the local threads
+          slots_[static_cast<std::size_t>(source)] = slots;
+          ++hellos_;
+        }
+        work_changed_.notify_all();
       } else if (tag == kResult) {
         const std::uint64_t begin = GetU64(bytes, &at);
         const std::uint64_t count = GetU64(bytes, &at);
@@ -289,7 +302,7 @@ class Coordinator {
   const EncodedConsume& consume_;
   std::vector<int> slots_;        // each rank's threads (0: no hello yet); written under mutex_
   std::vector<int> outstanding_;  // each rank's chunks not yet returned
-  int hellos_ = 0;
+  int hellos_ = 0;  // written under mutex_
   std::mutex mutex_;
   std::condition_variable ready_changed_;
   std::condition_variable work_changed_;
