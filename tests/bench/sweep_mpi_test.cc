@@ -107,13 +107,14 @@ TEST(SweepMpi, LostRankThenResumeGivesTheSameFile) {
 }
 
 // Tests that `check` on 3 ranks prints what it prints without MPI and exits the same:
-// the natural-period sweep (0, all pass), a sweep with a failing point (1) and method 4
-// where the 35 Hz point fails to run (2, its error on stderr).
+// the natural-period sweep (0, all pass); a scenario, a sweep with a failing point and the
+// natural-period sweep in one command (1: the ranks follow rank 0 from sweep to sweep);
+// method 4 where the 35 Hz point fails to run (2, its error on stderr).
 TEST(SweepMpi, CheckGivesTheSameVerdict) {
   if (const std::string missing = MpiMissing(); !missing.empty()) GTEST_SKIP() << missing;
   const std::vector<std::vector<std::string>> cases = {
       {"check", kNaturalPeriod},
-      {"check", "tests/bench/data/sweeps/failing_point.yaml"},
+      {"check", "configs/scenarios/sdof_method1.yaml", "tests/bench/data/sweeps/failing_point.yaml", kNaturalPeriod},
       {"check", "tests/bench/data/sweeps/natural_period.yaml", "--set", "controller.pattern.method=4", "--set",
        "controller.pattern.t1_s=0.00477"}};
   const int expected_codes[] = {0, 1, 2};
