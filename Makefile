@@ -72,7 +72,7 @@ fuzz:
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
 # resident memory; a few minutes), then one table of it all (scripts/baseline_table.py),
 # then four Python threads running at once against one (benchmarks/python_threads.py: the
-# GIL is released while simulating), then 1 vs 2 MPI ranks on a 100,000-point sweep
+# GIL is released while simulating), then 1 vs 2 MPI ranks on a 200,000-point sweep
 # (scripts/mpi_scaling.py; docs/scaling.md). docs/performance.md quotes it. Everything lands in
 # $(BUILD_DIR)/bench.
 .PHONY: bench
