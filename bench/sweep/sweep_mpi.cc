@@ -28,6 +28,7 @@
 #include <deque>
 #include <exception>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -361,6 +362,10 @@ class Worker {
       throw;
     }
     End(&threads);
+    while (!sending_.empty()) {  // rank 0 has them all when it says stop: they complete at once
+      SendResults();
+      if (!sending_.empty()) std::this_thread::sleep_for(kPoll);
+    }
     return quit;
   }
 
@@ -397,16 +402,27 @@ class Worker {
     }
   }
 
+  // Sends the finished chunks without waiting (a blocking send of a message above MPI's
+  // eager limit spins until rank 0, which polls, takes it) and completes the earlier sends.
   void SendResults() {
     while (true) {
-      std::string message;
+      auto message = std::make_unique<std::string>();
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        if (results_.empty()) return;
-        message = std::move(results_.front());
+        if (results_.empty()) break;
+        *message = std::move(results_.front());
         results_.pop_front();
       }
-      Send(message, 0, kResult);
+      MPI_Request request;
+      MPI_Isend(message->data(), static_cast<int>(message->size()), MPI_BYTE, 0, kResult, MPI_COMM_WORLD,
+                &request);
+      sending_.emplace_back(request, std::move(message));
+    }
+    while (!sending_.empty()) {
+      int done = 0;
+      MPI_Test(&sending_.front().first, &done, MPI_STATUS_IGNORE);
+      if (done == 0) return;
+      sending_.pop_front();
     }
   }
 
@@ -426,6 +442,7 @@ class Worker {
   std::condition_variable result_added_;
   std::deque<std::pair<std::uint64_t, std::uint64_t>> chunks_;
   std::deque<std::string> results_;
+  std::deque<std::pair<MPI_Request, std::unique_ptr<std::string>>> sending_;  // main thread only
   bool ended_ = false;
   std::exception_ptr failure_;
   std::uint64_t die_after_ = 0;

@@ -1,7 +1,7 @@
 // `sweep` and `check` on MPI ranks (docs/scaling.md): `mpirun -n N shapebench sweep FILE
 // --out DIR` needs no flag. Every rank loads the same sweep; rank 0 hands out chunks of
 // point indices dynamically (guided: a quarter of the remaining points per compute thread
-// of the run, at most kMaxChunk, so the last chunks are single points and a slow point
+// of the run, at most 64, so the last chunks are single points and a slow point
 // holds up one thread, not a rank) and computes on its own --jobs threads too; the other
 // ranks send back each point's result bytes (a results.csv row as --jobs 1 writes it),
 // and rank 0 writes them in point order through the same RunSweep (manifest, resume,
