@@ -9,6 +9,8 @@ PACKAGES = cmake ninja-build g++ libsundials-dev libeigen3-dev libyaml-cpp-dev l
 PYTHON_PACKAGES = pybind11-dev python3-dev python3-pytest python3-numpy python3-scipy python3-yaml
 # recommend: the Welch PSD of accelerometer logs (bench/measure/welch_psd.h)
 PACKAGES += libfftw3-dev pkgconf
+# sweep and check on MPI ranks (docs/scaling.md): Open MPI, found by CMake's FindMPI
+PACKAGES += libopenmpi-dev openmpi-bin
 
 .PHONY: deps configure build demo test clean
 
@@ -70,7 +72,8 @@ fuzz:
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
 # resident memory; a few minutes), then one table of it all (scripts/baseline_table.py),
 # then four Python threads running at once against one (benchmarks/python_threads.py: the
-# GIL is released while simulating). docs/performance.md quotes it. Everything lands in
+# GIL is released while simulating), then 1 vs 2 MPI ranks on a 200,000-point sweep
+# (scripts/mpi_scaling.py; docs/scaling.md). docs/performance.md quotes it. Everything lands in
 # $(BUILD_DIR)/bench.
 .PHONY: bench
 BENCH_OUT = $(BUILD_DIR)/bench
@@ -93,6 +96,8 @@ bench: deps
 	@/usr/bin/python3 scripts/baseline_table.py $(BENCH_OUT)/benchmarks.json \
 	  $(BENCH_OUT)/baseline.json $(BENCH_OUT)/memory.txt
 	@PYTHONPATH=$(BUILD_DIR)/python /usr/bin/python3 benchmarks/python_threads.py | tee $(BENCH_OUT)/python_threads.txt
+	@/usr/bin/python3 scripts/mpi_scaling.py $(BUILD_DIR)/shapebench benchmarks/cases/mpi_sweep.yaml \
+	  $(BENCH_OUT)/mpi | tee $(BENCH_OUT)/mpi_scaling.txt
 
 # `make bench-compare REF=<commit>`: REF's benchmarks built from `git archive` beside this
 # tree's, then case 1 exact and case 3 timed with the two binaries interleaved, medians

@@ -45,6 +45,9 @@
 #include "bench/sweep/sweep_html.h"
 #include "bench/sweep/sweep_files.h"
 #include "bench/sweep/sweep_runner.h"
+#include "bench/sweep/distribute.h"
+#include "bench/sweep/slurm_array.h"
+#include "bench/sweep/sweep_mpi.h"
 #include "bench/sweep/sensitivity.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
@@ -270,9 +273,7 @@ struct CheckArgs {
 };
 
 int JobsOrDefault(int jobs) {
-  if (jobs > 0) return jobs;
-  const unsigned threads = std::thread::hardware_concurrency();
-  return threads > 0 ? static_cast<int>(threads) : 1;
+  return jobs > 0 ? jobs : DefaultJobs();  // MPI ranks on one host share its cores
 }
 
 int CheckCommand(const CheckArgs& args) {
@@ -289,13 +290,19 @@ int CheckCommand(const CheckArgs& args) {
     Doing("loading " + file);
     const bool sweep = IsSweepFile(file);
     sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides, load)) : std::nullopt);
-    if (sweep && !sweeps.back()->note.empty()) std::cerr << sweeps.back()->note << "\n";
+    if (sweep && !sweeps.back()->note.empty() && !IsDistributedWorker()) std::cerr << sweeps.back()->note << "\n";
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
     if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
                         "no checks to evaluate; add e.g. checks: {peak_ratio: {max: 1.01}}");
     }
     if (!sweep) ValidateBandChecks(scenarios.back(), overrides);
+  }
+  if (IsDistributedWorker()) {  // an MPI rank other than 0 (bench/sweep/sweep_mpi.h)
+    for (const auto& sweep : sweeps) {
+      if (sweep) ServeCheckSweep(*sweep, overrides, JobsOrDefault(args.jobs));
+    }
+    return kExitOk;
   }
   int exit_code = kExitOk;
   auto raise = [&](int code) {
@@ -460,15 +467,26 @@ int SweepCommand(const SweepArgs& args) {
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   SweepRunOptions options;
   if (!args.shard.empty()) ParseShard(args.shard, &options);
+  // In a Slurm job array without --shard: this task's shard, in DIR/shard-I-of-N.
+  const std::optional<ArrayShard> array = args.shard.empty() ? SlurmArrayShard() : std::nullopt;
+  if (array) {
+    options.shard_index = array->index;
+    options.shard_count = array->count;
+  }
   SweepLoadOptions load;
   load.force = args.force;
   Doing("loading " + args.file);
   const Sweep sweep = LoadSweep(args.file, overrides, load);
-  if (!sweep.note.empty()) std::cerr << sweep.note << "\n";
+  if (!sweep.note.empty() && !IsDistributedWorker()) std::cerr << sweep.note << "\n";
   options.out_dir = args.out_dir.empty()
                         ? (std::filesystem::path("sweep_out") / sweep.name).string()
                         : args.out_dir;
+  if (array) options.out_dir = ArrayShardDir(options.out_dir, *array);
   options.jobs = JobsOrDefault(args.jobs);
+  if (IsDistributedWorker()) {  // an MPI rank other than 0 (bench/sweep/sweep_mpi.h)
+    ServeSweep(sweep, overrides, options);
+    return kExitOk;
+  }
   options.progress = isatty(STDERR_FILENO) != 0;
   Doing("running sweep '" + sweep.name + "' (" + sweep.file + ") into " + options.out_dir,
         SweepMemory(options.jobs) + "; the complete rows are kept, the same command resumes");
@@ -748,6 +766,7 @@ CLI::App* AddRecommendCommand(CLI::App* app, RecommendArgs* args) {
 
 int main(int argc, char** argv) {
   InstallInterruptHandlers();  // SIGINT, SIGTERM: complete files only (common/interrupt.h)
+  MpiRun mpi;  // under mpirun: sweep and check spread over the ranks (bench/sweep/sweep_mpi.h)
   CheckedStdout stdout_checked;
   CLI::App app{"shapebench: CNC vibration co-simulation testbench"};
   app.require_subcommand(1);
@@ -851,6 +870,7 @@ int main(int argc, char** argv) {
   }
 
   int code = kExitBadInput;
+  if (IsDistributedWorker() && !sweep->parsed() && !check->parsed()) return mpi.Finish(kExitOk);
   if (run->parsed()) code = Guarded([&] { return RunCommand(run_args); });
   if (check->parsed()) code = Guarded([&] { return CheckCommand(check_args); });
   if (modes->parsed()) code = Guarded([&] { return ModesCommand(modes_args); });
@@ -861,5 +881,5 @@ int main(int argc, char** argv) {
   if (compare->parsed()) code = Guarded([&] { return CompareCommand(compare_args); });
   if (identify->parsed()) code = Guarded([&] { return IdentifyCommand(identify_args); });
   if (recommend->parsed()) code = Guarded([&] { return RecommendCommand(recommend_args); });
-  return stdout_checked.Checked(code);
+  return stdout_checked.Checked(mpi.Finish(code));
 }

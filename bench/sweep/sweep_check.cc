@@ -2,12 +2,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include "common/ordered_pool.h"
 #include "common/shown_text.h"
 #include "bench/sim/checks.h"
+#include "bench/sweep/distribute.h"
 #include "bench/sweep/sweep_runner.h"
 
 namespace shapebench::bench {
@@ -26,7 +30,48 @@ struct CheckTally {
   std::string bound;
 };
 
+// Each point's outcome with the wall time of its run (a JUnit testcase's time).
+using TimedOutcome = std::pair<PointOutcome, double>;
+
+TimedOutcome TimedRun(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t point) {
+  const auto point_start = std::chrono::steady_clock::now();
+  PointOutcome outcome = RunPoint(sweep, sets, point);
+  return TimedOutcome(std::move(outcome), std::chrono::duration<double>(
+                                              std::chrono::steady_clock::now() - point_start)
+                                              .count());
+}
+
+// An outcome between MPI ranks (same binary on every rank: the bytes of the doubles):
+// status, index, time, Metrics, then the error text.
+static_assert(std::is_trivially_copyable_v<Metrics>);
+constexpr std::size_t kOutcomeHead = 1 + sizeof(std::uint64_t) + sizeof(double) + sizeof(Metrics);
+
+std::string EncodeOutcome(const TimedOutcome& timed) {
+  std::string bytes(kOutcomeHead, '\0');
+  bytes[0] = static_cast<char>(timed.first.status);
+  std::memcpy(&bytes[1], &timed.first.index, sizeof(std::uint64_t));
+  std::memcpy(&bytes[1 + sizeof(std::uint64_t)], &timed.second, sizeof(double));
+  std::memcpy(&bytes[1 + sizeof(std::uint64_t) + sizeof(double)], &timed.first.metrics, sizeof(Metrics));
+  return bytes + timed.first.error;
+}
+
+TimedOutcome DecodeOutcome(const std::string& bytes) {
+  TimedOutcome timed;
+  if (bytes.size() < kOutcomeHead) throw std::runtime_error("MPI: a point's outcome arrived cut short");
+  timed.first.status = static_cast<PointOutcome::Status>(bytes[0]);
+  std::memcpy(&timed.first.index, &bytes[1], sizeof(std::uint64_t));
+  std::memcpy(&timed.second, &bytes[1 + sizeof(std::uint64_t)], sizeof(double));
+  std::memcpy(&timed.first.metrics, &bytes[1 + sizeof(std::uint64_t) + sizeof(double)], sizeof(Metrics));
+  timed.first.error = bytes.substr(kOutcomeHead);
+  return timed;
+}
+
 }  // namespace
+
+void ServeCheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs) {
+  CurrentDistributor()->Serve(
+      jobs, [&](std::uint64_t point) { return EncodeOutcome(TimedRun(sweep, sets, point)); });
+}
 
 int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
                std::ostream& out, std::ostream& err, ScenarioCheckReport* report) {
@@ -40,17 +85,8 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   report->name = sweep.name;
   std::vector<CheckTally> tallies(sweep.checks.size());
   std::uint64_t failed_points = 0;
-  // Each point's outcome with the wall time of its run (a JUnit testcase's time).
-  using TimedOutcome = std::pair<PointOutcome, double>;
-  RunOrdered<TimedOutcome>(
-      sweep.points, jobs,
-      [&](std::uint64_t point) {
-        const auto point_start = std::chrono::steady_clock::now();
-        PointOutcome outcome = RunPoint(sweep, sets, point);
-        return TimedOutcome(std::move(outcome), std::chrono::duration<double>(
-                                                    std::chrono::steady_clock::now() - point_start)
-                                                    .count());
-      },
+  RunDistributed<TimedOutcome>(
+      0, sweep.points, jobs, [&](std::uint64_t point) { return TimedRun(sweep, sets, point); },
       [&](std::uint64_t point, TimedOutcome&& timed) {
         const PointOutcome& outcome = timed.first;
         const std::string label = MakePoint(sweep, point, {}).Label();
@@ -82,7 +118,8 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
           }
           report->results.push_back(std::move(result));
         }
-      });
+      },
+      EncodeOutcome, DecodeOutcome);
   for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
     const CheckTally& tally = tallies[c];
     const std::uint64_t run = tally.passed + tally.failed;

@@ -20,6 +20,7 @@
 #include "common/fd_stream.h"
 #include "common/csv.h"
 #include "common/interrupt.h"
+#include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
 #include "bench/sweep/sweep_plot.h"
 
@@ -102,6 +103,12 @@ Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
   return Row{CsvRecord(fields), outcome.ok()};
 }
 
+// A row between MPI ranks: '1' (ok) or '0', then its text.
+std::string EncodeRow(const Row& row) { return (row.ok ? "1" : "0") + row.text; }
+Row DecodeRow(const std::string& bytes) {
+  return Row{bytes.empty() ? std::string() : bytes.substr(1), !bytes.empty() && bytes[0] == '1'};
+}
+
 void WriteAll(std::FILE* file, const std::string& text, const std::string& path) {
   if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) {
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
@@ -149,17 +156,16 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
     try {
-      RunOrdered<Row>(
-          shard.Size() - summary.resumed, options.jobs,
-          [&](std::uint64_t k) {
-            return FormatRow(sweep, sets, columns, shard.Point(summary.resumed + k));
-          },
+      // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
+      RunDistributed<Row>(
+          summary.resumed, shard.Size(), options.jobs,
+          [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
           [&](std::uint64_t, Row&& row) {
             WriteAll(file, row.text, partial.string());
             if (!row.ok) ++summary.errors;
             progress.Update(++written);
           },
-          0, [] { return PendingInterrupt() != 0; });
+          EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
       progress.Finish(written);
       if (fsync(fileno(file)) != 0) {
         throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
@@ -194,6 +200,14 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   }
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
+}
+
+void ServeSweep(const Sweep& sweep, const std::vector<Override>& sets, const SweepRunOptions& options) {
+  const ShardPoints shard{sweep.points, options.shard_index, options.shard_count};
+  const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
+  CurrentDistributor()->Serve(options.jobs, [&](std::uint64_t k) {
+    return EncodeRow(FormatRow(sweep, sets, columns, shard.Point(k)));
+  });
 }
 
 namespace {

@@ -61,6 +61,10 @@ struct SweepRunSummary {
 SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
                          const SweepRunOptions& options);
 
+// An MPI rank other than 0 (bench/sweep/distribute.h): computes the rows of the points
+// rank 0's RunSweep hands out, the same bytes as RunSweep's own; writes nothing.
+void ServeSweep(const Sweep& sweep, const std::vector<Override>& sets, const SweepRunOptions& options);
+
 struct MergeSummary {
   std::uint64_t points = 0;
   std::uint64_t shards = 0;
@@ -82,5 +86,7 @@ MergeSummary MergeShards(const std::string& out_dir, const std::vector<std::stri
 // the most severe as `check` ranks them (2, 3, 1, 0).
 int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
                std::ostream& out, std::ostream& err, ScenarioCheckReport* report);
+// An MPI rank other than 0: runs the points rank 0's CheckSweep of the same sweep hands out.
+void ServeCheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs);
 
 }  // namespace shapebench::bench

@@ -1,0 +1,71 @@
+// Where a sweep's points are computed: on this process's threads (common/ordered_pool.h),
+// or, when the process is one rank of an MPI run (bench/sweep/sweep_mpi.h installs a
+// Distributor), on every rank's threads with rank 0 consuming the results in order
+// (docs/scaling.md). RunSweep and CheckSweep call RunDistributed; the other ranks call
+// Serve with the same work, so a result is the same bytes whichever rank computed it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+
+#include "common/ordered_pool.h"
+
+namespace shapebench::bench {
+
+using EncodedWork = std::function<std::string(std::uint64_t)>;
+using EncodedConsume = std::function<void(std::uint64_t, std::string&&)>;
+
+class Distributor {
+ public:
+  virtual ~Distributor() = default;
+  // Rank 0: work(k) for k in [first, end), `jobs` threads here and the other ranks' Serve,
+  // handed to consume(k, bytes) in order of k on the calling thread. When `cancelled`
+  // turns true no new points start and the complete results in order are consumed; the
+  // run then ends abnormally (the other ranks are stopped when the process ends).
+  // Returns how many were consumed.
+  virtual std::uint64_t Coordinate(std::uint64_t first, std::uint64_t end, int jobs,
+                                   const EncodedWork& work, const EncodedConsume& consume,
+                                   const std::function<bool()>& cancelled) = 0;
+  // The other ranks: work(k) on `jobs` threads for the points rank 0's next Coordinate
+  // hands out, until it has all of them (or the run has no more Coordinate).
+  virtual void Serve(int jobs, const EncodedWork& work) = 0;
+  // Processes of this run on this host (ranks sharing its cores).
+  virtual int ProcessesOnHost() const = 0;
+  virtual bool coordinator() const = 0;
+};
+
+// The process-wide Distributor (MPI is initialised once per process); nullptr: none.
+Distributor* CurrentDistributor();
+void SetDistributor(Distributor* distributor);
+
+// Whether this process is an MPI rank other than 0: it serves points instead of writing.
+inline bool IsDistributedWorker() {
+  return CurrentDistributor() != nullptr && !CurrentDistributor()->coordinator();
+}
+
+// The default of --jobs: this host's hardware threads shared by its ranks (at least 1).
+int DefaultJobs();
+
+// RunOrdered (common/ordered_pool.h) over k in [first, end), through the current
+// Distributor when there is one: `encode` and `decode` carry a Result across processes.
+template <typename Result>
+std::uint64_t RunDistributed(std::uint64_t first, std::uint64_t end, int jobs,
+                             const std::function<Result(std::uint64_t)>& work,
+                             const std::function<void(std::uint64_t, Result&&)>& consume,
+                             const std::function<std::string(const Result&)>& encode,
+                             const std::function<Result(const std::string&)>& decode,
+                             const std::function<bool()>& cancelled = {}) {
+  if (Distributor* distributor = CurrentDistributor()) {
+    return distributor->Coordinate(
+        first, end, jobs, [&](std::uint64_t k) { return encode(work(k)); },
+        [&](std::uint64_t k, std::string&& bytes) { consume(k, decode(bytes)); }, cancelled);
+  }
+  return RunOrdered<Result>(
+      end - first, jobs, [&](std::uint64_t k) { return work(first + k); },
+      [&](std::uint64_t k, Result&& result) { consume(first + k, std::move(result)); }, 0,
+      cancelled);
+}
+
+}  // namespace shapebench::bench
