@@ -91,7 +91,10 @@ std::string FormatCheckLine(const std::string& file, const CheckResult& result) 
   std::string line =
       std::string(result.passed ? "PASS " : "FAIL ") + file + " " +
       (result.banded() ? BandText(result)
-                       : result.metric + (result.point.empty() ? "" : " @ " + result.point) +
+                       : (result.statistic.empty() || result.statistic == result.metric
+                              ? result.metric
+                              : result.statistic + " of " + result.metric) +
+                             (result.point.empty() ? "" : " @ " + result.point) +
                              " = " + result.value_text) +
       " (" + result.bound + ")";
   if (!result.passed) line += ": " + result.message;

@@ -34,6 +34,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,12 +45,13 @@
 #include "bench/config/override.h"
 #include "bench/config/pattern_defaults.h"
 #include "bench/sim/scenario.h"
+#include "bench/sweep/sampling.h"
 
 namespace shapebench::bench {
 
 // The values of one swept key.
 struct SweepValues {
-  enum class Kind { kList, kLinear, kLog };
+  enum class Kind { kList, kLinear, kLog, kSampled };
 
   std::string key;  // the dotted key path as written
   Kind kind = Kind::kList;
@@ -63,6 +65,9 @@ struct SweepValues {
   double from = 0.0;
   double to = 0.0;
   std::uint64_t steps = 0;
+  // kSampled (bench/sweep/sampling.h): the distribution and its samples, drawn once per load.
+  std::optional<Distribution> distribution;
+  std::shared_ptr<const std::vector<double>> samples;
 
   std::uint64_t size() const;
   std::string Text(std::uint64_t i) const;
@@ -97,9 +102,14 @@ struct Sweep {
   std::string name;  // `name:` or the file's stem
   std::string base;  // the base scenario's path (resolved against the sweep file)
   std::vector<SweepAxis> axes;       // in file order; the last varies fastest
+  // samples:, seed:, design: of a sweep with distribution keys, which all move with the
+  // axis `sample_axis` (bench/sweep/sampling.h); nullopt for a plain grid.
+  std::optional<SweepSampling> sampling;
+  std::size_t sample_axis = 0;
   std::vector<std::string> metrics;  // kept in results.csv, in the order written
   std::vector<SweepPlot> plots;
   std::vector<Check> checks;
+  std::vector<SampleGate> gates;  // a sampled sweep's quantile and yield gates
   std::uint64_t points = 0;
   std::uint64_t id = 0;  // unique to this load of the sweep (RunPoint's shared commands)
   // The base scenario's participating modes (pattern_defaults.h): every point's pattern
