@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "common/csv.h"
 #include "common/sample_math.h"
 
 namespace shapebench::bench {
@@ -16,11 +17,8 @@ constexpr double kMinKeptMass = 1e-3;
 constexpr std::uint64_t kPermutationStream = 1ULL << 32;
 constexpr std::uint64_t kShiftStream = 1ULL << 33;
 
-std::string Number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
+// The shortest text that reads back as exactly `value` (the hash stays exact).
+std::string Number(double value) { return ShortestDouble(value); }
 
 // A standard normal truncated to [za, zb] at level u. In the upper tail the CDF's levels
 // crowd against 1 and lose digits: there the mirror image is drawn from the lower tail.

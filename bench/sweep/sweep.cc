@@ -351,6 +351,74 @@ std::vector<std::string> ReadMetrics(const NodeReader& node) {
   return metrics;
 }
 
+// A plot entry with cdf: true: the metric's empirical CDF over the samples, one curve per
+// value of `series:` (a key of another axis).
+template <typename AxisOf>
+void ReadCdfPlot(const NodeReader& entry, const std::vector<SweepAxis>& axes, const AxisOf& axis_of,
+                 SweepPlot* plot) {
+  const auto sampled = std::find_if(axes.begin(), axes.end(), [](const SweepAxis& axis) {
+    return axis.keys.front().kind == SweepValues::Kind::kSampled;
+  });
+  if (sampled == axes.end()) {
+    throw entry.Child("cdf")->Error("an empirical CDF is drawn over samples; it needs a sampled sweep "
+                                    "(samples: N and a distribution key in grid:)");
+  }
+  for (const char* other : {"x", "heatmap"}) {
+    if (const auto child = entry.Child(other)) {
+      throw child->Error("a cdf plot is drawn over the samples: give metric: and optionally series:, not " +
+                         std::string(other) + ":");
+    }
+  }
+  plot->x = sampled->keys.front().key;
+  if (const auto series = entry.Child("series")) {
+    std::size_t series_axis = 0;
+    std::tie(plot->series, series_axis) = axis_of(*series);
+    if (series_axis == static_cast<std::size_t>(sampled - axes.begin())) {
+      throw series->Error("'" + plot->series + "' moves with the samples; choose a key of another axis");
+    }
+    if (axes[series_axis].size() > kMaxSeriesLines) {
+      throw series->Error("'" + plot->series + "' has " + std::to_string(axes[series_axis].size()) +
+                          " values; a plot shows at most " + std::to_string(kMaxSeriesLines) + " lines");
+    }
+  }
+}
+
+// A sampled sweep's default plots: the empirical CDF of each metric DefaultPlots would
+// draw, one curve per value of the first other axis' first key when it is short.
+std::vector<SweepPlot> DefaultCdfPlots(std::vector<SweepPlot> plots, const std::vector<SweepAxis>& axes,
+                                       std::size_t sample_axis) {
+  for (SweepPlot& plot : plots) {
+    plot.cdf = true;
+    plot.x = axes[sample_axis].keys.front().key;
+    plot.series.clear();
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (a == sample_axis) continue;
+      if (axes[a].size() <= kMaxSeriesLines) plot.series = axes[a].keys.front().key;
+      break;
+    }
+  }
+  return plots;
+}
+
+// Each cdf plot's limits: the bounds of the checks and gates on its metric.
+void SetCdfLimits(Sweep* sweep) {
+  for (SweepPlot& plot : sweep->plots) {
+    if (!plot.cdf) continue;
+    for (const Check& check : sweep->checks) {
+      if (check.metric != plot.metric) continue;
+      for (const auto& bound : {check.min, check.max}) {
+        if (bound) plot.limits.push_back(*bound);
+      }
+    }
+    for (const SampleGate& gate : sweep->gates) {
+      if (gate.metric != plot.metric) continue;
+      for (const auto& bound : {gate.min, gate.max}) {
+        if (bound) plot.limits.push_back(*bound);
+      }
+    }
+  }
+}
+
 std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::string>& metrics,
                                  const std::vector<SweepAxis>& axes) {
   auto axis_of = [&](const NodeReader& key_node) {
@@ -367,7 +435,7 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
   };
   std::vector<SweepPlot> plots;
   for (const NodeReader& entry : node.Elements()) {
-    entry.ExpectMap({"metric", "x", "series", "heatmap", "log"});
+    entry.ExpectMap({"metric", "x", "series", "heatmap", "log", "cdf"});
     SweepPlot plot;
     const auto metric = entry.Child("metric");
     if (!metric) throw entry.Error("a plot needs metric: and x: (or heatmap: [X_KEY, Y_KEY])");
@@ -381,6 +449,12 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
     }
     const auto x = entry.Child("x");
     const auto heatmap = entry.Child("heatmap");
+    if (const auto cdf = entry.Child("cdf")) plot.cdf = cdf->AsChoice<bool>({{"true", true}, {"false", false}});
+    if (plot.cdf) {
+      ReadCdfPlot(entry, axes, axis_of, &plot);
+      plots.push_back(plot);
+      continue;
+    }
     if (x && heatmap) throw heatmap->Error("give x: (a line plot) or heatmap: (a heat map), not both");
     if (!x && !heatmap) throw entry.Error("a plot needs x: KEY (a line plot) or heatmap: [X_KEY, Y_KEY]");
     if (x) {
@@ -727,8 +801,10 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
     sweep.plots = ReadPlots(*plots, sweep.metrics, sweep.axes);
   } else {
     sweep.plots = DefaultPlots(sweep.metrics, metrics.has_value(), sweep.axes);
+    if (sweep.sampling) sweep.plots = DefaultCdfPlots(sweep.plots, sweep.axes, sweep.sample_axis);
   }
   if (const auto checks = top.Child("checks")) ReadSweepChecks(*checks, &sweep);
+  SetCdfLimits(&sweep);
 
   static std::atomic<std::uint64_t> next_id{1};
   sweep.id = next_id++;

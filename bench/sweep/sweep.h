@@ -94,6 +94,11 @@ struct SweepPlot {
   // then log for a ratio metric whose positive values span more than two decades
   // (LogMetricAxis, bench/sweep/sweep_plot.h).
   std::optional<bool> log;
+  // A sampled sweep's empirical CDF of `metric` over its samples (`x` is a key of the axis
+  // of samples), one curve per value of `series`, with the checks' bounds on it as
+  // vertical lines (`limits`).
+  bool cdf = false;
+  std::vector<double> limits = {};
   bool heatmap() const { return !heatmap_x.empty(); }
 };
 
