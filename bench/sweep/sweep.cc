@@ -126,7 +126,7 @@ SweepValues ReadValues(const NodeReader& node, const std::string& key) {
     if (values.texts.empty()) throw node.Error("expected at least one value");
   } else {
     throw node.Error(
-        "expected a list of values [a, b, ...], a range {from: A, to: B, steps: N} or a distribution "
+        "expected a list of values [a, b, ...] or a range {from: A, to: B, steps: N}, or a distribution "
         "{normal: {mean: M, sd: S}} (uniform: {from, to}, lognormal: {median, sigma}; truncated: {min, max})");
   }
   std::tie(values.line, values.column) = PositionOf(node.node());
