@@ -87,13 +87,16 @@ std::string BandText(const CheckResult& result) {
          FormatValue(result.band_to, 15) + "]";
 }
 
+std::string CheckedQuantity(const CheckResult& result) {
+  if (result.statistic.empty() || result.statistic == result.metric) return result.metric;
+  return result.statistic + " of " + result.metric;
+}
+
 std::string FormatCheckLine(const std::string& file, const CheckResult& result) {
   std::string line =
       std::string(result.passed ? "PASS " : "FAIL ") + file + " " +
       (result.banded() ? BandText(result)
-                       : (result.statistic.empty() || result.statistic == result.metric
-                              ? result.metric
-                              : result.statistic + " of " + result.metric) +
+                       : CheckedQuantity(result) +
                              (result.point.empty() ? "" : " @ " + result.point) +
                              " = " + result.value_text) +
       " (" + result.bound + ")";

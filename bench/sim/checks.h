@@ -75,6 +75,10 @@ struct ScenarioCheckReport {
 // a band check: "PASS f.yaml worst residual_ratio 0.041 at KEY = 24.37 in [24, 26] (max 0.05)".
 std::string FormatCheckLine(const std::string& file, const CheckResult& result);
 
+// What a result bounds: its metric, or a sampled sweep's statistic of it ("quantile 0.95
+// of residual_ratio"; a yield is "yield").
+std::string CheckedQuantity(const CheckResult& result);
+
 // Human formatting of a metric value or bound: `digits` significant digits, "n/a" for NaN.
 std::string FormatValue(double value, int digits = 5);
 

@@ -238,7 +238,7 @@ std::vector<SweepAxis> ReadGrid(const ConfigDocument& document, const NodeReader
 }
 
 // samples:, seed:, design: and the samples of every distribution key (bench/sweep/sampling.h).
-void DrawSamples(Sweep* sweep, const NodeReader& top) {
+void DrawSamples(Sweep* sweep, const NodeReader& top, const SweepLoadOptions& options) {
   sweep->sampling = ReadSampling(top);
   std::vector<SweepValues*> sampled;
   for (std::size_t a = 0; a < sweep->axes.size(); ++a) {
@@ -260,6 +260,21 @@ void DrawSamples(Sweep* sweep, const NodeReader& top) {
     throw ConfigError(sweep->file, first.line, first.column, ChildPath("grid", first.key),
                       "a distribution needs samples: N at the top of the sweep (and optionally seed: S, "
                       "design: random|latin_hypercube|sobol)");
+  }
+  // The grid's size before the samples are drawn: N values per key are held in memory.
+  std::uint64_t others = 1;
+  for (std::size_t a = 0; a < sweep->axes.size(); ++a) {
+    if (a == sweep->sample_axis) continue;
+    const std::uint64_t size = sweep->axes[a].size();
+    others = others > std::numeric_limits<std::uint64_t>::max() / size ? std::numeric_limits<std::uint64_t>::max()
+                                                                         : others * size;
+  }
+  const std::uint64_t n = sweep->sampling->samples;
+  if (!options.force && (n > options.max_points || others > options.max_points / n)) {
+    throw top.Child("samples")->Error("the grid has " + std::to_string(n) + " samples" +
+                                      (others > 1 ? " times " + std::to_string(others) + " points" : "") +
+                                      ", more than the " + std::to_string(options.max_points) +
+                                      " points a sweep runs without --force; pass --force to run it anyway");
   }
   std::vector<std::vector<double>> uniforms;
   try {
@@ -788,7 +803,7 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
                      "machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 201}");
   }
   sweep.axes = ReadGrid(document, grid);
-  DrawSamples(&sweep, top);
+  DrawSamples(&sweep, top, options);
   sweep.points = CountPoints(sweep.axes, grid);
   if (sweep.points > options.max_points && !options.force) {
     throw grid.Error("the grid has " + WithThousands(sweep.points) + " points, more than the " +

@@ -145,6 +145,15 @@ TEST(SampledSweepCli, GatesPassAndFailAtTheBoundary) {
   const CliResult below = check(
       "q_below.yaml", "  residual_ratio: {quantile: 0.9, max: " + Text17(std::nextafter(q90, 0.0)) + "}\n");
   EXPECT_EQ(below.exit_code, 1) << below.out;
+  // JUnit: one testcase per gate and method, named by the statistic; method 1's fails.
+  const CliResult junit = RunCli({"check", dir.File("q_below.yaml"), "--junit", dir.File("j.xml")}, kSourceDir);
+  EXPECT_EQ(junit.exit_code, 1);
+  const std::string xml = ReadText(dir.File("j.xml"));
+  EXPECT_NE(xml.find("name=\"quantile 0.9 of residual_ratio @ controller.pattern.method=1\""), std::string::npos) << xml;
+  std::size_t testcases = 0;
+  for (std::size_t at = xml.find("<testcase"); at != std::string::npos; at = xml.find("<testcase", at + 1)) ++testcases;
+  EXPECT_EQ(testcases, 2u) << xml;
+  EXPECT_NE(xml.find("<failure"), std::string::npos) << xml;
   const nlohmann::json json = nlohmann::json::parse(at.out);
   const nlohmann::json& result = json.at("files").at(0).at("results").at(0);
   EXPECT_EQ(result.at("point"), "controller.pattern.method=1");
