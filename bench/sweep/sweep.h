@@ -11,6 +11,8 @@
 //       controller.feed_mm_min: [6000, 12000]
 //       controller.accel_time_s: [0.1, 0.2]
 //     # several zip groups: zip: [{a: [..], b: [..]}, {c: [..], d: [..]}]
+//     machine.modes[0].damping_ratio: {normal: {mean: 0.03, sd: 0.003}}  # a distribution:
+//   samples: 500                         # with samples:, seed:, design: (bench/sweep/sampling.h)
 //   metrics: [peak_ratio, residual_ratio] # results.csv columns (default: every metric)
 //   plots:                                 # PNGs next to results.csv
 //     - {metric: residual_ratio, x: machine.modes[0].frequency_hz, series: controller.pattern.method}

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -77,7 +78,9 @@ TEST(SampleMath, InverseNormalCdfInvertsTheCdf) {
   for (const double p : {1e-300, 1e-20, 1e-8, 0.001, 0.02, 0.0749, 0.3, 0.5001, 0.9, 0.99, 0.999999}) {
     const double z = InverseNormalCdf(p);
     EXPECT_NEAR(NormalCdf(z) / p, 1.0, 1e-13) << p;  // relative: the tails are tiny
-    if (p >= 1e-3) EXPECT_NEAR(InverseNormalCdf(1.0 - p), -z, 1e-12) << p;  // 1 - p exact enough
+    if (p >= 1e-3) {  // 1 - p exact enough
+      EXPECT_NEAR(InverseNormalCdf(1.0 - p), -z, 1e-12) << p;
+    }
   }
 }
 
@@ -279,6 +282,13 @@ TEST(SampledGrid, SamplesDependOnSeedAndDesignOnly) {
   const std::vector<double> xs = Samples(sweep, "machine.modes[0].frequency_hz");
   EXPECT_EQ(xs, Samples(a.Load(), "machine.modes[0].frequency_hz"));
   EXPECT_EQ(MakePoint(sweep, 64 + 5, {}).texts[1], MakePoint(sweep, 5, {}).texts[1]);
+}
+
+// Tests that a Sobol design refuses more keys than it has direction numbers for.
+TEST(SampledGrid, SobolTakesAtMostSixteenKeys) {
+  const SweepSampling sobol{8, 0, SampleDesign::kSobol};
+  EXPECT_NO_THROW(SampleUniforms(sobol, kSobolDimensions));
+  EXPECT_THROW(SampleUniforms(sobol, kSobolDimensions + 1), std::invalid_argument);
 }
 
 // Tests that bad sampling specs are refused at their FILE:LINE:COL naming what is allowed.
