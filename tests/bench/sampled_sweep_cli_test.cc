@@ -78,6 +78,24 @@ TEST(SampledSweepCli, SamePointsForJobsAndShards) {
   }
 }
 
+// Tests that a sampled sweep cut off after some of its rows (results.csv.partial with a
+// torn last row) resumes to the bytes of an uninterrupted run.
+TEST(SampledSweepCli, ResumeGivesTheSameBytes) {
+  const ScratchDir dir;
+  const std::string sweep = SampledSweep(dir, "s.yaml", 50, 42);
+  ASSERT_EQ(RunCli({"sweep", sweep, "--out", dir.File("whole")}, kSourceDir).exit_code, 0);
+  const std::string whole = ReadText(dir.File("whole/results.csv"));
+  ASSERT_EQ(RunCli({"sweep", sweep, "--out", dir.File("cut")}, kSourceDir).exit_code, 0);
+  std::filesystem::remove(dir.File("cut/results.csv"));
+  std::size_t at = 0;
+  for (int line = 0; line < 40; ++line) at = whole.find('\n', at) + 1;
+  std::ofstream(dir.File("cut/results.csv.partial"), std::ios::binary) << whole.substr(0, at + 7);  // torn row
+  const CliResult resumed = RunCli({"sweep", sweep, "--out", dir.File("cut"), "--jobs", "2"}, kSourceDir);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("(39 done before)"), std::string::npos) << resumed.out;  // header + 39 rows kept
+  EXPECT_EQ(ReadText(dir.File("cut/results.csv")), whole);
+}
+
 // Tests that a sweep started again in its directory with another seed is refused (exit
 // 2), and merge refuses shards run with different seeds; the manifest names the sampling.
 TEST(SampledSweepCli, AnotherSeedIsAnotherSweep) {
