@@ -292,7 +292,7 @@ int CheckCommand(const CheckArgs& args) {
     sweeps.push_back(sweep ? std::optional<Sweep>(LoadSweep(file, overrides, load)) : std::nullopt);
     if (sweep && !sweeps.back()->note.empty() && !IsDistributedWorker()) std::cerr << sweeps.back()->note << "\n";
     scenarios.push_back(sweep ? Scenario{} : LoadScenario(file, overrides));
-    if (sweep ? sweeps.back()->checks.empty() : scenarios.back().checks.empty()) {
+    if (sweep ? sweeps.back()->checks.empty() && sweeps.back()->gates.empty() : scenarios.back().checks.empty()) {
       throw ConfigError(file, 0, 0, "checks",
                         "no checks to evaluate; add e.g. checks: {peak_ratio: {max: 1.01}}");
     }

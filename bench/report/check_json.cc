@@ -18,6 +18,12 @@ nlohmann::ordered_json ResultJson(const CheckResult& result) {
   json["bound"] = result.bound;
   json["passed"] = result.passed;
   json["message"] = result.message;
+  if (!result.statistic.empty()) {
+    json["statistic"] = {{"name", result.statistic},
+                         {"samples", result.samples},
+                         {"passing", result.passing},
+                         {"interval_95", {Number(result.interval_low), Number(result.interval_high)}}};
+  }
   if (result.banded()) {
     json["band"] = {{"key", result.band_key},
                     {"from", Number(result.band_from)},

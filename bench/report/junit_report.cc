@@ -49,7 +49,7 @@ std::string TestcaseName(const CheckResult& result) {
     return result.metric + " over " + result.band_key + " in [" + FormatValue(result.band_from, 15) +
            ", " + FormatValue(result.band_to, 15) + "]";
   }
-  return result.point.empty() ? result.metric : result.metric + " @ " + result.point;
+  return result.point.empty() ? CheckedQuantity(result) : CheckedQuantity(result) + " @ " + result.point;
 }
 
 // The failure's message: the value and the bound it crossed, "residual_ratio = 0.0613 >
@@ -57,7 +57,7 @@ std::string TestcaseName(const CheckResult& result) {
 std::string FailureMessage(const CheckResult& result) {
   if (result.banded()) return BandText(result) + ": " + result.message;
   const std::string subject =
-      result.metric + (result.point.empty() ? "" : " @ " + result.point) + " = " + result.value_text;
+      CheckedQuantity(result) + (result.point.empty() ? "" : " @ " + result.point) + " = " + result.value_text;
   if (result.message.rfind("above ", 0) == 0) return subject + " > " + result.message.substr(6);
   if (result.message.rfind("below ", 0) == 0) return subject + " < " + result.message.substr(6);
   return subject + ": " + result.message;

@@ -87,11 +87,17 @@ std::string BandText(const CheckResult& result) {
          FormatValue(result.band_to, 15) + "]";
 }
 
+std::string CheckedQuantity(const CheckResult& result) {
+  if (result.statistic.empty() || result.statistic == result.metric) return result.metric;
+  return result.statistic + " of " + result.metric;
+}
+
 std::string FormatCheckLine(const std::string& file, const CheckResult& result) {
   std::string line =
       std::string(result.passed ? "PASS " : "FAIL ") + file + " " +
       (result.banded() ? BandText(result)
-                       : result.metric + (result.point.empty() ? "" : " @ " + result.point) +
+                       : CheckedQuantity(result) +
+                             (result.point.empty() ? "" : " @ " + result.point) +
                              " = " + result.value_text) +
       " (" + result.bound + ")";
   if (!result.passed) line += ": " + result.message;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,15 @@ struct CheckResult {
   double worst_at = NAN;
   int band_runs = 0;
   bool banded() const { return !band_key.empty(); }
+  // A sampled sweep's gate (bench/sweep/sampling.h, SampleGate): "yield" or
+  // "quantile 0.95" (then `metric` is the metric), its estimate `value` from `samples`
+  // samples (`passing` of them pass, for a yield), and the estimate's 95% interval
+  // (Wilson score for a yield, order statistics for a quantile; +-inf: open).
+  std::string statistic = {};
+  std::uint64_t samples = 0;
+  std::uint64_t passing = 0;
+  double interval_low = NAN;
+  double interval_high = NAN;
 };
 
 // The check's result for `value`, the metric's value (a band check's worst): bound,
@@ -64,6 +74,10 @@ struct ScenarioCheckReport {
 // a sweep's point follows the metric: "FAIL sweep.yaml residual_ratio @ key=21.5 = ...";
 // a band check: "PASS f.yaml worst residual_ratio 0.041 at KEY = 24.37 in [24, 26] (max 0.05)".
 std::string FormatCheckLine(const std::string& file, const CheckResult& result);
+
+// What a result bounds: its metric, or a sampled sweep's statistic of it ("quantile 0.95
+// of residual_ratio"; a yield is "yield").
+std::string CheckedQuantity(const CheckResult& result);
 
 // Human formatting of a metric value or bound: `digits` significant digits, "n/a" for NaN.
 std::string FormatValue(double value, int digits = 5);

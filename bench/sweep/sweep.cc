@@ -11,6 +11,7 @@
 #include <new>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include <yaml-cpp/yaml.h>
@@ -32,8 +33,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kSweepKeys = {"name",    "base",  "grid",
-                                             "metrics", "plots", "checks"};
+const std::vector<std::string> kSweepKeys = {"name",   "base",    "grid", "metrics", "plots",
+                                             "checks", "samples", "seed", "design"};
 constexpr const char* kZip = "zip";
 constexpr std::uint64_t kMaxSeriesLines = 30;
 
@@ -106,7 +107,11 @@ SweepValues ReadRange(const NodeReader& node, const std::string& key) {
 // A list [a, b, ...] or a range {from, to, steps[, spacing]} for `key`.
 SweepValues ReadValues(const NodeReader& node, const std::string& key) {
   SweepValues values;
-  if (node.node().IsMap()) {
+  if (IsDistributionNode(node)) {
+    values.key = key;
+    values.kind = SweepValues::Kind::kSampled;
+    values.distribution = ReadDistribution(node);
+  } else if (node.node().IsMap()) {
     values = ReadRange(node, key);
   } else if (node.node().IsSequence()) {
     values.key = key;
@@ -121,7 +126,8 @@ SweepValues ReadValues(const NodeReader& node, const std::string& key) {
     if (values.texts.empty()) throw node.Error("expected at least one value");
   } else {
     throw node.Error(
-        "expected a list of values [a, b, ...] or a range {from: A, to: B, steps: N}");
+        "expected a list of values [a, b, ...] or a range {from: A, to: B, steps: N}, or a distribution "
+        "{normal: {mean: M, sd: S}} (uniform: {from, to}, lognormal: {median, sigma}; truncated: {min, max})");
   }
   std::tie(values.line, values.column) = PositionOf(node.node());
   return values;
@@ -160,6 +166,10 @@ SweepAxis ReadZipGroup(const ConfigDocument& document, const NodeReader& group) 
   SweepAxis axis;
   for (const auto& [key_node, value] : MapEntries(document, group)) {
     axis.keys.push_back(ReadKeyValues(document, key_node, value));
+    if (axis.keys.back().kind == SweepValues::Kind::kSampled) {
+      throw value.Error("a distribution cannot be in a zip group: every distribution key of the grid "
+                        "already moves with the one axis of samples");
+    }
     if (axis.keys.back().size() != axis.keys.front().size()) {
       throw value.Error("zip keys move together and need as many values each: '" +
                         axis.keys.front().key + "' has " +
@@ -192,6 +202,20 @@ std::vector<SweepAxis> ReadGrid(const ConfigDocument& document, const NodeReader
     throw grid.Error("expected at least one key, e.g. machine.modes[0].frequency_hz: "
                      "{from: 15, to: 35, steps: 201}");
   }
+  // The distribution keys become one axis (of samples) at the place of the first.
+  std::vector<SweepAxis> merged;
+  std::size_t sample_axis = axes.size();
+  for (SweepAxis& axis : axes) {
+    if (axis.keys.front().kind != SweepValues::Kind::kSampled) {
+      merged.push_back(std::move(axis));
+    } else if (sample_axis == axes.size()) {
+      sample_axis = merged.size();
+      merged.push_back(std::move(axis));
+    } else {
+      merged[sample_axis].keys.push_back(std::move(axis.keys.front()));
+    }
+  }
+  axes = std::move(merged);
   // A key and a key inside it would overwrite each other.
   std::vector<const SweepValues*> all;
   for (const auto& axis : axes) {
@@ -211,6 +235,109 @@ std::vector<SweepAxis> ReadGrid(const ConfigDocument& document, const NodeReader
     }
   }
   return axes;
+}
+
+// samples:, seed:, design: and the samples of every distribution key (bench/sweep/sampling.h).
+void DrawSamples(Sweep* sweep, const NodeReader& top, const SweepLoadOptions& options) {
+  sweep->sampling = ReadSampling(top);
+  std::vector<SweepValues*> sampled;
+  for (std::size_t a = 0; a < sweep->axes.size(); ++a) {
+    for (SweepValues& values : sweep->axes[a].keys) {
+      if (values.kind != SweepValues::Kind::kSampled) continue;
+      sampled.push_back(&values);
+      sweep->sample_axis = a;
+    }
+  }
+  if (sampled.empty()) {
+    if (sweep->sampling) {
+      throw top.Child("samples")->Error("samples: needs a distribution key in grid:, e.g. "
+                                        "machine.modes[0].frequency_hz: {normal: {mean: 25, sd: 0.625}}");
+    }
+    return;
+  }
+  if (!sweep->sampling) {
+    const SweepValues& first = *sampled.front();
+    throw ConfigError(sweep->file, first.line, first.column, ChildPath("grid", first.key),
+                      "a distribution needs samples: N at the top of the sweep (and optionally seed: S, "
+                      "design: random|latin_hypercube|sobol)");
+  }
+  // The grid's size before the samples are drawn: N values per key are held in memory.
+  std::uint64_t others = 1;
+  for (std::size_t a = 0; a < sweep->axes.size(); ++a) {
+    if (a == sweep->sample_axis) continue;
+    const std::uint64_t size = sweep->axes[a].size();
+    others = others > std::numeric_limits<std::uint64_t>::max() / size ? std::numeric_limits<std::uint64_t>::max()
+                                                                         : others * size;
+  }
+  const std::uint64_t n = sweep->sampling->samples;
+  if (!options.force && (n > options.max_points || others > options.max_points / n)) {
+    throw top.Child("samples")->Error("the grid has " + std::to_string(n) + " samples" +
+                                      (others > 1 ? " times " + std::to_string(others) + " points" : "") +
+                                      ", more than the " + std::to_string(options.max_points) +
+                                      " points a sweep runs without --force; pass --force to run it anyway");
+  }
+  std::vector<std::vector<double>> uniforms;
+  try {
+    uniforms = SampleUniforms(*sweep->sampling, sampled.size());
+  } catch (const std::invalid_argument& error) {
+    const auto design = top.Child("design");
+    throw (design ? *design : *top.Child("samples")).Error(
+        error.what() + std::string("; this sweep has ") + std::to_string(sampled.size()) +
+        " distribution keys and " + std::to_string(sweep->sampling->samples) + " samples");
+  }
+  for (std::size_t d = 0; d < sampled.size(); ++d) {
+    std::vector<double> values(uniforms[d].size());
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = sampled[d]->distribution->Quantile(uniforms[d][i]);
+    sampled[d]->samples = std::make_shared<const std::vector<double>>(std::move(values));
+  }
+}
+
+// A sweep's checks: min/max checks of every point (ReadChecks) and, in a sampled sweep,
+// quantile and yield gates (bench/sweep/sampling.h, SampleGate).
+void ReadSweepChecks(const NodeReader& checks, Sweep* sweep) {
+  bool gates = false;
+  for (const auto& [name, bounds] : checks.Entries()) {
+    gates = gates || name == "yield" || (bounds.IsMap() && bounds.Has("quantile"));
+  }
+  if (!gates) {
+    sweep->checks = ReadChecks(checks);
+    return;
+  }
+  std::vector<std::string> allowed = AllMetricNames();
+  allowed.push_back("yield");
+  checks.ExpectMap(allowed);
+  for (const auto& [name, bounds] : checks.Entries()) {
+    const bool yield = name == "yield";
+    if (!bounds.IsMap()) throw bounds.Error(yield ? "expected {min: P}" : "expected {min: A, max: B} or {quantile: Q, max: B}");
+    bounds.ExpectMap(yield ? std::vector<std::string>{"min"} : std::vector<std::string>{"min", "max", "quantile"});
+    if (!sweep->sampling && (yield || bounds.Has("quantile"))) {
+      throw (yield ? bounds : *bounds.Child("quantile")).Error(
+          "a " + std::string(yield ? "yield" : "quantile") + " treats the points as samples; it needs a sampled "
+          "sweep (samples: N and a distribution key in grid:)");
+    }
+    std::optional<double> min;
+    std::optional<double> max;
+    if (const auto low = bounds.Child("min")) min = low->AsNumber();
+    if (const auto high = bounds.Child("max")) max = high->AsNumber();
+    if (!min && !max) throw bounds.Error(yield ? "expected min: P, the least fraction of samples that pass" : "expected min and/or max");
+    if (min && max && *min > *max) throw bounds.Child("max")->Error("must not be below min (" + ShortestDouble(*min) + ")");
+    if (yield) {
+      if (!(*min > 0.0 && *min <= 1.0)) throw bounds.Child("min")->Error("a yield is a fraction: expected 0 < min <= 1, got " + ShortestDouble(*min));
+      sweep->gates.push_back(SampleGate{SampleGate::Kind::kYield, "yield", 0.0, min, std::nullopt});
+    } else if (const auto quantile = bounds.Child("quantile")) {
+      const double q = quantile->AsNumber();
+      if (!(q > 0.0 && q < 1.0)) throw quantile->Error("expected a level 0 < quantile < 1, got " + quantile->node().Scalar());
+      sweep->gates.push_back(SampleGate{SampleGate::Kind::kQuantile, name, q, min, max});
+    } else {
+      sweep->checks.push_back(Check{name, min, max});
+    }
+  }
+  const bool yield = std::any_of(sweep->gates.begin(), sweep->gates.end(),
+                                 [](const SampleGate& gate) { return gate.kind == SampleGate::Kind::kYield; });
+  if (yield && sweep->checks.empty()) {
+    throw checks.Child("yield")->Error("a yield is the fraction of samples passing the other checks; add a "
+                                       "min/max check, e.g. residual_ratio: {max: 0.05}");
+  }
 }
 
 std::uint64_t CountPoints(const std::vector<SweepAxis>& axes, const NodeReader& grid) {
@@ -239,6 +366,74 @@ std::vector<std::string> ReadMetrics(const NodeReader& node) {
   return metrics;
 }
 
+// A plot entry with cdf: true: the metric's empirical CDF over the samples, one curve per
+// value of `series:` (a key of another axis).
+template <typename AxisOf>
+void ReadCdfPlot(const NodeReader& entry, const std::vector<SweepAxis>& axes, const AxisOf& axis_of,
+                 SweepPlot* plot) {
+  const auto sampled = std::find_if(axes.begin(), axes.end(), [](const SweepAxis& axis) {
+    return axis.keys.front().kind == SweepValues::Kind::kSampled;
+  });
+  if (sampled == axes.end()) {
+    throw entry.Child("cdf")->Error("an empirical CDF is drawn over samples; it needs a sampled sweep "
+                                    "(samples: N and a distribution key in grid:)");
+  }
+  for (const char* other : {"x", "heatmap"}) {
+    if (const auto child = entry.Child(other)) {
+      throw child->Error("a cdf plot is drawn over the samples: give metric: and optionally series:, not " +
+                         std::string(other) + ":");
+    }
+  }
+  plot->x = sampled->keys.front().key;
+  if (const auto series = entry.Child("series")) {
+    std::size_t series_axis = 0;
+    std::tie(plot->series, series_axis) = axis_of(*series);
+    if (series_axis == static_cast<std::size_t>(sampled - axes.begin())) {
+      throw series->Error("'" + plot->series + "' moves with the samples; choose a key of another axis");
+    }
+    if (axes[series_axis].size() > kMaxSeriesLines) {
+      throw series->Error("'" + plot->series + "' has " + std::to_string(axes[series_axis].size()) +
+                          " values; a plot shows at most " + std::to_string(kMaxSeriesLines) + " lines");
+    }
+  }
+}
+
+// A sampled sweep's default plots: the empirical CDF of each metric DefaultPlots would
+// draw, one curve per value of the first other axis' first key when it is short.
+std::vector<SweepPlot> DefaultCdfPlots(std::vector<SweepPlot> plots, const std::vector<SweepAxis>& axes,
+                                       std::size_t sample_axis) {
+  for (SweepPlot& plot : plots) {
+    plot.cdf = true;
+    plot.x = axes[sample_axis].keys.front().key;
+    plot.series.clear();
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      if (a == sample_axis) continue;
+      if (axes[a].size() <= kMaxSeriesLines) plot.series = axes[a].keys.front().key;
+      break;
+    }
+  }
+  return plots;
+}
+
+// Each cdf plot's limits: the bounds of the checks and gates on its metric.
+void SetCdfLimits(Sweep* sweep) {
+  for (SweepPlot& plot : sweep->plots) {
+    if (!plot.cdf) continue;
+    for (const Check& check : sweep->checks) {
+      if (check.metric != plot.metric) continue;
+      for (const auto& bound : {check.min, check.max}) {
+        if (bound) plot.limits.push_back(*bound);
+      }
+    }
+    for (const SampleGate& gate : sweep->gates) {
+      if (gate.metric != plot.metric) continue;
+      for (const auto& bound : {gate.min, gate.max}) {
+        if (bound) plot.limits.push_back(*bound);
+      }
+    }
+  }
+}
+
 std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::string>& metrics,
                                  const std::vector<SweepAxis>& axes) {
   auto axis_of = [&](const NodeReader& key_node) {
@@ -255,7 +450,7 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
   };
   std::vector<SweepPlot> plots;
   for (const NodeReader& entry : node.Elements()) {
-    entry.ExpectMap({"metric", "x", "series", "heatmap", "log"});
+    entry.ExpectMap({"metric", "x", "series", "heatmap", "log", "cdf"});
     SweepPlot plot;
     const auto metric = entry.Child("metric");
     if (!metric) throw entry.Error("a plot needs metric: and x: (or heatmap: [X_KEY, Y_KEY])");
@@ -269,6 +464,12 @@ std::vector<SweepPlot> ReadPlots(const NodeReader& node, const std::vector<std::
     }
     const auto x = entry.Child("x");
     const auto heatmap = entry.Child("heatmap");
+    if (const auto cdf = entry.Child("cdf")) plot.cdf = cdf->AsChoice<bool>({{"true", true}, {"false", false}});
+    if (plot.cdf) {
+      ReadCdfPlot(entry, axes, axis_of, &plot);
+      plots.push_back(plot);
+      continue;
+    }
     if (x && heatmap) throw heatmap->Error("give x: (a line plot) or heatmap: (a heat map), not both");
     if (!x && !heatmap) throw entry.Error("a plot needs x: KEY (a line plot) or heatmap: [X_KEY, Y_KEY]");
     if (x) {
@@ -469,11 +670,17 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
 }  // namespace
 
 std::uint64_t SweepValues::size() const {
+  if (kind == Kind::kSampled) return samples ? static_cast<std::uint64_t>(samples->size()) : 0;
   return kind == Kind::kList ? static_cast<std::uint64_t>(texts.size()) : steps;
 }
 
 std::string SweepValues::Text(std::uint64_t i) const {
   if (kind == Kind::kList) return texts[i];
+  if (kind == Kind::kSampled) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.15g", (*samples)[i]);
+    return text;
+  }
   if (i == 0) return ShortestDouble(from);
   if (i + 1 == steps) return ShortestDouble(to);
   // Inner values in 15 significant digits: 15.3, not 15.300000000000001 (the value a
@@ -596,6 +803,7 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
                      "machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 201}");
   }
   sweep.axes = ReadGrid(document, grid);
+  DrawSamples(&sweep, top, options);
   sweep.points = CountPoints(sweep.axes, grid);
   if (sweep.points > options.max_points && !options.force) {
     throw grid.Error("the grid has " + WithThousands(sweep.points) + " points, more than the " +
@@ -608,8 +816,10 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
     sweep.plots = ReadPlots(*plots, sweep.metrics, sweep.axes);
   } else {
     sweep.plots = DefaultPlots(sweep.metrics, metrics.has_value(), sweep.axes);
+    if (sweep.sampling) sweep.plots = DefaultCdfPlots(sweep.plots, sweep.axes, sweep.sample_axis);
   }
-  if (const auto checks = top.Child("checks")) sweep.checks = ReadChecks(*checks);
+  if (const auto checks = top.Child("checks")) ReadSweepChecks(*checks, &sweep);
+  SetCdfLimits(&sweep);
 
   static std::atomic<std::uint64_t> next_id{1};
   sweep.id = next_id++;
@@ -778,6 +988,14 @@ std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
       HashText(&hash, values.key);
       for (std::uint64_t i = 0; i < values.size(); ++i) HashText(&hash, values.Yaml(i));
     }
+  }
+  if (sweep.sampling) {
+    // The sampling spec itself (its values are in the grid above): a changed design or seed
+    // that happened to give the same texts is still another sweep.
+    HashText(&hash, "sampling");
+    HashText(&hash, std::string(DesignName(sweep.sampling->design)) + " seed " +
+                        std::to_string(sweep.sampling->seed) + " samples " + std::to_string(sweep.sampling->samples));
+    for (const auto& values : sweep.axes[sweep.sample_axis].keys) HashText(&hash, values.distribution->Describe());
   }
   HashText(&hash, "metrics");
   for (const auto& metric : sweep.metrics) HashText(&hash, metric);

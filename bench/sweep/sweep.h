@@ -11,6 +11,8 @@
 //       controller.feed_mm_min: [6000, 12000]
 //       controller.accel_time_s: [0.1, 0.2]
 //     # several zip groups: zip: [{a: [..], b: [..]}, {c: [..], d: [..]}]
+//     machine.modes[0].damping_ratio: {normal: {mean: 0.03, sd: 0.003}}  # a distribution:
+//   samples: 500                         # with samples:, seed:, design: (bench/sweep/sampling.h)
 //   metrics: [peak_ratio, residual_ratio] # results.csv columns (default: every metric)
 //   plots:                                 # PNGs next to results.csv
 //     - {metric: residual_ratio, x: machine.modes[0].frequency_hz, series: controller.pattern.method}
@@ -34,6 +36,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,12 +47,13 @@
 #include "bench/config/override.h"
 #include "bench/config/pattern_defaults.h"
 #include "bench/sim/scenario.h"
+#include "bench/sweep/sampling.h"
 
 namespace shapebench::bench {
 
 // The values of one swept key.
 struct SweepValues {
-  enum class Kind { kList, kLinear, kLog };
+  enum class Kind { kList, kLinear, kLog, kSampled };
 
   std::string key;  // the dotted key path as written
   Kind kind = Kind::kList;
@@ -63,6 +67,9 @@ struct SweepValues {
   double from = 0.0;
   double to = 0.0;
   std::uint64_t steps = 0;
+  // kSampled (bench/sweep/sampling.h): the distribution and its samples, drawn once per load.
+  std::optional<Distribution> distribution;
+  std::shared_ptr<const std::vector<double>> samples;
 
   std::uint64_t size() const;
   std::string Text(std::uint64_t i) const;
@@ -89,6 +96,11 @@ struct SweepPlot {
   // then log for a ratio metric whose positive values span more than two decades
   // (LogMetricAxis, bench/sweep/sweep_plot.h).
   std::optional<bool> log;
+  // A sampled sweep's empirical CDF of `metric` over its samples (`x` is a key of the axis
+  // of samples), one curve per value of `series`, with the checks' bounds on it as
+  // vertical lines (`limits`).
+  bool cdf = false;
+  std::vector<double> limits = {};
   bool heatmap() const { return !heatmap_x.empty(); }
 };
 
@@ -97,9 +109,14 @@ struct Sweep {
   std::string name;  // `name:` or the file's stem
   std::string base;  // the base scenario's path (resolved against the sweep file)
   std::vector<SweepAxis> axes;       // in file order; the last varies fastest
+  // samples:, seed:, design: of a sweep with distribution keys, which all move with the
+  // axis `sample_axis` (bench/sweep/sampling.h); nullopt for a plain grid.
+  std::optional<SweepSampling> sampling;
+  std::size_t sample_axis = 0;
   std::vector<std::string> metrics;  // kept in results.csv, in the order written
   std::vector<SweepPlot> plots;
   std::vector<Check> checks;
+  std::vector<SampleGate> gates;  // a sampled sweep's quantile and yield gates
   std::uint64_t points = 0;
   std::uint64_t id = 0;  // unique to this load of the sweep (RunPoint's shared commands)
   // The base scenario's participating modes (pattern_defaults.h): every point's pattern

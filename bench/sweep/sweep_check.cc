@@ -6,13 +6,16 @@
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
+#include <tuple>
 #include <utility>
 
+#include "common/csv.h"
 #include "common/ordered_pool.h"
 #include "common/shown_text.h"
 #include "bench/sim/checks.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/sweep_runner.h"
+#include "common/sample_math.h"
 
 namespace shapebench::bench {
 namespace {
@@ -65,6 +68,109 @@ TimedOutcome DecodeOutcome(const std::string& bytes) {
   timed.first.error = bytes.substr(kOutcomeHead);
   return timed;
 }
+// The samples of each combination of the other grid keys' values (a group), for the
+// sweep's quantile and yield gates.
+class GateTally {
+ public:
+  explicit GateTally(const Sweep& sweep) : sweep_(sweep) {
+    std::uint64_t groups = 1;
+    for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
+      if (a != sweep.sample_axis) groups *= sweep.axes[a].size();
+    }
+    if (sweep.gates.empty()) groups = 0;
+    passing_.assign(groups, 0);
+    values_.assign(groups, std::vector<std::vector<double>>(sweep.gates.size()));
+  }
+
+  // A point's outcome; `passed` whether it passed every min/max check.
+  void Add(std::uint64_t point, const PointOutcome& outcome, bool passed) {
+    if (passing_.empty()) return;
+    const std::uint64_t group = Group(point);
+    if (outcome.ok() && passed) ++passing_[group];
+    for (std::size_t g = 0; g < sweep_.gates.size(); ++g) {
+      const SampleGate& gate = sweep_.gates[g];
+      if (gate.kind != SampleGate::Kind::kQuantile) continue;
+      const MetricInfo* info = FindMetric(gate.metric);
+      double value = outcome.ok() && info != nullptr ? outcome.metrics.*info->field : NAN;
+      // A sample that failed to run or has no value counts as the worst (the side of the bound).
+      if (std::isnan(value)) value = gate.max ? INFINITY : -INFINITY;
+      values_[group][g].push_back(value);
+    }
+  }
+
+  // One result per gate and group, in that order.
+  std::vector<CheckResult> Results() const {
+    std::vector<CheckResult> results;
+    for (std::size_t g = 0; g < sweep_.gates.size(); ++g) {
+      for (std::uint64_t group = 0; group < passing_.size(); ++group) results.push_back(Result(g, group));
+    }
+    return results;
+  }
+
+ private:
+  std::uint64_t Group(std::uint64_t point) const {
+    const std::vector<std::uint64_t> digits = sweep_.AxisIndices(point);
+    std::uint64_t group = 0;
+    for (std::size_t a = 0; a < sweep_.axes.size(); ++a) {
+      if (a != sweep_.sample_axis) group = group * sweep_.axes[a].size() + digits[a];
+    }
+    return group;
+  }
+
+  std::string Label(std::uint64_t group) const {
+    std::string label;
+    for (std::size_t a = sweep_.axes.size(); a-- > 0;) {
+      if (a == sweep_.sample_axis) continue;
+      const std::uint64_t digit = group % sweep_.axes[a].size();
+      group /= sweep_.axes[a].size();
+      std::string part;
+      for (const SweepValues& values : sweep_.axes[a].keys) {
+        part += (part.empty() ? "" : ", ") + values.key + "=" + values.Text(digit);
+      }
+      label = part + (label.empty() ? "" : ", ") + label;
+    }
+    return label;
+  }
+
+  CheckResult Result(std::size_t g, std::uint64_t group) const {
+    const SampleGate& gate = sweep_.gates[g];
+    const std::uint64_t n = sweep_.sampling->samples;
+    CheckResult result;
+    std::string detail;
+    if (gate.kind == SampleGate::Kind::kYield) {
+      const double yield = static_cast<double>(passing_[group]) / static_cast<double>(n);
+      result = EvaluateCheck(Check{gate.metric, gate.min, gate.max}, yield);
+      std::tie(result.interval_low, result.interval_high) = WilsonInterval(passing_[group], n);
+      result.statistic = "yield";
+      result.passing = passing_[group];
+      detail = std::to_string(passing_[group]) + " of " + std::to_string(n) + " samples pass every check; " +
+               "95% Wilson interval " + FormatValue(result.interval_low) + " to " + FormatValue(result.interval_high);
+    } else {
+      std::vector<double> sorted = values_[group][g];
+      std::sort(sorted.begin(), sorted.end());
+      const std::uint64_t rank = QuantileRank(n, gate.quantile);
+      const QuantileRanks ranks = QuantileInterval(n, gate.quantile);
+      result = EvaluateCheck(Check{gate.metric, gate.min, gate.max}, sorted[rank - 1]);
+      result.interval_low = ranks.lower == 0 ? -INFINITY : sorted[ranks.lower - 1];
+      result.interval_high = ranks.upper > n ? INFINITY : sorted[ranks.upper - 1];
+      result.statistic = "quantile " + ShortestDouble(gate.quantile);
+      char coverage[32];
+      std::snprintf(coverage, sizeof coverage, "%.3f", ranks.coverage);
+      detail = "sample " + std::to_string(rank) + " of " + std::to_string(n) + " sorted; 95% order-statistic " +
+               "interval " + (ranks.lower == 0 ? "-inf" : FormatValue(result.interval_low)) + " to " +
+               (ranks.upper > n ? "+inf" : FormatValue(result.interval_high)) + " (samples " +
+               std::to_string(ranks.lower) + " and " + std::to_string(ranks.upper) + ", coverage " + coverage + ")";
+    }
+    result.samples = n;
+    result.point = Label(group);
+    result.value_text += " (" + detail + ")";
+    return result;
+  }
+
+  const Sweep& sweep_;
+  std::vector<std::uint64_t> passing_;
+  std::vector<std::vector<std::vector<double>>> values_;  // [group][gate] the samples' values
+};
 
 }  // namespace
 
@@ -85,6 +191,11 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   report->name = sweep.name;
   std::vector<CheckTally> tallies(sweep.checks.size());
   std::uint64_t failed_points = 0;
+  GateTally gates(sweep);
+  // Under a yield gate the min/max checks define a passing sample; the yield is the verdict.
+  const bool yield_gated = std::any_of(sweep.gates.begin(), sweep.gates.end(), [](const SampleGate& gate) {
+    return gate.kind == SampleGate::Kind::kYield;
+  });
   RunDistributed<TimedOutcome>(
       0, sweep.points, jobs, [&](std::uint64_t point) { return TimedRun(sweep, sets, point); },
       [&](std::uint64_t point, TimedOutcome&& timed) {
@@ -96,9 +207,12 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
           report->point_errors.emplace_back(label, outcome.error);
           raise(outcome.status == PointOutcome::Status::kSolverFailed ? kExitSolverFailed
                                                                      : kExitBadInput);
+          gates.Add(point, outcome, false);
           return;
         }
         std::vector<CheckResult> results = EvaluateChecks(sweep.checks, outcome.metrics);
+        gates.Add(point, outcome, std::all_of(results.begin(), results.end(),
+                                              [](const CheckResult& result) { return result.passed; }));
         for (std::size_t c = 0; c < results.size(); ++c) {
           CheckResult& result = results[c];
           result.point = label;
@@ -112,6 +226,7 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
             tally.worst_value = result.value_text;
             tally.worst_point = label;
           }
+          if (yield_gated) continue;  // the yield's input, not a verdict of its own
           if (!result.passed) {
             out << TerminalSafe(FormatCheckLine(sweep.file, result), true) << "\n";
             raise(kExitCheckFailed);
@@ -123,13 +238,19 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
     const CheckTally& tally = tallies[c];
     const std::uint64_t run = tally.passed + tally.failed;
-    out << (tally.failed == 0 && failed_points == 0 ? "PASS " : "FAIL ") << sweep.file << " "
+    const char* verdict = yield_gated ? "     " : tally.failed == 0 && failed_points == 0 ? "PASS " : "FAIL ";
+    out << verdict << sweep.file << " "
         << sweep.checks[c].metric << ": " << tally.passed << " of " << sweep.points
         << " points pass";
     if (!tally.bound.empty()) out << " (" << tally.bound << ")";
     if (failed_points > 0) out << ", " << failed_points << " failed to run";
     if (run > 0) out << "; worst " << tally.worst_value << " @ " << tally.worst_point;
     out << "\n";
+  }
+  for (CheckResult& result : gates.Results()) {
+    out << TerminalSafe(FormatCheckLine(sweep.file, result), true) << "\n";
+    if (!result.passed) raise(kExitCheckFailed);
+    report->results.push_back(std::move(result));
   }
   out.flush();
   report->run_time_s =

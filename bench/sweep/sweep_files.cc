@@ -33,6 +33,12 @@ nlohmann::ordered_json GridJson(const Sweep& sweep) {
       nlohmann::ordered_json entry = {{"key", values.key}};
       if (values.kind == SweepValues::Kind::kList) {
         entry["list"] = values.texts;
+      } else if (values.kind == SweepValues::Kind::kSampled) {
+        // The samples as a list (what a merge checks rows against) and what drew them.
+        std::vector<std::string> texts;
+        for (std::uint64_t i = 0; i < values.size(); ++i) texts.push_back(values.Text(i));
+        entry["list"] = texts;
+        entry["distribution"] = values.distribution->Describe();
       } else {
         entry["from"] = values.from;
         entry["to"] = values.to;
@@ -171,6 +177,11 @@ nlohmann::ordered_json ManifestJson(const Sweep& sweep, const std::vector<Overri
   json["columns"] = ResultColumns(sweep);
   json["layout"] = SweepLayout::Of(sweep).ToJson();
   json["grid"] = GridJson(sweep);
+  if (sweep.sampling) {
+    json["sampling"] = {{"samples", sweep.sampling->samples},
+                        {"seed", sweep.sampling->seed},
+                        {"design", DesignName(sweep.sampling->design)}};
+  }
   return json;
 }
 

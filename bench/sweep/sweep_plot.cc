@@ -291,6 +291,54 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
   std::fprintf(gnuplot, "\nunset output\nquit\n");
 }
 
+// The empirical CDF of the metric over the samples (the slice's x axis), one step curve
+// per series value, the checks' bounds as dashed vertical lines.
+void CdfPlotScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
+                   const SweepPlot& plot, const Slice& slice) {
+  const std::size_t nx = slice.x.texts.size();
+  Preamble(gnuplot, output_path,
+           Title(layout, "empirical CDF of " + plot.metric + " over " + std::to_string(nx) + " samples" +
+                             (plot.series.empty() ? "" : ", one line per " + plot.series),
+                 slice));
+  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
+  std::fprintf(gnuplot, "set ylabel 'fraction of samples at or below'\nset yrange [0:1.02]\n");
+  std::fprintf(gnuplot, "set key bottom right box\n");
+  std::vector<std::string> terms;
+  for (std::size_t s = 0; s < slice.y.texts.size(); ++s) {
+    std::vector<double> values(slice.z.begin() + static_cast<std::ptrdiff_t>(s * nx),
+                               slice.z.begin() + static_cast<std::ptrdiff_t>((s + 1) * nx));
+    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+                 values.end());
+    if (values.empty()) continue;
+    std::sort(values.begin(), values.end());
+    std::fprintf(gnuplot, "$s%zu << EOD\n", s);
+    // Fractions of all nx samples: an undefined value never counts as at or below.
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      std::fprintf(gnuplot, "%.17g %.17g\n", values[i], static_cast<double>(i + 1) / static_cast<double>(nx));
+    }
+    std::fprintf(gnuplot, "EOD\n");
+    const std::string title =
+        plot.series.empty() ? plot.metric : ShortKey(plot.series, layout.keys) + " = " + slice.y.texts[s];
+    char term[256];
+    std::snprintf(term, sizeof term, "$s%zu using 1:2 with steps lw 1.5 lc rgb '%s' title ", s,
+                  kColors[s % (sizeof kColors / sizeof kColors[0])]);
+    terms.push_back(term + Quoted(title));
+  }
+  for (const double limit : plot.limits) {
+    std::fprintf(gnuplot, "set arrow from %.17g, graph 0 to %.17g, graph 1 nohead dt 2 lw 1.5 lc rgb '#444444'\n",
+                 limit * MetricScale(plot.metric), limit * MetricScale(plot.metric));
+    char term[128];
+    std::snprintf(term, sizeof term, "NaN with lines dt 2 lw 1.5 lc rgb '#444444' title ");
+    terms.push_back(term + Quoted("limit " + ShortestDouble(limit)));
+  }
+  if (terms.empty()) terms.push_back("NaN notitle");
+  std::fprintf(gnuplot, "plot ");
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    std::fprintf(gnuplot, "%s%s", i == 0 ? "" : ", \\\n     ", terms[i].c_str());
+  }
+  std::fprintf(gnuplot, "\nunset output\nquit\n");
+}
+
 void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
                    const SweepPlot& plot, Slice slice) {
   const double level = FivePercentLevel(plot.metric);
@@ -412,6 +460,10 @@ nlohmann::ordered_json SweepLayout::ToJson() const {
       if (!plot.series.empty()) entry["series"] = plot.series;
     }
     if (plot.log) entry["log"] = *plot.log;
+    if (plot.cdf) {
+      entry["cdf"] = true;
+      entry["limits"] = plot.limits;
+    }
     json["plots"].push_back(entry);
   }
   return json;
@@ -450,6 +502,10 @@ SweepLayout SweepLayout::FromJson(const nlohmann::json& json) {
         if (entry.contains("series")) plot.series = entry.at("series").get<std::string>();
       }
       if (entry.contains("log")) plot.log = entry.at("log").get<bool>();
+      if (entry.contains("cdf")) {
+        plot.cdf = entry.at("cdf").get<bool>();
+        plot.limits = entry.at("limits").get<std::vector<double>>();
+      }
       layout.plots.push_back(plot);
     }
     for (const auto axis : layout.key_axis) {
@@ -481,6 +537,7 @@ std::string ShortKey(const std::string& key, const std::vector<std::string>& key
 
 std::string SweepPlotFileName(const SweepPlot& plot, const std::vector<std::string>& keys) {
   const auto key = [&](const std::string& name) { return ShortKey(name, keys); };
+  if (plot.cdf) return SafeName(plot.metric + "-cdf" + (plot.series.empty() ? "" : "-by-" + key(plot.series))) + ".png";
   if (plot.heatmap()) {
     return SafeName(plot.metric + "-over-" + key(plot.heatmap_x) + "-and-" + key(plot.heatmap_y)) + ".png";
   }
@@ -510,6 +567,8 @@ std::vector<std::string> WriteSweepPlots(const std::string& out_dir, const Sweep
     RunGnuplot(path, [&](std::FILE* gnuplot, const std::string& output_path) {
       if (plot.heatmap()) {
         HeatMapScript(gnuplot, output_path, layout, plot, slice);
+      } else if (plot.cdf) {
+        CdfPlotScript(gnuplot, output_path, layout, plot, slice);
       } else {
         LinePlotScript(gnuplot, output_path, layout, plot, slice);
       }

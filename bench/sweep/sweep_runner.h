@@ -82,6 +82,8 @@ MergeSummary MergeShards(const std::string& out_dir, const std::vector<std::stri
 // `check` on a sweep: runs every point on `jobs` threads and evaluates the sweep's checks
 // on it. Prints a FAIL line per failing point-check and one summary line per check to
 // `out`, a line per failed point to `err`; `report` receives every point-check (JUnit).
+// A sampled sweep's quantile and yield gates (SampleGate) follow: one line and result per
+// gate and combination of the other keys' values, with the 95% interval.
 // Returns 0, 1 (a check failed), 2 (a point's bad input) or 3 (a point's solver failure):
 // the most severe as `check` ranks them (2, 3, 1, 0).
 int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
