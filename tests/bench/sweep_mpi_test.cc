@@ -129,6 +129,29 @@ TEST(SweepMpi, CheckGivesTheSameVerdict) {
   }
 }
 
+// Tests that the shipped sampled yield study (seed 42, 500 normal samples crossed with two
+// methods) draws the same points on 1, 2 and 3 ranks: results.csv and manifest.json equal
+// --jobs 1's byte for byte, and `check` prints the same yields and Wilson intervals.
+TEST(SweepMpi, SampledSweepIsTheSameOnAnyNumberOfRanks) {
+  if (const std::string missing = MpiMissing(); !missing.empty()) GTEST_SKIP() << missing;
+  const std::string yield = "configs/sweeps/moving_column_yield.yaml";
+  ScratchDir dir;
+  const CliResult plain = RunCli({"sweep", yield, "--jobs", "1", "--out", dir.File("jobs1")}, kSourceDir);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const CliResult plain_check = RunCli({"check", yield, "--jobs", "1"}, kSourceDir);
+  ASSERT_EQ(plain_check.exit_code, 1) << plain_check.err;  // method 1's yield misses 0.95
+  for (const int ranks : {1, 2, 3}) {
+    const std::string out = dir.File("ranks" + std::to_string(ranks));
+    const CliResult r = RunCli({"sweep", yield, "--jobs", "1", "--out", out}, kSourceDir, Mpirun(ranks));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(dir.File("jobs1") + "/results.csv")) << ranks << " ranks";
+    EXPECT_EQ(ReadText(out + "/manifest.json"), ReadText(dir.File("jobs1") + "/manifest.json")) << ranks;
+    const CliResult check = RunCli({"check", yield, "--jobs", "1"}, kSourceDir, Mpirun(ranks));
+    EXPECT_EQ(check.exit_code, 1) << check.err;
+    EXPECT_EQ(check.out, plain_check.out) << ranks << " ranks";
+  }
+}
+
 // Tests that a Slurm array task without --shard runs shard ID-MIN of COUNT into
 // DIR/shard-I-of-N, that both tasks merge to --jobs 1's file, that an explicit --shard
 // wins (and --out is used as given), and that an id that is no shard is refused (exit 2).
