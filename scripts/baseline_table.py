@@ -182,6 +182,12 @@ def main(argv):
                 fl.get("peak_ratio_31hz_zeta0.02", float("nan")) /
                 fl.get("run_peak_ratio_31hz_zeta0.02", float("nan")) - 1), per_point=True)
 
+    fb = find(bench, "BM_FloorBatch")
+    if fb and fb.get("lanes"):
+        add("floor in %d lanes (4 frequencies through one command), per point" % int(fb["lanes"]),
+            seconds(fb) / fb["lanes"], None, None, None,
+            "each lane's peak the scalar floor's bit for bit: %s" %
+            ("yes" if fb.get("lanes_equal_scalar_bits") == 1 else "NO"), per_point=True)
     c1e = find(bench, "BM_Case1_Exact")
     c1c = find(bench, "BM_Case1_Cvode")
     exact1 = seconds(c1e) if c1e else None
