@@ -3,6 +3,7 @@
 // sweep's results.csv the same bytes as a sweep that generates a command for every point
 // (SHAPEBENCH_SHARE_COMMAND=0).
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,35 @@ TEST(SharedCommand, GeneratedOncePerControllerInput) {
                          "mixed"),
             3u);
   EXPECT_EQ(generated_by("  controller.accel_time_s: {from: 0.1, to: 0.4, steps: 6}\n", "controller"), 6u);
+}
+
+// Tests that the cache hands every caller of one key the same command, generated once, and
+// that a generation that throws is not kept: the next caller generates again.
+TEST(SharedCommand, FailedGenerationIsNotKept) {
+  SharedCommandCache& cache = SharedCommandCache::Instance();
+  const std::uint64_t sweep_id = 0xfeedULL << 40;  // no loaded sweep has it
+  const std::uint64_t before = cache.generated();
+  int calls = 0;
+  auto fail = [&]() -> controller::MultiAxisCommand {
+    ++calls;
+    throw std::runtime_error("no command");
+  };
+  EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
+  EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
+  EXPECT_EQ(calls, 2);
+  auto make = [&] {
+    ++calls;
+    controller::MultiAxisCommand command;
+    command.period_s = 0.001;
+    for (auto& axis : command.axes) axis.velocity_m_s = {0.0, 0.0};  // one tick at rest
+    return command;
+  };
+  const auto first = cache.Get(sweep_id, "k", make);
+  const auto second = cache.Get(sweep_id, "k", make);
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(first.get(), second.get());
+  EXPECT_EQ(cache.generated() - before, 1u);
+  EXPECT_NE(cache.Get(sweep_id, "other", make).get(), first.get());
 }
 
 }  // namespace
