@@ -67,7 +67,8 @@ fuzz:
 
 # `make bench`: Google Benchmark over benchmarks/cases/ (case 1 one mode, case 2
 # the moving column with the servo, case 3 a 1000-point sweep, CVODE's choices at equal
-# accuracy, case 4 the moving column with LuGre guides on a 10 s circle), the Python
+# accuracy, case 4 the moving column with LuGre guides on a 10 s circle, case 4d case 3
+# damped 2% with every metric, the floor: case 1's bare exact ZOH loop), the Python
 # baselines on cases 1 and 4 (scripts/baseline.py; needs python3-scipy and
 # python3-numpy, skipped without), a 1,000,000-point sweep under /usr/bin/time -v (peak
 # resident memory; a few minutes), then one table of it all (scripts/baseline_table.py),

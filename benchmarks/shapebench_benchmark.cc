@@ -6,6 +6,11 @@
 //   case 3  a 1000-point natural-period sweep of case 1 (case3_sweep.yaml), 1 and 2 jobs
 //   case 4  the moving column with LuGre friction on its X and Y guides on a 10 s circle
 //           (case4_lugre_circle.yaml): a plant with nonlinear elements, CVODE with events
+//   case 4d case 3 on a 2% damped mode with every metric (case4_damped_sweep.yaml): the
+//           sweep users run, with the settling tail; exact and CVODE, 1 and 2 jobs
+//   floor   the bare exact zero-order hold of case 1's mode over case 1's ticks with the
+//           exact extremum inside each tick, the command built once (BM_Floor): what a
+//           sweep point cannot beat; the table gives every sweep figure as a ratio to it
 //
 // Each reports the time per run, runs per second (items_per_second) and, for CVODE, its
 // internal steps and right-hand-side evaluations per simulated second. BM_CvodeTuning
@@ -21,12 +26,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -110,10 +117,11 @@ void BM_Case1_CommandOnly(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// Case 3: the sweep as `shapebench sweep` runs it (results.csv written, no plots).
-void Case3(benchmark::State& state, const std::string& method) {
+// Case 3 (and 4d): the sweep as `shapebench sweep` runs it (results.csv written, no plots).
+void Case3(benchmark::State& state, const std::string& method,
+           const std::string& file = "case3_sweep.yaml") {
   const std::vector<Override> sets = {{"integrator.method", method}};
-  const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/case3_sweep.yaml", sets);
+  const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/" + file, sets);
   const std::string dir = (std::filesystem::temp_directory_path() /
                            ("shapebench_bench_sweep_" + std::to_string(getpid())))
                               .string();
@@ -139,24 +147,37 @@ void Case3(benchmark::State& state, const std::string& method) {
   std::filesystem::remove_all(dir);
   // The integrator's work per simulated second over the sweep's points (run again, once,
   // outside the timing: RunSweep keeps only the metrics).
-  if (method == "cvode" && state.range(0) == 1) {
+  // Once per sweep file (repetitions reuse it).
+  static std::map<std::string, benchmark::UserCounters> accuracy;
+  if (method == "cvode" && state.range(0) == 1 && accuracy.count(file) != 0) {
+    for (const auto& [name, value] : accuracy[file]) state.counters[name] = value;
+  } else if (method == "cvode" && state.range(0) == 1) {
     long steps = 0;
     long rhs_evals = 0;
     double simulated_s = 0.0;
     double error = 0.0;  // the ratio metrics' largest difference from the exact path's
+    double settling_error_s = 0.0;  // settling_time_s's
     for (std::uint64_t p = 0; p < sweep.points; ++p) {
       Scenario scenario = LoadScenario(sweep.base, MakePoint(sweep, p, sets).overrides);
       const RunResult run = RunScenario(scenario, RunOptions{false});
       scenario.integrator.method = model::IntegratorMethod::kExact;
-      error = std::max(error, MetricError(run.metrics, RunScenario(scenario, RunOptions{false}).metrics));
+      const Metrics exact = RunScenario(scenario, RunOptions{false}).metrics;
+      error = std::max(error, MetricError(run.metrics, exact));
+      if (std::isfinite(exact.settling_time_s) && std::isfinite(run.metrics.settling_time_s)) {
+        settling_error_s = std::max(settling_error_s, std::abs(exact.settling_time_s - run.metrics.settling_time_s));
+      }
       steps += run.stats.steps;
       rhs_evals += run.stats.rhs_evals;
       simulated_s += run.simulated_s;
     }
     state.counters["error_vs_exact"] = error;
+    state.counters["settling_error_s"] = settling_error_s;
+    state.counters["steps_per_point"] = static_cast<double>(steps) / static_cast<double>(sweep.points);
+    state.counters["rhs_per_point"] = static_cast<double>(rhs_evals) / static_cast<double>(sweep.points);
     state.counters["steps_per_sim_s"] = static_cast<double>(steps) / simulated_s;
     state.counters["rhs_per_sim_s"] = static_cast<double>(rhs_evals) / simulated_s;
     state.counters["sim_s"] = simulated_s / static_cast<double>(sweep.points);
+    accuracy[file] = state.counters;
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep.points));
   state.counters["points"] = static_cast<double>(sweep.points);
@@ -165,6 +186,173 @@ void Case3(benchmark::State& state, const std::string& method) {
 }
 void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
 void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }
+void BM_Case4Damped_Exact(benchmark::State& state) { Case3(state, "exact", "case4_damped_sweep.yaml"); }
+void BM_Case4Damped_Cvode(benchmark::State& state) { Case3(state, "cvode", "case4_damped_sweep.yaml"); }
+
+// ---- The floor: the bare exact zero-order hold of case 1's mode ----
+
+// Case 1's mode (q'' + 2 zeta w q' + w^2 q = -a, deflection = gain q, scripts/baseline.py),
+// its command's accelerations built once, the number of ticks case 1's run simulates.
+struct FloorCase {
+  double w = 0.0, zeta = 0.0, gain = 0.0, dt = 0.0;
+  std::vector<double> accel;  // per tick 1..ticks (index k - 1); 0 after the command
+  double static_m = 0.0;
+  double run_peak_ratio = 0.0;  // what the exact path's run reports (sampled peak)
+};
+
+FloorCase MakeFloor(const std::vector<Override>& sets) {
+  {
+    const Scenario scenario = LoadScenario(kSource + "/benchmarks/cases/case1.yaml", sets);
+    const RunResult run = RunScenario(scenario, RunOptions{false});
+    const auto& mode = std::get<model::ModalMachineConfig>(scenario.machine.axes[scenario.move_axis()]->form).modes.at(0);
+    FloorCase f;
+    f.w = 2.0 * M_PI * mode.frequency_hz;
+    f.zeta = mode.damping_ratio;
+    f.gain = mode.gain;
+    f.dt = run.command.period_s;
+    const std::size_t ticks = static_cast<std::size_t>(std::lround(run.simulated_s / f.dt));
+    f.accel.assign(ticks, 0.0);
+    const auto& axis = run.command.axes[scenario.move_axis()];
+    for (std::size_t k = 1; k <= std::min(ticks, run.command.num_ticks()); ++k) f.accel[k - 1] = axis.accel_m_s2(k);
+    f.static_m = run.metrics.static_displacement_m;
+    f.run_peak_ratio = run.metrics.peak_ratio;
+    return f;
+  }
+}
+
+const FloorCase& Floor() {
+  static const FloorCase floor = MakeFloor({});
+  return floor;
+}
+
+// The largest |deflection| of the run: per tick the exact transition of (q, q') under the
+// held acceleration, and where q' changes sign inside the tick the extremum there (one
+// root at most: w dt < pi), in closed form: undamped, the free oscillation's amplitude
+// about the static deflection; damped, at w_d t = atan2(v0, (s v0 + w^2 x0) / w_d).
+double FloorPeak(const FloorCase& f) {
+  const double s = f.zeta * f.w;
+  const double wd = f.w * std::sqrt(1.0 - f.zeta * f.zeta);
+  const double e = std::exp(-s * f.dt), c = std::cos(wd * f.dt), sn = std::sin(wd * f.dt);
+  const double p11 = e * (c + s / wd * sn), p12 = e * sn / wd, p21 = -e * f.w * f.w / wd * sn,
+               p22 = e * (c - s / wd * sn);
+  const double w2 = f.w * f.w;
+  const double g1 = -(1.0 - p11) / w2, g2 = p21 / w2;  // the response to a held a = 1
+  double q = 0.0, v = 0.0, peak = 0.0;
+  for (const double a : f.accel) {
+    const double q1 = p11 * q + p12 * v + g1 * a;
+    const double v1 = p21 * q + p22 * v + g2 * a;
+    if ((v > 0.0 && v1 < 0.0) || (v < 0.0 && v1 > 0.0)) {
+      const double x0 = q + a / w2;  // about the static deflection -a / w^2
+      double x;
+      if (f.zeta == 0.0) {
+        x = std::copysign(std::sqrt(x0 * x0 + v * v / w2), v);  // v > 0: a maximum
+      } else {
+        double theta = std::atan2(v, (s * v + w2 * x0) / wd);
+        if (theta <= 0.0) theta += M_PI;
+        const double t = theta / wd;
+        x = std::exp(-s * t) * (x0 * std::cos(theta) + (v + s * x0) / wd * std::sin(theta));
+      }
+      peak = std::max(peak, std::abs(x - a / w2));
+    }
+    peak = std::max(peak, std::abs(q1));
+    q = q1;
+    v = v1;
+  }
+  return std::abs(f.gain) * peak;
+}
+
+// The floor of a batch: kLanes modes of different frequencies (undamped, as case 1's)
+// advanced together through the same command, one lane per frequency, the lanes' loops
+// left to the compiler's vectoriser; the in-tick extremum only in a tick where some lane's
+// velocity changes sign, for those lanes. Each lane's peak is the scalar
+// FloorPeak's of its frequency bit for bit (the same operations; max is exact).
+constexpr int kLanes = 4;
+
+std::array<double, kLanes> FloorPeakLanes(const FloorCase& f, const std::array<double, kLanes>& w) {
+  std::array<double, kLanes> p11, p12, p21, p22, g1, g2, w2, q{}, v{}, peak{};
+  for (int l = 0; l < kLanes; ++l) {
+    const double c = std::cos(w[l] * f.dt), sn = std::sin(w[l] * f.dt);
+    w2[l] = w[l] * w[l];
+    p11[l] = 1.0 * (c + 0.0 / w[l] * sn);
+    p12[l] = 1.0 * sn / w[l];
+    p21[l] = -1.0 * w[l] * w[l] / w[l] * sn;
+    p22[l] = 1.0 * (c - 0.0 / w[l] * sn);
+    g1[l] = -(1.0 - p11[l]) / w2[l];
+    g2[l] = p21[l] / w2[l];
+  }
+  std::array<double, kLanes> q1, v1;
+  for (const double a : f.accel) {
+    // The state update of every lane (vectorised), then the rare turns lane by lane.
+    int turns = 0;
+    for (int l = 0; l < kLanes; ++l) {
+      q1[l] = p11[l] * q[l] + p12[l] * v[l] + g1[l] * a;
+      v1[l] = p21[l] * q[l] + p22[l] * v[l] + g2[l] * a;
+      turns |= (v[l] > 0.0 && v1[l] < 0.0) || (v[l] < 0.0 && v1[l] > 0.0);
+    }
+    if (turns) {
+      for (int l = 0; l < kLanes; ++l) {
+        if ((v[l] > 0.0 && v1[l] < 0.0) || (v[l] < 0.0 && v1[l] > 0.0)) {
+          const double x0 = q[l] + a / w2[l];
+          const double x = std::copysign(std::sqrt(x0 * x0 + v[l] * v[l] / w2[l]), v[l]);
+          peak[l] = std::max(peak[l], std::abs(x - a / w2[l]));
+        }
+      }
+    }
+    for (int l = 0; l < kLanes; ++l) {
+      peak[l] = std::max(peak[l], std::abs(q1[l]));
+      q[l] = q1[l];
+      v[l] = v1[l];
+    }
+  }
+  for (int l = 0; l < kLanes; ++l) peak[l] *= std::abs(f.gain);
+  return peak;
+}
+
+// Per point (lane): the batch floor's time over kLanes.
+void BM_FloorBatch(benchmark::State& state) {
+  FloorCase f = Floor();
+  const std::array<double, kLanes> w = {2.0 * M_PI * 21.0, 2.0 * M_PI * 24.5, 2.0 * M_PI * 27.25, 2.0 * M_PI * 33.0};
+  std::array<double, kLanes> peaks{};
+  for (auto _ : state) {
+    peaks = FloorPeakLanes(f, w);
+    benchmark::DoNotOptimize(peaks.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kLanes);
+  bool same = true;
+  for (int l = 0; l < kLanes; ++l) {
+    f.w = w[l];
+    const double scalar = FloorPeak(f);
+    same = same && std::memcmp(&scalar, &peaks[l], sizeof scalar) == 0;
+  }
+  state.counters["lanes"] = kLanes;
+  state.counters["lanes_equal_scalar_bits"] = same ? 1.0 : 0.0;
+}
+
+void BM_Floor(benchmark::State& state) {
+  const FloorCase& f = Floor();
+  double peak = 0.0;
+  for (auto _ : state) {
+    peak = FloorPeak(f);
+    benchmark::DoNotOptimize(&peak);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["ticks"] = static_cast<double>(f.accel.size());
+  state.counters["peak_ratio"] = peak / f.static_m;
+  // The run's sampled peak is below the exact extremum (200 samples a period: by at most
+  // 1.2e-4 of it).
+  state.counters["run_peak_ratio"] = f.run_peak_ratio;
+  // Off the design frequency, undamped and damped: the floor's exact extremum against the
+  // run's sampled peak (the floor's at least as large, by at most 1.2e-4 of it).
+  for (const char* damping : {"0", "0.02"}) {
+    const FloorCase off = MakeFloor({{"machine.modes[0].frequency_hz", "31.3"},
+                                     {"machine.modes[0].damping_ratio", damping}});
+    const std::string name = std::string("peak_ratio_31hz_zeta") + damping;
+    state.counters[name] = FloorPeak(off) / off.static_m;
+    state.counters["run_" + name] = off.run_peak_ratio;
+  }
+}
 
 // ---- Case 4: a plant with nonlinear elements ----
 
@@ -485,6 +673,13 @@ BENCHMARK(BM_Case2_Exact)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case2_Cvode)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
 BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
+// The floor and case 4d: medians of five (the must-show ratios compare them).
+BENCHMARK(BM_Floor)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_FloorBatch)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case4Damped_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case4Damped_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->Iterations(1)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_CvodeCrossCheck)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CvodeTuning)->Apply(TuningArgs)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Case4_LugreCircle)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);

@@ -27,6 +27,10 @@ TARGETS = {
     "case4_real_time": 50.0,         # at least: simulated seconds per CPU second
     "scipy_over_case4": 20.0,        # at least
     "case4_agreement": 1e-3,         # at most: of the deflection scale
+    "case3_over_floor": 3.0,         # at most: case 3 exact per point, one job, over the floor
+    "case4d_over_floor": 4.0,        # at most: case 4d exact per point, one job, over the floor
+    "sweep_scaling": 1.8,            # at least: 1 -> 2 jobs (case 3 and case 4d)
+    "case4d_cvode_runs_s": 1500.0,   # at least, two jobs
 }
 
 
@@ -74,6 +78,56 @@ def fmt_num(x, digits=3):
     return ("%." + str(digits) + "g") % x
 
 
+def case4d(bench, sweep, cpu, add, checks, floor_s):
+    """Case 4d (benchmarks/cases/case4_damped_sweep.yaml; "4d", as case4_lugre_circle.yaml
+    is case 4): case 3 on a 2% damped mode, every metric, so every point runs its settling
+    tail. Medians of five; the ratios to the floor and 1 -> 2 jobs are the must-show ones."""
+    per = {}
+    for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
+        for jobs in (1, 2):
+            b = find(bench, "BM_Case4Damped_%s/%d" % (method, jobs))
+            if not b:
+                continue
+            s = seconds(b, real=True) / b.get("points", 1000)
+            per[(method, jobs)] = s
+            note = "damped 2%, every metric (not the LuGre case 4); wall time per point, median of 5"
+            if jobs == 2 and (method, 1) in per:
+                note += ", %.2fx from 1 job" % (per[(method, 1)] / s)
+            c = b.get("cpu_s_per_point")
+            if c:
+                note += "; CPU %s per point" % fmt_time(c)
+            if b.get("error_vs_exact") is not None:
+                note += "; ratio metrics within %.1e of exact, settling_time_s within %.1e s" % (
+                    b["error_vs_exact"], b.get("settling_error_s", float("nan")))
+            if b.get("steps_per_point"):
+                note += "; %.0f steps, %.0f RHS a point" % (b["steps_per_point"], b.get("rhs_per_point", 0))
+            add("case 4d, 1000-point damped sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
+                s, per.get(("Exact", jobs)), b if method == "Cvode" else None, None, note, per_point=True)
+    if floor_s and ("Exact", 1) in sweep:
+        r = sweep[("Exact", 1)] / floor_s
+        checks.append(("case 3 exact within 3x of the floor (1 job)", r <= TARGETS["case3_over_floor"], "%.1fx" % r))
+    if floor_s and ("Exact", 1) in per:
+        r = per[("Exact", 1)] / floor_s
+        checks.append(("case 4d exact within 4x of the floor (1 job)", r <= TARGETS["case4d_over_floor"], "%.1fx" % r))
+    # The same from the CPU time per point (a shared machine's wall time depends on its load).
+    for name, key, b in (("case 3", "case3_over_floor", find(bench, "BM_Case3_Exact/1")),
+                         ("case 4d", "case4d_over_floor", find(bench, "BM_Case4Damped_Exact/1"))):
+        if floor_s and b and b.get("cpu_s_per_point"):
+            r = b["cpu_s_per_point"] / floor_s
+            checks.append(("%s exact within %gx of the floor (1 job, CPU per point)" % (name, TARGETS[key]),
+                           r <= TARGETS[key], "%.1fx" % r))
+    for name, table in (("case 3", sweep), ("case 4d", per)):
+        for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
+            if (method, 1) in table and (method, 2) in table:
+                r = table[(method, 1)] / table[(method, 2)]
+                checks.append(("%s %s >= 1.8x from 1 to 2 jobs" % (name, label), r >= TARGETS["sweep_scaling"],
+                               "%.2fx" % r))
+    if ("Cvode", 2) in per:
+        r = 1.0 / per[("Cvode", 2)]
+        checks.append(("case 4d CVODE >= 1,500 runs/s (2 jobs, wall)", r >= TARGETS["case4d_cvode_runs_s"],
+                       fmt_num(r)))
+
+
 def main(argv):
     markdown = "--markdown" in argv
     args = [a for a in argv[1:] if a != "--markdown"]
@@ -102,28 +156,49 @@ def main(argv):
         except OSError:
             pass
 
-    rows = []  # (what, time per run s, runs/s, ratio, steps/sim s, rhs/sim s, peak_ratio, note)
+    rows = []  # (what, time per run s, runs/s, ratio, x floor, steps/sim s, rhs/sim s, peak_ratio, note)
     checks = []
+    # The floor (BM_Floor): the bare exact zero-order hold of case 1's mode, the exact
+    # extremum inside each tick, the command built once. A point of a sweep (a run of
+    # case 1) is given as a multiple of it ("x floor").
+    fl = find(bench, "BM_Floor")
+    floor_s = seconds(fl) if fl else None
 
-    def add(what, s, exact_s, b=None, peak=None, note="", runs_s=None):
+    def add(what, s, exact_s, b=None, peak=None, note="", runs_s=None, per_point=False):
         ratio = s / exact_s if (s is not None and exact_s) else None
+        over_floor = s / floor_s if (per_point and s is not None and floor_s) else None
         steps = b.get("steps_per_sim_s") if b else None
         rhs = b.get("rhs_per_sim_s") if b else None
         if runs_s is None and s:
             runs_s = 1.0 / s
-        rows.append((what, s, runs_s, ratio, steps, rhs, peak, note))
+        rows.append((what, s, runs_s, ratio, over_floor, steps, rhs, peak, note))
 
+    if fl:
+        add("floor: exact ZOH of case 1's mode, exact in-tick extremum, command built once", floor_s, None,
+            None, fl.get("peak_ratio"), "%d ticks; off design (31.3 Hz) exact extremum / run's sampled peak - 1: "
+            "%.1e undamped, %.1e at 2%%" % (
+                int(fl.get("ticks", 0)),
+                fl.get("peak_ratio_31hz_zeta0", float("nan")) / fl.get("run_peak_ratio_31hz_zeta0", float("nan")) - 1,
+                fl.get("peak_ratio_31hz_zeta0.02", float("nan")) /
+                fl.get("run_peak_ratio_31hz_zeta0.02", float("nan")) - 1), per_point=True)
+
+    fb = find(bench, "BM_FloorBatch")
+    if fb and fb.get("lanes"):
+        add("floor in %d lanes (4 frequencies through one command), per point" % int(fb["lanes"]),
+            seconds(fb) / fb["lanes"], None, None, None,
+            "each lane's peak the scalar floor's bit for bit: %s" %
+            ("yes" if fb.get("lanes_equal_scalar_bits") == 1 else "NO"), per_point=True)
     c1e = find(bench, "BM_Case1_Exact")
     c1c = find(bench, "BM_Case1_Cvode")
     exact1 = seconds(c1e) if c1e else None
     if c1e:
-        add("case 1, shapebench exact", exact1, exact1, c1e, c1e.get("peak_ratio"))
+        add("case 1, shapebench exact", exact1, exact1, c1e, c1e.get("peak_ratio"), per_point=True)
         checks.append(("case 1 exact <= 50 us per run", exact1 * 1e6 <= TARGETS["case1_exact_us"],
                        fmt_time(exact1)))
     if c1c:
         s = seconds(c1c)
         add("case 1, shapebench CVODE (rtol 1e-8)", s, exact1, c1c, c1c.get("peak_ratio"),
-            "metrics within %.1e of exact" % c1c.get("error_vs_exact", float("nan")))
+            "metrics within %.1e of exact" % c1c.get("error_vs_exact", float("nan")), per_point=True)
         checks.append(("case 1 CVODE <= 1 ms per run", s * 1e3 <= 1.0, fmt_time(s)))
         if c1e:
             d = abs(c1c["peak_ratio"] - c1e["peak_ratio"])
@@ -134,7 +209,7 @@ def main(argv):
         if entry:
             add(what, entry["seconds_per_run"], exact1, None, entry["peak_ratio"])
         else:
-            rows.append((what, None, None, None, None, None, None,
+            rows.append((what, None, None, None, None, None, None, None,
                          baseline.get("error", "not run")))
     if "scipy_solve_ivp" in baseline and c1c:
         r = baseline["scipy_solve_ivp"]["seconds_per_run"] / seconds(c1c)
@@ -211,7 +286,8 @@ def main(argv):
             if e is not None:
                 note += "; metrics within %.1e of exact" % e
             add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
-                s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note)
+                s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note,
+                per_point=True)
     for method, label, key, target in (("Exact", "exact", "case3_exact_runs_s", "20,000"),
                                        ("Cvode", "CVODE", "case3_cvode_runs_s", "1,500")):
         if (method, 2) in sweep:
@@ -223,13 +299,15 @@ def main(argv):
                 checks.append(("case 3 %s >= %s runs/s (2 jobs, from CPU per point)" % (label, target),
                                2.0 / c >= TARGETS[key], fmt_num(2.0 / c)))
 
+    case4d(bench, sweep, cpu, add, checks, floor_s)
+
     # In the benchmark's order (case, then variant), not the names' alphabetical one.
     tuning = sorted(((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/")),
                     key=lambda item: tuple(int(arg) for arg in item[0].split("/")[1:3]))
     for name, b in tuning:
         if b.get("error_occurred"):
             rows.append(("CVODE tuning, case %s, %s" % (name.split("/")[1], b.get("label", "")), None,
-                         None, None, None, None, None, b.get("error_message", "")))
+                         None, None, None, None, None, None, b.get("error_message", "")))
             continue
         which = name.split("/")[1]
         if which == "3":
@@ -247,14 +325,16 @@ def main(argv):
     if memory:
         rows.append(("1,000,000-point sweep (exact, 2 jobs): peak resident %.0f MB" % memory["rss_mb"],
                      memory["seconds"] / memory["points"] if memory.get("seconds") and memory.get("points") else None,
-                     None, None, None, None, None, "/usr/bin/time -v"))
+                     None, None, None, None, None, None, "/usr/bin/time -v"))
         checks.append(("1,000,000-point sweep < 200 MB resident", memory["rss_mb"] < TARGETS["memory_mb"],
                        "%.0f MB" % memory["rss_mb"]))
 
-    header = ("figure", "time/run", "runs/s", "x exact", "steps/sim s", "RHS/sim s", "peak_ratio", "note")
+    header = ("figure", "time/run", "runs/s", "x exact", "x floor", "steps/sim s", "RHS/sim s", "peak_ratio",
+              "note")
     table = []
-    for what, s, runs, ratio, steps, rhs, peak, note in rows:
+    for what, s, runs, ratio, over_floor, steps, rhs, peak, note in rows:
         table.append((what, fmt_time(s), fmt_num(runs) if runs else "", fmt_num(ratio) if ratio else "",
+                      fmt_num(over_floor) if over_floor else "",
                       fmt_num(steps) if steps else "", fmt_num(rhs) if rhs else "",
                       ("%.9f" % peak) if peak is not None else "", note))
     cpu = context.get("num_cpus", "?")

@@ -298,7 +298,9 @@ class CoSimulation {
   // never moves (IdleAxesRigid).
   model::MachinePlant integrated_;
   const model::MachineDynamics dynamics_;
-  const CommandSamples samples_;
+  // The command's samples: computed here (own_samples_) unless given (RunOptions::samples).
+  const CommandSamples own_samples_;
+  const CommandSamples& samples_;
   const OutputView view_;
   const RunWindow window_;
   const bool has_stroke_;
@@ -346,7 +348,9 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
       contour_gauge_(path),
       machine_(model::BuildMachinePlant(scenario.machine, scenario.drive)),
       dynamics_(model::AnalyzeMachine(scenario.machine)),
-      samples_(SampleCommand(command)),
+      own_samples_(options.command != nullptr && options.samples != nullptr ? CommandSamples{}
+                                                                          : SampleCommand(command)),
+      samples_(options.command != nullptr && options.samples != nullptr ? *options.samples : own_samples_),
       view_(MakeOutputView(scenario.output, command)),
       window_(PlanRunWindow(scenario, samples_, dynamics_, dt_)),
       has_stroke_(std::any_of(scenario.machine.stroke_m.begin(), scenario.machine.stroke_m.end(),
@@ -739,19 +743,21 @@ void RefuseInfiniteMetrics(const Metrics& m) {
 
 }  // namespace
 
+controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program) {
+  controller::ControllerConfig controller = scenario.controller;
+  controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
+  // The memory budget again, on the planned length, before the per-tick command exists.
+  controller::CommandLimits limits;
+  limits.max_ticks = static_cast<std::size_t>(std::min(MemoryTickLimit(scenario.limits), 1e18));
+  limits.key = "limits.max_memory_mb";
+  return controller::GenerateProgramCommand(controller, program, limits);
+}
+
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   RunResult result;
   // Stage 1, the command: generated here, or shared by a sweep's points.
   result.program = scenario.RunProgram();
-  if (options.command == nullptr) {
-    controller::ControllerConfig controller = scenario.controller;
-    controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
-    // The memory budget again, on the planned length, before the per-tick command exists.
-    controller::CommandLimits limits;
-    limits.max_ticks = static_cast<std::size_t>(std::min(MemoryTickLimit(scenario.limits), 1e18));
-    limits.key = "limits.max_memory_mb";
-    result.command = controller::GenerateProgramCommand(controller, result.program, limits);
-  }
+  if (options.command == nullptr) result.command = GenerateScenarioCommand(scenario, result.program);
   const controller::MultiAxisCommand& command = options.command != nullptr ? *options.command : result.command;
   const controller::PathGeometry path(result.program);
   // Stage 2, the set-up: the plant, the command's samples, the run window, the samplers.

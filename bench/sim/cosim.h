@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "bench/sim/command_samples.h"
 #include "bench/sim/metrics.h"
 #include "bench/sim/scenario.h"
 #include "controller/controller.h"
@@ -63,7 +64,14 @@ struct RunOptions {
   // points that differ only in keys the controller does not read share it): used as it is,
   // and RunResult::command is then left empty. Null: generated here.
   const controller::MultiAxisCommand* command = nullptr;
+  // SampleCommand(*command), computed before with it (a sweep shares both, read-only,
+  // between its points and threads). Null: computed here. Ignored without `command`.
+  const CommandSamples* samples = nullptr;
 };
+
+// The command RunScenario generates for the scenario's controller and program (the CNC's
+// stroke check and the memory budget included): what a sweep generates once and shares.
+controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program);
 
 // Throws ValidationError (bad scenario), model::SolverError (CVODE failure).
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options = {});
