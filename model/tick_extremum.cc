@@ -163,21 +163,7 @@ void TickExtremum::Search(double lo, double hi, double rate_lo, double rate_hi, 
   if (change) *best = std::max(*best, std::abs(OutputAt(Refine(lo, hi, rate_lo))));
 }
 
-double TickExtremum::LargestInside(const double* z0, const double* z1, const double* u) {
-  const Eigen::Index n = c_a_.size();
-  double d0 = 0.0;
-  double d1 = 0.0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    d0 += c_a_(j) * z0[j];
-    d1 += c_a_(j) * z1[j];
-  }
-  double forced = 0.0;
-  for (int i = 0; i < m_; ++i) forced += c_b_(i) * u[i];
-  d0 += forced;
-  d1 += forced;
-  // The common case (one mode, a period shorter than half its period): no sign change of
-  // y' over the period, no extremum inside it, nothing more to compute.
-  if (single_pole_ && grid_ == 1 && !(d0 * d1 < 0.0)) return 0.0;
+double TickExtremum::Inside(const double* z0, const double* u, double d0, double d1) {
   if (n_ == 0) return 0.0;
   SetUpPeriod(z0, u);
   if (single_pole_ && grid_ == 1) {

@@ -37,7 +37,23 @@ class TickExtremum {
   // The largest |y| at a stationary point strictly inside (0, h) of the period from state
   // z0 to z1 under input u (arrays of the sizes of a and b); 0 when there is none (the
   // ends are the caller's samples). No allocation.
-  double LargestInside(const double* z0, const double* z1, const double* u);
+  double LargestInside(const double* z0, const double* z1, const double* u) {
+    const Eigen::Index n = c_a_.size();
+    double d0 = 0.0;
+    double d1 = 0.0;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      d0 += c_a_(j) * z0[j];
+      d1 += c_a_(j) * z1[j];
+    }
+    double forced = 0.0;
+    for (int i = 0; i < m_; ++i) forced += c_b_(i) * u[i];
+    d0 += forced;
+    d1 += forced;
+    // The common case (one mode, a period shorter than half its period): no sign change
+    // of y' over the period, no extremum inside it, nothing more to compute (inline).
+    if (single_pole_ && grid_ == 1 && !(d0 * d1 < 0.0)) return 0.0;
+    return Inside(z0, u, d0, d1);
+  }
 
   // y at time t of the current period (after LargestInside set it up; 0 when it had
   // nothing to set up).
@@ -48,6 +64,7 @@ class TickExtremum {
 
  private:
   TickExtremum() = default;
+  double Inside(const double* z0, const double* u, double d0, double d1);  // y'(0), y'(h)
   void SetUpPeriod(const double* z0, const double* u);
   double Rate(double t) const;  // y'(t)
   void RateAndCurvature(double t, double* rate, double* curvature) const;  // y', y''
