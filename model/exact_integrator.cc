@@ -123,6 +123,14 @@ ExactIntegrator::ExactIntegrator(const LinearPlant& plant, double period_s, int 
       discretization_(DiscretizeExactly(plant, period_s / substeps)) {
   kept_index_ = StatesReachingOutputs(plant.C, discretization_->phi, num_states_);
   kept_ = static_cast<int>(kept_index_.size());
+  const Eigen::MatrixXd a_z = plant.AugmentedA();
+  const Eigen::MatrixXd b_z = plant.AugmentedB();
+  a_kept_.resize(kept_, kept_);
+  b_kept_.resize(kept_, num_inputs_);
+  for (int r = 0; r < kept_; ++r) {
+    for (int c = 0; c < kept_; ++c) a_kept_(r, c) = a_z(kept_index_[r], kept_index_[c]);
+    b_kept_.row(r) = b_z.row(kept_index_[r]);
+  }
   KeepPhiAndGamma();
   KeepC(plant.C);
   if (kept_ <= kMaxBlock && num_outputs_ <= kMaxRows) {  // AdvanceBlock: a period at once
@@ -414,6 +422,45 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
 void ExactIntegrator::AdvancePeriod(const double* full_accel, long /*same_input_periods*/,
                                     double* outputs) {
   const double* drive_accel = Picked(full_accel);
+  if (!extremum_) {
+    AdvanceStates(drive_accel, outputs);
+    return;
+  }
+  std::copy(z_.begin(), z_.end(), z_start_.begin());
+  AdvanceStates(drive_accel, outputs);
+  period_extremum_ = extremum_->LargestInside(z_start_.data(), z_.data(), drive_accel);
+}
+
+bool ExactIntegrator::WatchExtremum(int row) {
+  extremum_.reset();
+  if (row < 0 || row >= num_outputs_ || kept_ == 0) return false;
+  const Eigen::RowVectorXd c =
+      Eigen::Map<const Eigen::RowVectorXd>(c_.data() + static_cast<std::ptrdiff_t>(row) * kept_, kept_);
+  extremum_ = TickExtremum::Make(a_kept_, b_kept_, c, period_s_);
+  z_start_.assign(kept_, 0.0);
+  period_extremum_ = 0.0;
+  return extremum_ != nullptr;
+}
+
+// z <- phi^(substeps periods) z (the input 0: no forced part), by squaring.
+bool ExactIntegrator::AdvanceAtRest(long periods) {
+  if (periods < 0) return false;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor power = Eigen::Map<const RowMajor>(phi_.data(), kept_, kept_);
+  Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(z_.data(), kept_);
+  for (long e = periods * substeps_; e > 0; e >>= 1) {
+    if (e & 1) z = (power * z).eval();
+    if (e > 1) power = (power * power).eval();
+  }
+  std::copy(z.data(), z.data() + kept_, z_.begin());
+  count_ += periods * substeps_;
+  tick_count_ = count_;
+  std::fill(accel_.begin(), accel_.end(), 0.0);
+  std::fill(g_.begin(), g_.end(), 0.0);
+  return true;
+}
+
+void ExactIntegrator::AdvanceStates(const double* drive_accel, double* outputs) {
   if (block_kernel_ && count_ == tick_count_) {  // at a tick: the period at once
     switch (kept_) {
       case 1: AdvanceBlock<1>(drive_accel, outputs); return;

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "model/integrator.h"
+#include "model/tick_extremum.h"
 
 namespace shapebench::model {
 
@@ -40,6 +41,9 @@ class ExactIntegrator final : public PlantIntegrator {
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
   void SelectOutputs(const std::vector<int>& rows) override;
+  bool WatchExtremum(int row) override;
+  double PeriodExtremum() const override { return period_extremum_; }
+  bool AdvanceAtRest(long periods) override;
 
   // Built on a plant reduced to the inputs `used` (MakeIntegrator), it takes the full
   // input vectors (`full_inputs` values) and picks those itself: no wrapper per call.
@@ -67,6 +71,7 @@ class ExactIntegrator final : public PlantIntegrator {
   void WriteOutputs(double* outputs) const;
   template <int K>
   void AdvanceBlock(const double* drive_accel, double* outputs);
+  void AdvanceStates(const double* drive_accel, double* outputs);
 
   int num_states_;
   int num_inputs_;
@@ -115,6 +120,12 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<int> input_map_;     // TakeFullInputs: plant input i is full input input_map_[i]
   int full_inputs_ = 0;
   std::vector<double> picked_;     // scratch: the picked inputs
+  // WatchExtremum: the kept states' augmented a and b, the watcher, the period's start.
+  Eigen::MatrixXd a_kept_;
+  Eigen::MatrixXd b_kept_;
+  std::unique_ptr<TickExtremum> extremum_;
+  std::vector<double> z_start_;
+  double period_extremum_ = 0.0;
   long count_ = 0;
   long tick_count_ = 0;        // count_ at the last tick AdvanceBlock ended on
   bool block_kernel_ = false;  // the block_* members are set up (a small plant)

@@ -152,6 +152,17 @@ class PlantIntegrator {
   virtual void AdvancePeriod(const double* drive_accel, long same_input_periods,
                              double* outputs);
 
+  // Watches output `row`: each AdvancePeriod then also finds PeriodExtremum(), the largest
+  // |output| at a stationary point strictly inside that period, exactly (no substeps:
+  // model/tick_extremum.h). False when the integrator cannot; the master keeps its samples.
+  virtual bool WatchExtremum(int /*row*/) { return false; }
+  virtual double PeriodExtremum() const { return 0.0; }
+
+  // Advances `periods` whole periods under a zero input at once, outputs unread (the
+  // master has the tail's metrics in closed form: bench/sim/damped_tail.h). False when the
+  // integrator cannot; it is then unchanged.
+  virtual bool AdvanceAtRest(long /*periods*/) { return false; }
+
   // Whether AdvancePeriod makes use of same_input_periods (else the master may pass 1).
   virtual bool UsesInputHolds() const { return false; }
 

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "bench/sim/command_samples.h"
+#include "bench/sim/damped_tail.h"
 #include "bench/sim/metric_accumulator.h"
 #include "bench/sim/output_view.h"
 #include "bench/sim/residual_vibration.h"
@@ -267,6 +268,9 @@ class CoSimulation {
   void Tick(std::size_t k);
   bool Done(std::size_t k, bool* settled) const { return window_.Done(k, acc_.quiet_since_tick, settled); }
   std::size_t max_ticks() const { return window_.max_ticks; }
+  // After tick k: at the residual window's end, the settling tail in closed form when the
+  // plant allows (DampedTail); then the run ends at *last_tick as the simulated tail would.
+  bool SettleTail(std::size_t k, bool* settled, std::size_t* last_tick);
   void Finish(std::size_t last_tick, bool settled);
 
  private:
@@ -309,6 +313,7 @@ class CoSimulation {
   // The free vibration of the plant's state (residual_ratio, cruise_residual_ratio), read at
   // motion end and at the cruise probes (RunWindow::cruise_probe_ticks), never per tick.
   std::unique_ptr<ResidualVibration> residual_vibration_;
+  std::unique_ptr<DampedTail> damped_tail_;  // a linear plant on the exact path, no trace
   std::size_t next_probe_ = 0;  // index into cruise_probe_ticks
   std::size_t next_probe_tick_ = std::numeric_limits<std::size_t>::max();
   double residual_m_ = 0.0;     // at rest, or a rigid machine: none
@@ -324,6 +329,7 @@ class CoSimulation {
   int deflection_at_ = 0;
   int tool_error_at_ = 0;
   bool holds_ = false;           // the integrator integrates across held inputs (SameInput)
+  bool exact_extrema_ = false;   // the integrator finds the view's extrema inside a period
   std::size_t next_change_ = 0;  // the first tick after k whose acceleration differs from a_k
   RunAccumulator acc_;
   // A plant with nonlinear elements (docs/nonlinear.md): its free response after motion
@@ -390,6 +396,14 @@ void CoSimulation::SetUpPlant() {
       integrator_ = model::MakeIntegrator(plant, scenario_.integrator, dt_, substeps_, scale_accel,
                                           samples_.max_speed_m_s);
       residual_vibration_ = std::make_unique<ResidualVibration>(plant, view_);
+      // The peaks of the view's axis exactly (one sign change of its rate a period, closed
+      // form per mode: model/tick_extremum.h), not only at the substeps.
+      if (view_.axis >= 0) exact_extrema_ = integrator_->WatchExtremum(model::kDeflectionRow + view_.axis);
+      // The trace shows the tail: simulated then.
+      if (exact_extrema_ && !options_.record_trace && !window_.never_settles_late &&
+          plant.num_outputs() == model::kNumOutputRows) {
+        damped_tail_ = std::make_unique<DampedTail>(plant, view_);
+      }
     }
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
     holds_ = integrator_->UsesInputHolds();
@@ -555,6 +569,15 @@ void CoSimulation::SampleTick(std::size_t k, bool others_zero) {
     SampleGeneral<P>(k, &general);
     tick = general;
   }
+  if (exact_extrema_) {
+    // An extremum inside the period (its ends are samples); at the motion-end tick it is
+    // the motion's (only that tick's last sample counts as after the motion).
+    const double inside = integrator_->PeriodExtremum();
+    tick.peak = std::max(tick.peak, inside);
+    if constexpr (P == RunPhase::kWindow) {
+      if (k != window_.motion_ticks) tick.residual = std::max(tick.residual, inside);
+    }
+  }
   acc_.Merge(tick, k, substeps_);
 }
 
@@ -605,6 +628,44 @@ void CoSimulation::SampleGeneral(std::size_t k, TickAccumulator* tick) {
     }
     tick->Add<P>(j, std::abs(view_.Of(deflection)), contour_gauge_.SquaredDistanceTo(actual));
   }
+}
+
+bool CoSimulation::SettleTail(std::size_t k, bool* settled, std::size_t* last_tick) {
+  if (!damped_tail_ || k != window_.window_end() || !damped_tail_->Split(integrator_->PlantState())) return false;
+  // The tail adds nothing to the peaks or the contour error (the path's end is the command's
+  // last position): every row's envelope within what the run has already seen, with a
+  // margin for rounding.
+  constexpr double kMargin = 1.0 + 1e-9;
+  double tool_error_sq = 0.0;
+  for (int b = 0; b < model::kNumAxes; ++b) {
+    const double seen = b == view_.axis ? std::max(acc_.peak, peak_axes_(b)) : peak_axes_(b);
+    if (!(damped_tail_->Envelope(model::kDeflectionRow + b) * kMargin <= seen)) return false;
+    tool_error_sq += std::pow(damped_tail_->Envelope(model::kToolErrorRow + b), 2);
+  }
+  if (!(tool_error_sq * kMargin <= acc_.contour_sq)) return false;
+  const double crossing = damped_tail_->LastCrossing(acc_.band);
+  if (std::isnan(crossing)) return false;
+  // The last sample on the run's grid (dt / substeps) at or before the crossing outside
+  // the band: settling_time_s as the simulated tail had it.
+  long last_outside = acc_.last_outside_band;
+  std::size_t quiet = acc_.quiet_since_tick;
+  const long from = crossing >= 0.0 ? static_cast<long>(std::floor(crossing * substeps_ / dt_)) + 1 : 0;
+  for (long j = from; j >= 1; --j) {
+    if (std::abs(damped_tail_->ViewAt(dt_ * static_cast<double>(j) / substeps_)) >= acc_.band) {
+      last_outside = static_cast<long>(k) * substeps_ + j;
+      quiet = static_cast<std::size_t>((last_outside - 1) / substeps_ + 1);
+      break;
+    }
+  }
+  const std::size_t stop = quiet + window_.period_ticks;  // > k: Done(k) was false
+  const std::size_t end = std::min(stop, window_.max_ticks);
+  if (end < k || !integrator_->AdvanceAtRest(static_cast<long>(end - k))) return false;
+  acc_.last_outside_band = last_outside;
+  acc_.quiet_since_tick = quiet;
+  *settled = stop <= window_.max_ticks;
+  *last_tick = end;
+  result_.tail_in_closed_form = true;
+  return true;
 }
 
 // The free vibration at motion end (the acceleration 0 from here on: equilibrium 0), per
@@ -707,6 +768,8 @@ void CoSimulation::FinishNonlinearMetrics(Metrics* m) const {
 void CoSimulation::FinishMetrics(Metrics* m) const {
   Eigen::Vector3d peak_axes = peak_axes_;
   if (single_.axis >= 0) peak_axes(single_.axis) = std::max(peak_axes(single_.axis), acc_.peak);
+  // The view's axis: its peak found inside the periods too (|deflection| of that axis).
+  if (exact_extrema_) peak_axes(view_.axis) = std::max(peak_axes(view_.axis), acc_.peak);
   m->peak_deflection_m = acc_.peak;
   m->peak_ratio = acc_.peak / m->static_displacement_m;
   m->residual_amplitude_m = residual_m_;
@@ -769,6 +832,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     sim.Tick(k);
     last_tick = k;
     if (sim.Done(k, &settled)) break;
+    if (sim.SettleTail(k, &settled, &last_tick)) break;
   }
   // Stage 4, the metrics.
   sim.Finish(last_tick, settled);

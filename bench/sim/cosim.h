@@ -51,6 +51,7 @@ struct RunResult {
   model::IntegratorStats stats;
   int substeps = 0;
   double simulated_s = 0.0;  // the time of the last sample (motion and tail)
+  bool tail_in_closed_form = false;  // the settling tail found without simulating it
   // What the user must be told beside the metrics (a failed CVODE cross-check under
   // integrator.cross_check: warn).
   std::vector<std::string> warnings;

@@ -1,0 +1,93 @@
+// The extrema of one output of a linear plant inside an interpolation period, exactly,
+// instead of from output substeps. With the input u held over the period the output is
+// y(t) = y_eq + sum_i q_i e^{lambda_i t} (A = V diag(lambda) V^{-1}, q_i = (c V)_i
+// (z_i(0) - z_eq,i), z = V^{-1} x): a sum of damped sinusoids plus a constant, whose
+// extrema lie where y'(t) = sum_i q_i lambda_i e^{lambda_i t} changes sign.
+//
+// How the roots of y' are found (and why none is missed):
+// - y' at a grid of points over the period (the ends from the states, c A x + c B u,
+//   without the modal split), a sign change brackets a root, refined by safeguarded Newton
+//   (bisection where a Newton step leaves the bracket) to 1e-15 of the period in time.
+// - One oscillatory pole pair seen by the output (a single mode): y' =
+//   2 |q lambda| e^{sigma t} cos(w_d t + phi), whose roots are simple and pi / w_d apart;
+//   the grid is finer than half that, so no interval holds two roots: every root is found.
+//   With the period itself that short, the root is the closed form w_d t + arg(q lambda)
+//   = pi / 2 (mod pi), no iteration.
+// - Several poles: an interval without a sign change is cleared only if
+//   |y'(a)| + |y'(b)| > M2 (b - a), M2 = sum |q_i| |lambda_i|^2 e^{sigma_i t} (a bound of
+//   |y''| on it), which rules out any root; otherwise it is halved, down to 2^-30 of the
+//   grid step. An interval left there can hide an extremum by at most M2 w^2 / 8 (w its
+//   width: ~1e-18 of the output's scale): the documented bound of the multi-mode case.
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Dense>
+
+namespace shapebench::model {
+
+class TickExtremum {
+ public:
+  // z' = a z + b u over a period of h; the watched output y = c z. Null when a does not
+  // split into modes well (a defective or singular a, e.g. a drive velocity state, or a
+  // pole at 0): the caller keeps its samples.
+  static std::unique_ptr<TickExtremum> Make(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                                            const Eigen::RowVectorXd& c, double h);
+
+  // The largest |y| at a stationary point strictly inside (0, h) of the period from state
+  // z0 to z1 under input u (arrays of the sizes of a and b); 0 when there is none (the
+  // ends are the caller's samples). No allocation.
+  double LargestInside(const double* z0, const double* z1, const double* u) {
+    const Eigen::Index n = c_a_.size();
+    double d0 = 0.0;
+    double d1 = 0.0;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      d0 += c_a_(j) * z0[j];
+      d1 += c_a_(j) * z1[j];
+    }
+    double forced = 0.0;
+    for (int i = 0; i < m_; ++i) forced += c_b_(i) * u[i];
+    d0 += forced;
+    d1 += forced;
+    // The common case (one mode, a period shorter than half its period): no sign change
+    // of y' over the period, no extremum inside it, nothing more to compute (inline).
+    if (single_pole_ && grid_ == 1 && !(d0 * d1 < 0.0)) return 0.0;
+    return Inside(z0, u, d0, d1);
+  }
+
+  // y at time t of the current period (after LargestInside set it up; 0 when it had
+  // nothing to set up).
+  double OutputAt(double t) const;
+
+  bool single_pole() const { return single_pole_; }
+  int grid_intervals() const { return grid_; }
+
+ private:
+  TickExtremum() = default;
+  double Inside(const double* z0, const double* u, double d0, double d1);  // y'(0), y'(h)
+  void SetUpPeriod(const double* z0, const double* u);
+  double Rate(double t) const;  // y'(t)
+  void RateAndCurvature(double t, double* rate, double* curvature) const;  // y', y''
+  double DerivativeBound(double lo, double hi, int power) const;
+  double Refine(double lo, double hi, double rate_lo) const;
+  void Search(double lo, double hi, double rate_lo, double rate_hi, int depth, double* best) const;
+
+  int n_ = 0;
+  int m_ = 0;
+  double h_ = 0.0;
+  int grid_ = 1;
+  bool single_pole_ = false;
+  Eigen::RowVectorXd c_a_;        // c a: y' = c a z + c b u
+  Eigen::RowVectorXd c_b_;
+  Eigen::RowVectorXd c_eq_;       // y_eq = c_eq u (= -c a^{-1} b u)
+  Eigen::VectorXcd lambda_;
+  Eigen::MatrixXcd v_inv_;
+  Eigen::RowVectorXcd cv_;        // c V
+  Eigen::MatrixXcd z_eq_;         // modal equilibrium per input: -diag(1/lambda) V^{-1} b
+  Eigen::VectorXd weight_;        // 2 for a pair's upper member, 1 for a real pole
+  // The current period's: q_i and y_eq.
+  Eigen::VectorXcd q_;
+  double y_eq_ = 0.0;
+};
+
+}  // namespace shapebench::model
