@@ -118,21 +118,43 @@ double ReversalWindows::Glitch() const {
 // square root of squaredNorm(), and the square root is monotone). A single straight
 // element (a `move:`, a one-block program) is measured on it directly: the whole path's
 // search gives the same point there.
+//
+// Only the run's largest contour error is kept, so a sample that cannot exceed the largest
+// so far need not be searched for: the last nearest point found lies on the path, so the
+// distance to it bounds the sample's from above. That bound is exact only where the
+// search is (lines and plane circular arcs: controller/path_geometry.cc, a helix's or a
+// spiral's nearest point is an estimate), and is applied with a margin far above the
+// rounding of the points (1e-12 m plus 1e-13 of the coordinates), so the largest error is
+// the same bit for bit.
 class ContourGauge {
  public:
   explicit ContourGauge(const controller::PathGeometry& path) : path_(path) {
     const auto& elements = path.elements();
     if (elements.size() == 1 && !elements.front().is_arc()) single_ = &elements.front();
+    exact_ = true;
+    for (const controller::PathElement& e : elements) {
+      if (e.is_arc() && (e.rise_m != 0.0 || e.start_radius_m != e.end_radius_m)) exact_ = false;
+    }
   }
-  double SquaredDistanceTo(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d nearest = single_ != nullptr ? single_->NearestPoint(p) : path_.NearestPoint(p);
-    return (p - nearest).squaredNorm();
+  // The sample's squared contour error, or 0 when it is provably below `largest_sq`.
+  double SquaredDistanceTo(const Eigen::Vector3d& p, double largest_sq) const {
+    if (exact_ && has_last_ && largest_sq > 0.0) {
+      const double margin = 1e-12 + 1e-13 * p.cwiseAbs().maxCoeff();
+      const double bound = (p - last_).norm() + margin;
+      if (bound * bound < largest_sq) return 0.0;
+    }
+    last_ = single_ != nullptr ? single_->NearestPoint(p) : path_.NearestPoint(p);
+    has_last_ = true;
+    return (p - last_).squaredNorm();
   }
   const controller::PathElement* single() const { return single_; }
 
  private:
   const controller::PathGeometry& path_;
   const controller::PathElement* single_ = nullptr;
+  bool exact_ = false;  // the search is exact on every element (no helix, no spiral)
+  mutable Eigen::Vector3d last_;  // the last nearest point found
+  mutable bool has_last_ = false;
 };
 
 // A run whose command moves one axis only, along a single straight element of that axis,
@@ -601,6 +623,7 @@ void CoSimulation::SampleGeneral(std::size_t k, TickAccumulator* tick) {
   const int block = k < interpolated_ticks ? command_.block[k] : -1;
   const double path_s =
       command_.path_position_m.empty() ? 0.0 : command_.path_position_m[std::min(k, interpolated_ticks - 1)];
+  const double largest_sq = acc_.contour_sq;  // the run's so far (the tick's is merged after it)
   for (int j = 0; j < substeps_; ++j) {
     const double* out = outputs_.data() + static_cast<std::ptrdiff_t>(j) * rows_;
     const double tau = taus_[j];
@@ -626,7 +649,7 @@ void CoSimulation::SampleGeneral(std::size_t k, TickAccumulator* tick) {
         ++w.samples;
       }
     }
-    tick->Add<P>(j, std::abs(view_.Of(deflection)), contour_gauge_.SquaredDistanceTo(actual));
+    tick->Add<P>(j, std::abs(view_.Of(deflection)), contour_gauge_.SquaredDistanceTo(actual, largest_sq));
   }
 }
 
