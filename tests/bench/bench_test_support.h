@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/config/config_error.h"
+#include "common/csv.h"
 
 namespace shapebench::bench::testing {
 
@@ -114,6 +115,18 @@ inline std::string ReadText(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Every record of a CSV file (results.csv and the like), failing the test if its last
+// row is torn (a partial line).
+inline std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  CsvReader reader(in);
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> fields;
+  while (reader.Next(&fields)) rows.push_back(fields);
+  EXPECT_FALSE(reader.torn()) << path;
+  return rows;
 }
 
 struct CliResult {

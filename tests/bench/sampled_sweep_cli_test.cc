@@ -14,13 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_test_support.h"
-#include "common/csv.h"
 #include "common/sample_math.h"
 
 namespace shapebench::bench {
 namespace {
 
 using testing::CliResult;
+using testing::ReadCsv;
 using testing::DataPath;
 using testing::ReadText;
 using testing::RunCli;
@@ -28,15 +28,6 @@ using testing::ScratchDir;
 
 const char* kSourceDir = SHAPEBENCH_SOURCE_DIR;
 const std::string kYieldStudy = "configs/sweeps/moving_column_yield.yaml";
-
-std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  CsvReader reader(in);
-  std::vector<std::vector<std::string>> rows;
-  std::vector<std::string> fields;
-  while (reader.Next(&fields)) rows.push_back(fields);
-  return rows;
-}
 
 // A sampled sweep of the SDOF test scenario: method 1 and zvd crossed with `samples`
 // normal frequencies (seed `seed`), and `checks` (YAML lines).

@@ -15,13 +15,13 @@
 
 #include <gtest/gtest.h>
 
-#include "common/csv.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {
 namespace {
 
 using testing::CliResult;
+using testing::ReadCsv;
 using testing::ReadText;
 using testing::Args;
 using testing::RunCli;
@@ -33,16 +33,6 @@ const std::string kNaturalPeriod = "tests/bench/data/sweeps/natural_period.yaml"
 // Method 4 with t1 = 4.77 ms: valid up to 34.9 Hz; at 35 Hz T/6 = 4.762 ms < t1.
 const std::vector<std::string> kMethod4 = {"--set", "controller.pattern.method=4", "--set",
                                            "controller.pattern.t1_s=0.00477"};
-
-std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  CsvReader reader(in);
-  std::vector<std::vector<std::string>> rows;
-  std::vector<std::string> fields;
-  while (reader.Next(&fields)) rows.push_back(fields);
-  EXPECT_FALSE(reader.torn()) << path;
-  return rows;
-}
 
 std::size_t Lines(const std::string& path) {
   const std::string text = ReadText(path);
