@@ -65,6 +65,10 @@ struct CvodeTuning {
   // shapebench's kernels for the serial vector operations (model/serial_vector_ops.h);
   // false: those of the libsundials package.
   bool optimized_vector_ops = true;
+  // A plant with nonlinear elements (model/nonlinear_integrator.h): CVODE integrates only
+  // the elements' correction to the linear part's exact response (held_input_response.h),
+  // which carries every jump of the held input; false: the whole state, restarted at each.
+  bool split_linear_part = true;
 };
 
 struct IntegratorConfig {

@@ -64,6 +64,8 @@ NonlinearDynamics::NonlinearDynamics(const NonlinearPlant& plant) {
   force_.assign(count, 0.0);
   value_.assign(count, 0.0);
   rate_.assign(count, 0.0);
+  offset_value_.assign(count, 0.0);
+  offset_rate_.assign(count, 0.0);
   grads_ = Eigen::MatrixXd::Zero(size(), count);
 }
 
@@ -73,6 +75,13 @@ std::vector<double> NonlinearDynamics::BristleScales() const {
     if (e.bristle >= 0) scales.push_back(e.config.friction.StaticN() / e.config.friction.sigma0_n_m);
   }
   return scales;
+}
+
+Eigen::VectorXd NonlinearDynamics::Row(int i) const {
+  Eigen::VectorXd row = Eigen::VectorXd::Zero(nz_);
+  const Sparse& r = elements_[i].row;
+  for (std::size_t k = 0; k < r.index.size(); ++k) row(r.index[k]) = r.value[k];
+  return row;
 }
 
 void NonlinearDynamics::SetForcing(const Eigen::VectorXd& forcing) {
@@ -160,7 +169,7 @@ void NonlinearDynamics::SolveStuck(const double* y) {
   const int s = static_cast<int>(stuck_.size());
   for (int a = 0; a < s; ++a) {
     const int i = stuck_[a];
-    double rate = elements_[i].row_a.Dot(y) + elements_[i].row_forcing;
+    double rate = elements_[i].row_a.Dot(y) + elements_[i].row_forcing + offset_rate_[i];
     for (int j = 0; j < num_elements(); ++j) {
       if (!Stuck(elements_[j])) rate += coupling_(i, j) * force_[j];
     }
@@ -177,7 +186,7 @@ void NonlinearDynamics::SolveStuck(const double* y) {
 void NonlinearDynamics::Forces(const double* y) {
   for (int i = 0; i < num_elements(); ++i) {
     const Element& e = elements_[i];
-    value_[i] = e.row.Dot(y);
+    value_[i] = Value(i, y);
     if (e.bristle >= 0) {
       // LuGre: the bristle rate once (its exp), for the force and for zeta' (Rhs).
       const FrictionConfig& f = e.config.friction;
@@ -208,7 +217,7 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
   // Only a stuck element's root reads a force (its holding force, which depends on the
   // others'); without one the roots need the rows alone (no LuGre exp at every output).
   if (stuck_.empty()) {
-    for (int i = 0; i < num_elements(); ++i) value_[i] = elements_[i].row.Dot(y);
+    for (int i = 0; i < num_elements(); ++i) value_[i] = Value(i, y);
   } else {
     Forces(y);
   }
@@ -327,7 +336,7 @@ void NonlinearDynamics::Jacobian(const double* y, double* jac) {
 void NonlinearDynamics::InitModes(const double* y) {
   for (int i = 0; i < num_elements(); ++i) {
     Element& e = elements_[i];
-    const double w = e.row.Dot(y);
+    const double w = Value(i, y);
     const NonlinearElement& c = e.config;
     switch (c.kind) {
       case NonlinearKind::kFriction:
@@ -374,7 +383,7 @@ void NonlinearDynamics::Project(double* y) {
   const int s = static_cast<int>(stuck_.size());
   if (s == 0) return;
   Eigen::VectorXd w(s);
-  for (int a = 0; a < s; ++a) w(a) = -elements_[stuck_[a]].row.Dot(y);
+  for (int a = 0; a < s; ++a) w(a) = -Value(stuck_[a], y);
   const Eigen::VectorXd impulse = s == 1 ? Eigen::VectorXd(w / coupling_(stuck_[0], stuck_[0]))
                                          : Eigen::VectorXd(stuck_solver_.solve(w));
   for (int a = 0; a < s; ++a) {

@@ -15,6 +15,7 @@
 // any stuck element whose F* exceeds its F_s is released).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -39,6 +40,16 @@ class NonlinearDynamics {
 
   // The held input changed: forcing = B_z a (length nz).
   void SetForcing(const Eigen::VectorXd& forcing);
+  // Per element: a value added to its row z and to that row's rate (the rows of a response
+  // the state leaves out: model/held_input_response.h); 0 until set.
+  void SetOffsets(const double* values, const double* rates) {
+    std::copy(values, values + num_elements(), offset_value_.begin());
+    std::copy(rates, rates + num_elements(), offset_rate_.begin());
+  }
+  // Whether the offsets' rates are read (only a stuck element's holding force reads them).
+  bool ReadsRates() const { return !stuck_.empty(); }
+  // Element i's row over z (what an offset is the value of).
+  Eigen::VectorXd Row(int i) const;
   // Modes at rest (y from Reset): sliding where w != 0, stuck where w == 0 and F_s > 0.
   void InitModes(const double* y);
   // After the input changed: releases stuck elements the new forcing breaks loose. True
@@ -110,6 +121,9 @@ class NonlinearDynamics {
   std::vector<double> force_;
   std::vector<double> value_;  // row z per element
   std::vector<double> rate_;   // LuGre: zeta' per element (Forces)
+  std::vector<double> offset_value_;  // SetOffsets
+  std::vector<double> offset_rate_;
+  double Value(int i, const double* y) const { return elements_[i].row.Dot(y) + offset_value_[i]; }
 };
 
 }  // namespace shapebench::model

@@ -4,7 +4,10 @@
 // axes are uncoupled), root finding (CVodeRootInit) at the
 // elements' switching points (stick and slip, the gap's edges, the force limit), each
 // event a restart from the state there with the new modes. Output substeps come from
-// CVODE's interpolation (CV_NORMAL). A separate class from CvodeIntegrator, whose tuned path
+// CVODE's interpolation (CV_NORMAL). By default (CvodeTuning::split_linear_part) CVODE
+// integrates e = z - z_p, z_p the linear part's exact response to the held inputs
+// (model/held_input_response.h): the input's jump at every tick stays in z_p, so CVODE's
+// history runs on across ticks instead of restarting at each. A separate class from CvodeIntegrator, whose tuned path
 // for linear plants (Hermite output, Adams) it leaves as it is.
 #pragma once
 
@@ -16,6 +19,7 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
+#include "model/held_input_response.h"
 #include "model/integrator.h"
 #include "model/nonlinear_dynamics.h"
 #include "model/nonlinear_plant.h"
@@ -59,8 +63,17 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   static void RecordError(int code, const char* module, const char* function, char* msg, void* user_data);
   double TimeAt(long count) const { return static_cast<double>(count) * period_s_ / substeps_; }
   void ApplyInput(const double* drive_accel);
+  // Split mode: z_p to the start of `tick`; the elements' offsets at time t (of that tick).
+  void SyncParticular(long tick);
+  // Rates only where a stuck element reads them, or `with_rates` (the modes may change).
+  void OffsetsAt(double t, bool with_rates = false);
+  double TickStart() const { return TimeAt(particular_tick_ * substeps_); }
+  // z_p at Time() (split mode).
+  Eigen::VectorXd ParticularState() const;
   void Reinit();
   void Advance(long count);
+  void AdvanceOneStep(long count);
+  void ApplyEvent(N_Vector state, long* events);
   void Check(int flag, const char* call) const;
   Eigen::VectorXd AbsoluteTolerances(const NonlinearPlant& plant, const IntegratorConfig& config,
                                      double scale_accel_m_s2, double scale_velocity_m_s) const;
@@ -70,6 +83,12 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   double period_s_;
   int substeps_;
   Eigen::MatrixXd C_;
+  struct OutputEntry {
+    int row;
+    int column;
+    double value;
+  };
+  std::vector<OutputEntry> c_entries_;  // C_'s entries that are not 0, column by column
   Eigen::MatrixXd B_z_;
   Eigen::VectorXd accel_;
   Eigen::VectorXd all_outputs_;  // scratch: every output of a substep
@@ -77,6 +96,8 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   Eigen::MatrixXd jacobian_;  // the last Jacobian (LinSys), dense, column-major
   std::vector<int> roots_found_;
   bool need_reinit_ = false;
+  bool pending_event_ = false;  // a root CVODE found beyond the last output time
+  double event_s_ = 0.0;
   bool stop_set_ = false;
   double stop_s_ = 0.0;
   long count_ = 0;
@@ -84,6 +105,12 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   IntegratorStats finished_;
   std::string last_message_;
   std::unique_ptr<Memory> memory_;
+  // Split mode (null without it): the linear part's response and the tick it starts.
+  std::unique_ptr<HeldInputResponse> particular_;
+  long particular_tick_ = 0;
+
+  std::vector<double> probe_values_;
+  std::vector<double> probe_rates_;
 };
 
 // The integrator of a plant that may have nonlinear elements: MakeIntegrator for a linear
