@@ -250,16 +250,21 @@ void NonlinearCvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   pending_event_ = false;
 }
 
-void NonlinearCvodeIntegrator::Reinit() {
+// CVODE restarted at t from memory_->y, its counts so far kept.
+void NonlinearCvodeIntegrator::RestartAt(double t) {
   long steps = 0;
   long rhs_evals = 0;
   CVodeGetNumSteps(memory_->cvode, &steps);
   CVodeGetNumRhsEvals(memory_->cvode, &rhs_evals);
   finished_.steps += steps;
   finished_.rhs_evals += rhs_evals;
-  ++finished_.reinits;
-  Check(CVodeReInit(memory_->cvode, Time(), memory_->y), "CVodeReInit");
+  Check(CVodeReInit(memory_->cvode, t, memory_->y), "CVodeReInit");
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
+}
+
+void NonlinearCvodeIntegrator::Reinit() {
+  ++finished_.reinits;
+  RestartAt(Time());
   need_reinit_ = false;
   pending_event_ = false;  // beyond Time(): found again from the new start if still there
 }
@@ -311,24 +316,34 @@ void NonlinearCvodeIntegrator::Advance(long count) {
     return;
   }
   const double t_out = TimeAt(count);
-  void* mem = memory_->cvode;
   for (long events = 0;;) {
     if (need_reinit_) Reinit();
-    if (!stop_set_) {
-      Check(CVodeSetStopTime(mem, stop_s_), "CVodeSetStopTime");
-      stop_set_ = true;
-    }
     double t_reached = 0.0;
-    const int flag = CVode(mem, t_out, memory_->y, &t_reached, CV_NORMAL);
-    Check(flag, "CVode");
-    if (flag == CV_TSTOP_RETURN) stop_set_ = false;
-    if (flag != CV_ROOT_RETURN) return;
-    Check(CVodeGetRootInfo(mem, roots_found_.data()), "CVodeGetRootInfo");
+    if (CallCvode(t_out, memory_->y, CV_NORMAL, &t_reached) != CV_ROOT_RETURN) return;
     event_s_ = t_reached;
     ApplyEvent(memory_->y, &events);
-    // An event on the substep's end (to rounding): the state there is the output.
-    if (t_out - t_reached <= 1e-13 * std::max(1.0, std::abs(t_out))) return;
+    if (OnSubstepEnd(t_out, t_reached)) return;
   }
+}
+
+// CVode towards t_out in `mode` (the stop time set again where CVODE forgot it), the roots
+// found recorded; its return flag.
+int NonlinearCvodeIntegrator::CallCvode(double t_out, N_Vector out, int mode, double* t_reached) {
+  void* mem = memory_->cvode;
+  if (!stop_set_) {
+    Check(CVodeSetStopTime(mem, stop_s_), "CVodeSetStopTime");
+    stop_set_ = true;
+  }
+  const int flag = CVode(mem, t_out, out, t_reached, mode);
+  Check(flag, "CVode");
+  if (flag == CV_TSTOP_RETURN) stop_set_ = false;
+  if (flag == CV_ROOT_RETURN) Check(CVodeGetRootInfo(mem, roots_found_.data()), "CVodeGetRootInfo");
+  return flag;
+}
+
+// An event on the substep's end (to rounding): the state there is the output.
+bool NonlinearCvodeIntegrator::OnSubstepEnd(double t_out, double t) {
+  return t_out - t <= 1e-13 * std::max(1.0, std::abs(t_out));
 }
 
 // Split: CVODE steps one internal step at a time (CV_ONE_STEP) and the substep's state is
@@ -347,25 +362,17 @@ void NonlinearCvodeIntegrator::AdvanceOneStep(long count) {
       if (event_s_ > t_out) break;  // after this substep
       pending_event_ = false;
       ApplyEvent(memory_->step, &events);
-      if (t_out - event_s_ <= 1e-13 * std::max(1.0, std::abs(t_out))) return;
+      if (OnSubstepEnd(t_out, event_s_)) return;
       continue;
     }
     if (need_reinit_) Reinit();
     double t_now = 0.0;
     Check(CVodeGetCurrentTime(mem, &t_now), "CVodeGetCurrentTime");
     if (t_now >= t_out) break;
-    if (!stop_set_) {
-      Check(CVodeSetStopTime(mem, stop_s_), "CVodeSetStopTime");
-      stop_set_ = true;
-    }
     double t_reached = 0.0;
-    const int flag = CVode(mem, t_out, memory_->step, &t_reached, CV_ONE_STEP);
-    Check(flag, "CVode");
-    if (flag == CV_TSTOP_RETURN) stop_set_ = false;
-    if (flag == CV_ROOT_RETURN) {
+    if (CallCvode(t_out, memory_->step, CV_ONE_STEP, &t_reached) == CV_ROOT_RETURN) {
       pending_event_ = true;
       event_s_ = t_reached;
-      Check(CVodeGetRootInfo(mem, roots_found_.data()), "CVodeGetRootInfo");
     }
   }
   Check(CVodeGetDky(mem, t_out, 0, memory_->y), "CVodeGetDky");
@@ -384,14 +391,7 @@ void NonlinearCvodeIntegrator::ApplyEvent(N_Vector state, long* events) {
   if (state != memory_->y) N_VScale(1.0, state, memory_->y);
   OffsetsAt(event_s_, true);  // the modes may change: a new stuck element reads its rate
   dynamics_.HandleRoots(roots_found_.data(), N_VGetArrayPointer(memory_->y));
-  long steps = 0;
-  long rhs_evals = 0;
-  CVodeGetNumSteps(memory_->cvode, &steps);
-  CVodeGetNumRhsEvals(memory_->cvode, &rhs_evals);
-  finished_.steps += steps;
-  finished_.rhs_evals += rhs_evals;
-  Check(CVodeReInit(memory_->cvode, event_s_, memory_->y), "CVodeReInit");
-  stop_set_ = false;
+  RestartAt(event_s_);
 }
 
 void NonlinearCvodeIntegrator::Step() {

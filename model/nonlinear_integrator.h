@@ -71,9 +71,12 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   // z_p at Time() (split mode).
   Eigen::VectorXd ParticularState() const;
   void Reinit();
+  void RestartAt(double t);
   void Advance(long count);
   void AdvanceOneStep(long count);
   void ApplyEvent(N_Vector state, long* events);
+  int CallCvode(double t_out, N_Vector out, int mode, double* t_reached);
+  static bool OnSubstepEnd(double t_out, double t);
   void Check(int flag, const char* call) const;
   Eigen::VectorXd AbsoluteTolerances(const NonlinearPlant& plant, const IntegratorConfig& config,
                                      double scale_accel_m_s2, double scale_velocity_m_s) const;
