@@ -15,6 +15,19 @@
 
 namespace shapebench {
 
+// RunOrdered's one job: computed and consumed on the calling thread, in the same order,
+// with no hand-off between threads (a wake-up an item otherwise).
+template <typename Result, typename Cancelled>
+std::uint64_t RunHere(std::uint64_t count, const std::function<Result(std::uint64_t)>& work,
+                      const std::function<void(std::uint64_t, Result&&)>& consume, const Cancelled& is_cancelled) {
+  std::uint64_t done = 0;
+  for (std::uint64_t k = 0; k < count && !is_cancelled(); ++k) {
+    consume(k, work(k));
+    done = k + 1;
+  }
+  return done;
+}
+
 // Runs work(k) for k = 0..count-1 on `jobs` threads and hands each result to consume(k,
 // result) on the calling thread, in order of k. Workers stay at most `window` items
 // ahead of the consumer, so memory does not grow with `count`. An exception from work or
@@ -33,16 +46,7 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   if (window == 0) window = 64 * static_cast<std::uint64_t>(jobs);
   constexpr auto kPoll = std::chrono::milliseconds(20);
   auto is_cancelled = [&] { return cancelled && cancelled(); };
-  if (jobs == 1) {
-    // One worker: computed and consumed on the calling thread, in the same order, with no
-    // hand-off between threads (a wake-up a point otherwise).
-    std::uint64_t done = 0;
-    for (std::uint64_t k = 0; k < count && !is_cancelled(); ++k) {
-      consume(k, work(k));
-      done = k + 1;
-    }
-    return done;
-  }
+  if (jobs == 1) return RunHere<Result>(count, work, consume, is_cancelled);
   std::mutex mutex;
   std::condition_variable ready_changed;
   std::condition_variable consumed_changed;
@@ -51,8 +55,7 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   std::uint64_t consumed = 0;
   int running = jobs;  // worker threads not yet returned
   bool stop = false;
-  // The consumer is woken for a run of `batch` results in order (or a worker held back by
-  // the window, or the end), not for each one: a wake-up costs more than a small item.
+  // The consumer wakes for `batch` results in order (or a worker held back, or the end).
   const std::uint64_t batch = std::max<std::uint64_t>(1, std::min<std::uint64_t>(16, window / 2));
   bool consumer_waiting = false;
   int held_back = 0;  // workers waiting for the consumer (the window)

@@ -44,6 +44,11 @@ class ExactIntegrator final : public PlantIntegrator {
   bool WatchExtremum(int row) override;
   double PeriodExtremum() const override { return period_extremum_; }
   bool AdvanceAtRest(long periods) override;
+  // A small plant with a watched extremum (the block kernel computes each substep from the
+  // period's start state, so the inner ones can come later, the same bits).
+  bool DefersSubsteps() const override { return block_kernel_ && extremum_ != nullptr; }
+  void AdvancePeriodToEnd(const double* drive_accel, double* outputs) override;
+  void WriteDeferredSubsteps(double* outputs) const override;
 
   // Built on a plant reduced to the inputs `used` (MakeIntegrator), it takes the full
   // input vectors (`full_inputs` values) and picks those itself: no wrapper per call.
@@ -71,6 +76,12 @@ class ExactIntegrator final : public PlantIntegrator {
   void WriteOutputs(double* outputs) const;
   template <int K>
   void AdvanceBlock(const double* drive_accel, double* outputs);
+  void PrepareBlockInput(const double* drive_accel);
+  // Substeps [from, to) of the period that starts at z, written to outputs + j * width.
+  template <int K>
+  void WriteBlockOutputs(const double* z, int from, int to, double* outputs) const;
+  template <int K>
+  void AdvanceBlockState(const double* z);
   void AdvanceStates(const double* drive_accel, double* outputs);
 
   int num_states_;

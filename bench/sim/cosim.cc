@@ -11,6 +11,7 @@
 
 #include "bench/sim/command_samples.h"
 #include "bench/sim/damped_tail.h"
+#include "bench/sim/deferred_substeps.h"
 #include "bench/sim/metric_accumulator.h"
 #include "bench/sim/output_view.h"
 #include "bench/sim/residual_vibration.h"
@@ -201,6 +202,7 @@ struct SingleAxisSampling {  // what stays the same from tick to tick
   int width;
   int substeps;
   SingleAxis single;
+  int first = 0;  // the first substep sampled (substeps - 1: the period's end alone)
 };
 
 template <RunPhase P>
@@ -209,7 +211,7 @@ template <RunPhase P>
   TickAccumulator tick = *out;
   // An `or` of comparisons, not a running sum, keeps the samples independent.
   bool not_finite = false;
-  for (int j = 0; j < in.substeps; ++j) {
+  for (int j = in.first; j < in.substeps; ++j) {
     const double tau = in.taus[j];
     const double p = p0 + v0 * tau + half_a * tau * tau;
     const double actual = p + in.tool_errors[j * in.width];
@@ -305,6 +307,9 @@ class CoSimulation {
   template <RunPhase P> void SampleSingleAxis(std::size_t k, TickAccumulator* tick);
   template <RunPhase P> void SampleGeneral(std::size_t k, TickAccumulator* tick);
   template <RunPhase P> void SampleTick(std::size_t k, bool others_zero);
+  template <RunPhase P> void DeferredTick(std::size_t k);
+  template <RunPhase P>
+  bool InnerSamplesMatter(std::size_t k, const TickAccumulator& tick, double y_end, double inside) const;
   void Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a,
               const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
   void ProbeMotionEnd();
@@ -346,6 +351,11 @@ class CoSimulation {
   std::vector<ArcWindow> arcs_;
   SingleAxis single_;
   SingleAxisSampling single_sampling_{};
+  // Inner substeps stepped only where they can change a metric (deferred_substeps.h):
+  // a single-axis run whose tool error is its deflection, exact path, no trace.
+  bool defer_substeps_ = false;
+  SingleAxisSampling end_sampling_{};  // the period's end sample alone
+  double period_start_m_ = 0.0;        // the deflection at the current period's start
   std::vector<int> watched_rows_;  // other axes' rows the single-axis samples must see at 0
   int width_ = 0;                  // outputs per substep in outputs_
   int deflection_at_ = 0;
@@ -495,6 +505,13 @@ void CoSimulation::SetUpSampling() {
   }
   single_sampling_ = {outputs_.data() + deflection_at_, outputs_.data() + tool_error_at_, taus_.data(),
                       width_, substeps_, single_};
+  // The tool error bounded by the deflection's bound needs the two rows to be one.
+  const model::LinearPlant& plant = machine_.plant;
+  defer_substeps_ = exact_extrema_ && watched_rows_.empty() && width_ == 2 && substeps_ > 1 &&
+                    integrator_->DefersSubsteps() && view_.axis == single_.axis &&
+                    plant.C.row(model::kDeflectionRow + single_.axis) == plant.C.row(model::kToolErrorRow + single_.axis);
+  end_sampling_ = single_sampling_;
+  end_sampling_.first = substeps_ - 1;
 }
 
 // For how many periods from tick k on the held acceleration stays a_k (the tail's is
@@ -551,6 +568,18 @@ bool CoSimulation::StepPlant(std::size_t k) {
 }
 
 void CoSimulation::Tick(std::size_t k) {
+  if (defer_substeps_) {
+    if (k < window_.motion_ticks) {
+      DeferredTick<RunPhase::kMotion>(k);
+      if (k == next_probe_tick_) ProbeCruise(k);
+    } else if (k <= window_.window_end()) {
+      DeferredTick<RunPhase::kWindow>(k);
+      if (k == window_.motion_ticks) ProbeMotionEnd();
+    } else {
+      DeferredTick<RunPhase::kTail>(k);
+    }
+    return;
+  }
   const bool others_zero = StepPlant(k);
   if (k < window_.motion_ticks) {
     SampleTick<RunPhase::kMotion>(k, others_zero);
@@ -601,6 +630,64 @@ void CoSimulation::SampleTick(std::size_t k, bool others_zero) {
     }
   }
   acc_.Merge(tick, k, substeps_);
+}
+
+// SampleTick of a run with deferred substeps: the period stepped to its end; its inner
+// substeps written and sampled only where they can change a metric (InnerSamplesMatter).
+template <RunPhase P>
+void CoSimulation::DeferredTick(std::size_t k) {
+  integrator_->AdvancePeriodToEnd(samples_.AccelAt(k).data(), outputs_.data());
+  const double y_end = outputs_[static_cast<std::size_t>((substeps_ - 1) * width_ + deflection_at_)];
+  TickAccumulator tick = acc_.StartTick(P, k, window_.motion_ticks, substeps_);
+  const double inside = integrator_->PeriodExtremum();
+  const bool inner = InnerSamplesMatter<P>(k, tick, y_end, inside);
+  period_start_m_ = y_end;
+  if (inner) {
+    integrator_->WriteDeferredSubsteps(outputs_.data());
+    SampleSingleAxis<P>(k, &tick);
+  } else {
+    ++result_.deferred_periods;
+    const bool commanded = k <= samples_.n;
+    const int ax = single_.axis;
+    const double p0 = (commanded ? samples_.positions[k - 1] : samples_.positions.back())(ax);
+    const double v0 = commanded ? samples_.velocity[k - 1](ax) : 0.0;
+    if (SampleSingleAxisTick<P>(end_sampling_, p0, v0, 0.5 * samples_.AccelAt(k)(ax), &tick)) {
+      integrator_->WriteDeferredSubsteps(outputs_.data());
+      CheckFinite(k);  // throws at the first non-finite substep
+    }
+  }
+  tick.peak = std::max(tick.peak, inside);
+  if constexpr (P == RunPhase::kWindow) {
+    if (k != window_.motion_ticks) tick.residual = std::max(tick.residual, inside);
+  }
+  acc_.Merge(tick, k, substeps_);
+}
+
+// Whether a sample strictly inside period k can change a metric: raise the peak, the
+// residual peak or the contour error so far, or be the last outside the settling band
+// (the end sample is, when it is outside). The deflection (= the tool error) of every
+// inner sample is within InnerSampleBound; the tool position within that of the command's
+// range over the period. NaN anywhere: they matter (the samples then check finiteness).
+template <RunPhase P>
+bool CoSimulation::InnerSamplesMatter(std::size_t k, const TickAccumulator& tick, double y_end,
+                                      double inside) const {
+  const double bound = InnerSampleBound(period_start_m_, y_end, inside, result_.metrics.static_displacement_m);
+  if (!(bound < acc_.peak)) return true;
+  if constexpr (P != RunPhase::kMotion) {
+    if (tick.first_after_motion < substeps_ - 1) {
+      if (P == RunPhase::kWindow && !(bound < acc_.residual)) return true;
+      if (!(bound < tick.band) && !(std::abs(y_end) >= tick.band)) return true;
+    }
+  }
+  const bool commanded = k <= samples_.n;
+  const int ax = single_.axis;
+  const double p0 = (commanded ? samples_.positions[k - 1] : samples_.positions.back())(ax);
+  const double v0 = commanded ? samples_.velocity[k - 1](ax) : 0.0;
+  double lo = 0.0;
+  double hi = 0.0;
+  QuadraticRange(p0, v0, 0.5 * samples_.AccelAt(k)(ax), dt_, &lo, &hi);
+  const double off = OffLineBound(single_.start_m, single_.direction, single_.length_m, lo - bound, hi + bound);
+  return off != 0.0 && !(off * off < acc_.contour_sq);
 }
 
 template <RunPhase P>
