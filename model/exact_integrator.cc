@@ -344,9 +344,8 @@ void ExactIntegrator::WriteOutputs(double* outputs) const {
 
 // The forced part of a small plant's period, once per held acceleration (it changes a
 // few times a move).
-void ExactIntegrator::PrepareBlockInput(const double* drive_accel) {
+void ExactIntegrator::ComputeBlockInput(const double* drive_accel) {
   const int m = num_inputs_;
-  if (block_ready_ && std::equal(drive_accel, drive_accel + m, block_accel_.begin())) return;
   std::copy(drive_accel, drive_accel + m, block_accel_.begin());
   for (std::size_t i = 0; i < block_forced_.size(); ++i) {
     double sum = 0.0;
@@ -358,13 +357,14 @@ void ExactIntegrator::PrepareBlockInput(const double* drive_accel) {
     for (int c = 0; c < m; ++c) sum += block_gamma_[static_cast<std::size_t>(i) * m + c] * drive_accel[c];
     block_g_[i] = sum;
   }
+  if (extremum_) block_forced_rate_ = extremum_->ForcedRate(drive_accel);
   block_ready_ = true;
 }
 
 // Substep j's outputs are (C phi^(j+1)) z + (C gamma_(j+1)) a, each from the period's
 // start state z alone: any range of them, in any order, gives the same bits.
 template <int K>
-void ExactIntegrator::WriteBlockOutputs(const double* z_start, int from, int to, double* outputs) const {
+inline void ExactIntegrator::WriteBlockOutputs(const double* z_start, int from, int to, double* outputs) const {
   const int rows = static_cast<int>(block_rows_.size());
   double z[K];
   for (int i = 0; i < K; ++i) z[i] = z_start[i];
@@ -414,7 +414,7 @@ void ExactIntegrator::WriteBlockOutputs(const double* z_start, int from, int to,
 
 // The state at the period's end: phi^S z + gamma_S a.
 template <int K>
-void ExactIntegrator::AdvanceBlockState(const double* z) {
+inline void ExactIntegrator::AdvanceBlockState(const double* z) {
   double next[K];
   for (int i = 0; i < K; ++i) {
     double sum = 0.0;
@@ -437,18 +437,34 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   AdvanceBlockState<K>(z);
 }
 
+// The extremum's rates at the period's ends from the states in registers (as
+// TickExtremum::LargestInside sums them), not reloaded from memory just written.
+template <int K>
+void ExactIntegrator::AdvanceToEnd(const double* drive_accel, double* outputs) {
+  PrepareBlockInput(drive_accel);
+  double z[K];
+  for (int i = 0; i < K; ++i) z_start_[i] = z[i] = z_[i];
+  WriteBlockOutputs<K>(z, substeps_ - 1, substeps_, outputs);
+  AdvanceBlockState<K>(z);
+  double d0 = 0.0;
+  double d1 = 0.0;
+  for (int j = 0; j < K; ++j) {
+    d0 += extremum_rate_[j] * z[j];
+    d1 += extremum_rate_[j] * z_[j];
+  }
+  d0 += block_forced_rate_;
+  d1 += block_forced_rate_;
+  period_extremum_ = extremum_->LargestInsideWithRates(z_start_.data(), drive_accel, d0, d1);
+}
+
 void ExactIntegrator::AdvancePeriodToEnd(const double* full_accel, double* outputs) {
   const double* drive_accel = Picked(full_accel);
-  std::copy(z_.begin(), z_.end(), z_start_.begin());
-  PrepareBlockInput(drive_accel);
-  const double* z = z_start_.data();
   switch (kept_) {
-    case 1: WriteBlockOutputs<1>(z, substeps_ - 1, substeps_, outputs); AdvanceBlockState<1>(z); break;
-    case 2: WriteBlockOutputs<2>(z, substeps_ - 1, substeps_, outputs); AdvanceBlockState<2>(z); break;
-    case 3: WriteBlockOutputs<3>(z, substeps_ - 1, substeps_, outputs); AdvanceBlockState<3>(z); break;
-    default: WriteBlockOutputs<4>(z, substeps_ - 1, substeps_, outputs); AdvanceBlockState<4>(z); break;
+    case 1: AdvanceToEnd<1>(drive_accel, outputs); break;
+    case 2: AdvanceToEnd<2>(drive_accel, outputs); break;
+    case 3: AdvanceToEnd<3>(drive_accel, outputs); break;
+    default: AdvanceToEnd<4>(drive_accel, outputs); break;
   }
-  period_extremum_ = extremum_->LargestInside(z_start_.data(), z_.data(), drive_accel);
 }
 
 void ExactIntegrator::WriteDeferredSubsteps(double* outputs) const {
@@ -480,6 +496,11 @@ bool ExactIntegrator::WatchExtremum(int row) {
       Eigen::Map<const Eigen::RowVectorXd>(c_.data() + static_cast<std::ptrdiff_t>(row) * kept_, kept_);
   extremum_ = TickExtremum::Make(a_kept_, b_kept_, c, period_s_);
   z_start_.assign(kept_, 0.0);
+  block_ready_ = false;  // block_forced_rate_ is the watcher's
+  if (extremum_) {
+    const Eigen::RowVectorXd& rate = extremum_->rate_row();
+    extremum_rate_.assign(rate.data(), rate.data() + rate.size());
+  }
   period_extremum_ = 0.0;
   return extremum_ != nullptr;
 }

@@ -202,7 +202,6 @@ struct SingleAxisSampling {  // what stays the same from tick to tick
   int width;
   int substeps;
   SingleAxis single;
-  int first = 0;  // the first substep sampled (substeps - 1: the period's end alone)
 };
 
 template <RunPhase P>
@@ -211,7 +210,7 @@ template <RunPhase P>
   TickAccumulator tick = *out;
   // An `or` of comparisons, not a running sum, keeps the samples independent.
   bool not_finite = false;
-  for (int j = in.first; j < in.substeps; ++j) {
+  for (int j = 0; j < in.substeps; ++j) {
     const double tau = in.taus[j];
     const double p = p0 + v0 * tau + half_a * tau * tau;
     const double actual = p + in.tool_errors[j * in.width];
@@ -308,8 +307,7 @@ class CoSimulation {
   template <RunPhase P> void SampleGeneral(std::size_t k, TickAccumulator* tick);
   template <RunPhase P> void SampleTick(std::size_t k, bool others_zero);
   template <RunPhase P> void DeferredTick(std::size_t k);
-  template <RunPhase P>
-  bool InnerSamplesMatter(std::size_t k, const TickAccumulator& tick, double y_end, double inside) const;
+  template <RunPhase P> bool InnerSamplesMatter(std::size_t k, double y_end, double inside) const;
   void Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a,
               const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
   void ProbeMotionEnd();
@@ -354,7 +352,6 @@ class CoSimulation {
   // Inner substeps stepped only where they can change a metric (deferred_substeps.h):
   // a single-axis run whose tool error is its deflection, exact path, no trace.
   bool defer_substeps_ = false;
-  SingleAxisSampling end_sampling_{};  // the period's end sample alone
   double period_start_m_ = 0.0;        // the deflection at the current period's start
   std::vector<int> watched_rows_;  // other axes' rows the single-axis samples must see at 0
   int width_ = 0;                  // outputs per substep in outputs_
@@ -510,8 +507,6 @@ void CoSimulation::SetUpSampling() {
   defer_substeps_ = exact_extrema_ && watched_rows_.empty() && width_ == 2 && substeps_ > 1 &&
                     integrator_->DefersSubsteps() && view_.axis == single_.axis &&
                     plant.C.row(model::kDeflectionRow + single_.axis) == plant.C.row(model::kToolErrorRow + single_.axis);
-  end_sampling_ = single_sampling_;
-  end_sampling_.first = substeps_ - 1;
 }
 
 // For how many periods from tick k on the held acceleration stays a_k (the tail's is
@@ -638,24 +633,25 @@ template <RunPhase P>
 void CoSimulation::DeferredTick(std::size_t k) {
   integrator_->AdvancePeriodToEnd(samples_.AccelAt(k).data(), outputs_.data());
   const double y_end = outputs_[static_cast<std::size_t>((substeps_ - 1) * width_ + deflection_at_)];
-  TickAccumulator tick = acc_.StartTick(P, k, window_.motion_ticks, substeps_);
   const double inside = integrator_->PeriodExtremum();
-  const bool inner = InnerSamplesMatter<P>(k, tick, y_end, inside);
+  // The motion-end tick's end sample alone opens the residual window: sampled in full.
+  const bool inner = k == window_.motion_ticks || InnerSamplesMatter<P>(k, y_end, inside);
   period_start_m_ = y_end;
-  if (inner) {
-    integrator_->WriteDeferredSubsteps(outputs_.data());
-    SampleSingleAxis<P>(k, &tick);
-  } else {
+  if (!inner) {
+    // No sample of the period, its end included, reaches a maximum so far; the end sample
+    // can still be the last outside the settling band.
     ++result_.deferred_periods;
-    const bool commanded = k <= samples_.n;
-    const int ax = single_.axis;
-    const double p0 = (commanded ? samples_.positions[k - 1] : samples_.positions.back())(ax);
-    const double v0 = commanded ? samples_.velocity[k - 1](ax) : 0.0;
-    if (SampleSingleAxisTick<P>(end_sampling_, p0, v0, 0.5 * samples_.AccelAt(k)(ax), &tick)) {
-      integrator_->WriteDeferredSubsteps(outputs_.data());
-      CheckFinite(k);  // throws at the first non-finite substep
+    if constexpr (P != RunPhase::kMotion) {
+      if (std::abs(y_end) >= acc_.band) {
+        acc_.last_outside_band = static_cast<long>(k) * substeps_;
+        acc_.quiet_since_tick = k;
+      }
     }
+    return;
   }
+  integrator_->WriteDeferredSubsteps(outputs_.data());
+  TickAccumulator tick = acc_.StartTick(P, k, window_.motion_ticks, substeps_);
+  SampleSingleAxis<P>(k, &tick);
   tick.peak = std::max(tick.peak, inside);
   if constexpr (P == RunPhase::kWindow) {
     if (k != window_.motion_ticks) tick.residual = std::max(tick.residual, inside);
@@ -663,21 +659,19 @@ void CoSimulation::DeferredTick(std::size_t k) {
   acc_.Merge(tick, k, substeps_);
 }
 
-// Whether a sample strictly inside period k can change a metric: raise the peak, the
-// residual peak or the contour error so far, or be the last outside the settling band
-// (the end sample is, when it is outside). The deflection (= the tool error) of every
-// inner sample is within InnerSampleBound; the tool position within that of the command's
-// range over the period. NaN anywhere: they matter (the samples then check finiteness).
+// Whether a sample of period k (its end included) can change a metric: raise the peak,
+// the residual peak or the contour error so far, or be the last outside the settling band
+// while the period's end is inside it (the end sample alone, outside, is taken without the
+// others). The deflection (= the tool error) of every sample is within InnerSampleBound;
+// the tool position within that of the command's range over the period. NaN anywhere:
+// they matter (the samples then check finiteness).
 template <RunPhase P>
-bool CoSimulation::InnerSamplesMatter(std::size_t k, const TickAccumulator& tick, double y_end,
-                                      double inside) const {
+bool CoSimulation::InnerSamplesMatter(std::size_t k, double y_end, double inside) const {
   const double bound = InnerSampleBound(period_start_m_, y_end, inside, result_.metrics.static_displacement_m);
   if (!(bound < acc_.peak)) return true;
   if constexpr (P != RunPhase::kMotion) {
-    if (tick.first_after_motion < substeps_ - 1) {
-      if (P == RunPhase::kWindow && !(bound < acc_.residual)) return true;
-      if (!(bound < tick.band) && !(std::abs(y_end) >= tick.band)) return true;
-    }
+    if (P == RunPhase::kWindow && !(bound < acc_.residual)) return true;
+    if (!(bound < acc_.band) && !(std::abs(y_end) >= acc_.band)) return true;
   }
   const bool commanded = k <= samples_.n;
   const int ax = single_.axis;
