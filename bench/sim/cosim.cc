@@ -249,7 +249,9 @@ double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static
                           Eigen::Vector3d* vector) {
   double static_m = 0.0;
   std::size_t at = 0;
-  for (std::size_t k = 1; k <= s.n; ++k) {
+  // Once per held acceleration (the same a, the same value: the first tick reaching the
+  // largest is the first of its run).
+  for (const std::size_t k : s.accel_changes) {
     const double here = std::abs(view.Of(static_gain * s.accel[k]));
     if (here > static_m) {
       static_m = here;
