@@ -43,7 +43,11 @@ CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
   s.velocity.resize(s.n + 1);
   s.accel.assign(s.n + 1, Eigen::Vector3d::Zero());
   s.positions.assign(s.n + 1, command.start_m);
-  for (int axis = 0; axis < controller::kNumAxes; ++axis) SampleAxis(command, axis, &s);
+  for (int axis = 0; axis < controller::kNumAxes; ++axis) {
+    SampleAxis(command, axis, &s);
+    const std::vector<double>& v = command.axes[axis].velocity_m_s;
+    s.axis_moves[axis] = std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  }
   // Largest squared norms, their roots below: the root of the largest square is the
   // largest norm (norm() is the root of squaredNorm(), the root is monotone).
   double max_accel_sq = 0.0;

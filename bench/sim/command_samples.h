@@ -2,6 +2,7 @@
 // acceleration a_k held over period k (k = 1..n; a_0 = 0, also the tail's), position p_k.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -27,6 +28,8 @@ struct CommandSamples {
   // The runs [first, end) of steady ticks: moving, the acceleration 0 or within 1e-9 of
   // the largest (the cruise probes, run_window.cc).
   std::vector<std::pair<std::size_t, std::size_t>> steady_runs;
+  // Per axis: whether any of the command's velocities (velocity_m_s) is not 0.
+  std::array<bool, controller::kNumAxes> axis_moves{};
 
   // The acceleration held over period k; after the command, none.
   const Eigen::Vector3d& AccelAt(std::size_t k) const { return k <= n ? accel[k] : accel[0]; }

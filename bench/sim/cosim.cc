@@ -170,8 +170,7 @@ struct SingleAxis {
   double length_m = 0.0;
 };
 
-SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
-                          const std::vector<Eigen::Vector3d>& positions, const OutputView& view,
+SingleAxis FindSingleAxis(const CommandSamples& samples, const OutputView& view,
                           const ContourGauge& gauge, bool has_stroke) {
   SingleAxis none;
   const controller::PathElement* e = gauge.single();
@@ -180,13 +179,10 @@ SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
   if (axis < 0 || std::abs(e->direction(axis)) != 1.0) return none;
   for (int a = 0; a < controller::kNumAxes; ++a) {
     if (a == axis) continue;
-    if (e->direction(a) != 0.0) return none;
-    for (double v : command.axes[a].velocity_m_s) {
-      if (v != 0.0) return none;
-    }
+    if (e->direction(a) != 0.0 || samples.axis_moves[a]) return none;
     // Its velocities all (+ or -) 0, the axis' positions are its start plus sums of
     // zeros: each equals (==) the first.
-    if (positions.front()(a) != e->start_m(a)) return none;
+    if (samples.positions.front()(a) != e->start_m(a)) return none;
   }
   return {axis, e->start_m(axis), e->direction(axis), e->length_m};
 }
@@ -388,7 +384,7 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
       own_samples_(options.command != nullptr && options.samples != nullptr ? CommandSamples{}
                                                                           : SampleCommand(command)),
       samples_(options.command != nullptr && options.samples != nullptr ? *options.samples : own_samples_),
-      view_(MakeOutputView(scenario.output, command)),
+      view_(MakeOutputView(scenario.output, samples_.axis_moves)),
       window_(PlanRunWindow(scenario, samples_, dynamics_, dt_)),
       has_stroke_(std::any_of(scenario.machine.stroke_m.begin(), scenario.machine.stroke_m.end(),
                               [](const auto& limits) { return limits.has_value(); })) {
@@ -487,7 +483,7 @@ void CoSimulation::SetUpSampling() {
            Eigen::Vector3d::Zero(), samples_.positions.front(), command_.block.empty() ? -1 : command_.block.front());
     return;
   }
-  single_ = FindSingleAxis(command_, samples_.positions, view_, contour_gauge_, has_stroke_);
+  single_ = FindSingleAxis(samples_, view_, contour_gauge_, has_stroke_);
   if (single_.axis < 0 || rows_ != model::kNumOutputRows) return;
   for (int r = 0; r < rows_; ++r) {
     if (r % 3 != single_.axis && !(integrator_ && integrator_->OutputRowIsZero(r))) watched_rows_.push_back(r);
