@@ -2,6 +2,7 @@
 // calling thread in order, so output does not depend on the thread count.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -13,6 +14,19 @@
 #include <vector>
 
 namespace shapebench {
+
+// RunOrdered's one job: computed and consumed on the calling thread, in the same order,
+// with no hand-off between threads (a wake-up an item otherwise).
+template <typename Result, typename Cancelled>
+std::uint64_t RunHere(std::uint64_t count, const std::function<Result(std::uint64_t)>& work,
+                      const std::function<void(std::uint64_t, Result&&)>& consume, const Cancelled& is_cancelled) {
+  std::uint64_t done = 0;
+  for (std::uint64_t k = 0; k < count && !is_cancelled(); ++k) {
+    consume(k, work(k));
+    done = k + 1;
+  }
+  return done;
+}
 
 // Runs work(k) for k = 0..count-1 on `jobs` threads and hands each result to consume(k,
 // result) on the calling thread, in order of k. Workers stay at most `window` items
@@ -32,6 +46,7 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   if (window == 0) window = 64 * static_cast<std::uint64_t>(jobs);
   constexpr auto kPoll = std::chrono::milliseconds(20);
   auto is_cancelled = [&] { return cancelled && cancelled(); };
+  if (jobs == 1) return RunHere<Result>(count, work, consume, is_cancelled);
   std::mutex mutex;
   std::condition_variable ready_changed;
   std::condition_variable consumed_changed;
@@ -40,6 +55,15 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   std::uint64_t consumed = 0;
   int running = jobs;  // worker threads not yet returned
   bool stop = false;
+  // The consumer wakes for `batch` results in order (or a worker held back, or the end).
+  const std::uint64_t batch = std::max<std::uint64_t>(1, std::min<std::uint64_t>(16, window / 2));
+  bool consumer_waiting = false;
+  int held_back = 0;  // workers waiting for the consumer (the window)
+  auto run_ready = [&] {  // under the lock: a batch in order from `consumed` on
+    std::uint64_t n = 0;
+    while (n < batch && ready.count(consumed + n) > 0) ++n;
+    return n >= batch || consumed + n >= count;
+  };
   std::exception_ptr failure;
 
   auto work_loop = [&] {
@@ -49,22 +73,32 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
         std::unique_lock<std::mutex> lock(mutex);
         if (stop || next >= count || is_cancelled()) return;
         k = next++;
-        while (!consumed_changed.wait_for(lock, kPoll, [&] { return stop || k < consumed + window; })) {
-          if (is_cancelled()) return;
+        if (!(k < consumed + window)) {
+          ++held_back;
+          if (consumer_waiting) ready_changed.notify_one();
+          while (!consumed_changed.wait_for(lock, kPoll, [&] { return stop || k < consumed + window; })) {
+            if (is_cancelled()) {
+              --held_back;
+              return;
+            }
+          }
+          --held_back;
         }
         if (stop) return;
       }
+      bool wake = true;
       try {
         Result result = work(k);
         std::lock_guard<std::mutex> lock(mutex);
         ready.emplace(k, std::move(result));
+        wake = consumer_waiting && run_ready();
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);
         if (!failure) failure = std::current_exception();
         stop = true;
         consumed_changed.notify_all();
       }
-      ready_changed.notify_one();
+      if (wake) ready_changed.notify_one();
     }
   };
   auto worker = [&] {
@@ -92,9 +126,13 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
       {
         std::unique_lock<std::mutex> lock(mutex);
         // Cancelled: what is ready in order is still taken; a gap no worker will fill ends it.
-        auto settled = [&] { return failure || ready.count(k) > 0 || running == 0; };
+        auto settled = [&] {
+          return failure || running == 0 || (ready.count(k) > 0 && (held_back > 0 || run_ready()));
+        };
+        consumer_waiting = true;
         while (!ready_changed.wait_for(lock, kPoll, settled)) {
         }
+        consumer_waiting = false;
         if (failure) break;
         auto it = ready.find(k);
         if (it == ready.end()) break;  // cancelled: nobody computes k

@@ -342,48 +342,50 @@ void ExactIntegrator::WriteOutputs(double* outputs) const {
   }
 }
 
-// AdvancePeriod for a small plant of K states: the period from its start state
-// (block_* members).
-template <int K>
-void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
+// The forced part of a small plant's period, once per held acceleration (it changes a
+// few times a move).
+void ExactIntegrator::ComputeBlockInput(const double* drive_accel) {
   const int m = num_inputs_;
-  const int rows = static_cast<int>(block_rows_.size());
-  if (!block_ready_ || !std::equal(drive_accel, drive_accel + m, block_accel_.begin())) {
-    // The forced part, once per held acceleration (it changes a few times a move).
-    std::copy(drive_accel, drive_accel + m, block_accel_.begin());
-    for (std::size_t i = 0; i < block_forced_.size(); ++i) {
-      double sum = 0.0;
-      for (int c = 0; c < m; ++c) sum += block_c_gamma_[i * m + c] * drive_accel[c];
-      block_forced_[i] = sum;
-    }
-    for (int i = 0; i < K; ++i) {
-      double sum = 0.0;
-      for (int c = 0; c < m; ++c) sum += block_gamma_[static_cast<std::size_t>(i) * m + c] * drive_accel[c];
-      block_g_[i] = sum;
-    }
-    block_ready_ = true;
+  std::copy(drive_accel, drive_accel + m, block_accel_.begin());
+  for (std::size_t i = 0; i < block_forced_.size(); ++i) {
+    double sum = 0.0;
+    for (int c = 0; c < m; ++c) sum += block_c_gamma_[i * m + c] * drive_accel[c];
+    block_forced_[i] = sum;
   }
+  for (int i = 0; i < kept_; ++i) {
+    double sum = 0.0;
+    for (int c = 0; c < m; ++c) sum += block_gamma_[static_cast<std::size_t>(i) * m + c] * drive_accel[c];
+    block_g_[i] = sum;
+  }
+  if (extremum_) block_forced_rate_ = extremum_->ForcedRate(drive_accel);
+  block_ready_ = true;
+}
+
+// Substep j's outputs are (C phi^(j+1)) z + (C gamma_(j+1)) a, each from the period's
+// start state z alone: any range of them, in any order, gives the same bits.
+template <int K>
+inline void ExactIntegrator::WriteBlockOutputs(const double* z_start, int from, int to, double* outputs) const {
+  const int rows = static_cast<int>(block_rows_.size());
   double z[K];
-  for (int i = 0; i < K; ++i) z[i] = z_[i];
-  const double* __restrict c_phi = block_c_phi_.data();
-  const double* __restrict forced = block_forced_.data();
+  for (int i = 0; i < K; ++i) z[i] = z_start[i];
+  const double* __restrict forced = block_forced_.data() + static_cast<std::ptrdiff_t>(from) * rows;
+  const double* __restrict c_phi = block_c_phi_.data() + static_cast<std::ptrdiff_t>(from) * rows * K;
   const int width = output_width();
   const int* __restrict row_of = block_selected_value_of_.data();
-  const int substeps = substeps_;
-  const bool twin = block_twin_;
-  if (twin) {
+  if (block_twin_) {
     // One distinct row asked for twice (a kinematic axis: deflection = tool error).
     double* __restrict out = outputs;
-    for (int j = 0; j < substeps; ++j) {
-      const double* __restrict row = c_phi + j * K;
+    for (int j = from; j < to; ++j) {
+      const double* __restrict row = c_phi + (j - from) * K;
       double sum = 0.0;
       for (int i = 0; i < K; ++i) sum += row[i] * z[i];
-      const double value = sum + forced[j];
+      const double value = sum + forced[j - from];
       out[2 * j] = value;
       out[2 * j + 1] = value;
     }
+    return;
   }
-  for (int j = 0; j < substeps && !twin; ++j) {
+  for (int j = from; j < to; ++j) {
     double values[kMaxRows + 1];  // the distinct rows of this substep, then a 0
     values[rows] = 0.0;
     for (int d = 0; d < rows; ++d) {
@@ -408,6 +410,11 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
       for (int o = 0; o < width; ++o) out[o] = values[row_of[o]];
     }
   }
+}
+
+// The state at the period's end: phi^S z + gamma_S a.
+template <int K>
+inline void ExactIntegrator::AdvanceBlockState(const double* z) {
   double next[K];
   for (int i = 0; i < K; ++i) {
     double sum = 0.0;
@@ -417,6 +424,57 @@ void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
   for (int i = 0; i < K; ++i) z_[i] = next[i];
   count_ += substeps_;
   tick_count_ = count_;
+}
+
+// AdvancePeriod for a small plant of K states: the period from its start state
+// (block_* members).
+template <int K>
+void ExactIntegrator::AdvanceBlock(const double* drive_accel, double* outputs) {
+  PrepareBlockInput(drive_accel);
+  double z[K];
+  for (int i = 0; i < K; ++i) z[i] = z_[i];
+  WriteBlockOutputs<K>(z, 0, substeps_, outputs);
+  AdvanceBlockState<K>(z);
+}
+
+// The extremum's rates at the period's ends from the states in registers (as
+// TickExtremum::LargestInside sums them), not reloaded from memory just written.
+template <int K>
+void ExactIntegrator::AdvanceToEnd(const double* drive_accel, double* outputs) {
+  PrepareBlockInput(drive_accel);
+  double z[K];
+  for (int i = 0; i < K; ++i) z_start_[i] = z[i] = z_[i];
+  WriteBlockOutputs<K>(z, substeps_ - 1, substeps_, outputs);
+  AdvanceBlockState<K>(z);
+  double d0 = 0.0;
+  double d1 = 0.0;
+  for (int j = 0; j < K; ++j) {
+    d0 += extremum_rate_[j] * z[j];
+    d1 += extremum_rate_[j] * z_[j];
+  }
+  d0 += block_forced_rate_;
+  d1 += block_forced_rate_;
+  period_extremum_ = extremum_->LargestInsideWithRates(z_start_.data(), drive_accel, d0, d1);
+}
+
+void ExactIntegrator::AdvancePeriodToEnd(const double* full_accel, double* outputs) {
+  const double* drive_accel = Picked(full_accel);
+  switch (kept_) {
+    case 1: AdvanceToEnd<1>(drive_accel, outputs); break;
+    case 2: AdvanceToEnd<2>(drive_accel, outputs); break;
+    case 3: AdvanceToEnd<3>(drive_accel, outputs); break;
+    default: AdvanceToEnd<4>(drive_accel, outputs); break;
+  }
+}
+
+void ExactIntegrator::WriteDeferredSubsteps(double* outputs) const {
+  const double* z = z_start_.data();
+  switch (kept_) {
+    case 1: WriteBlockOutputs<1>(z, 0, substeps_ - 1, outputs); break;
+    case 2: WriteBlockOutputs<2>(z, 0, substeps_ - 1, outputs); break;
+    case 3: WriteBlockOutputs<3>(z, 0, substeps_ - 1, outputs); break;
+    default: WriteBlockOutputs<4>(z, 0, substeps_ - 1, outputs); break;
+  }
 }
 
 void ExactIntegrator::AdvancePeriod(const double* full_accel, long /*same_input_periods*/,
@@ -438,6 +496,11 @@ bool ExactIntegrator::WatchExtremum(int row) {
       Eigen::Map<const Eigen::RowVectorXd>(c_.data() + static_cast<std::ptrdiff_t>(row) * kept_, kept_);
   extremum_ = TickExtremum::Make(a_kept_, b_kept_, c, period_s_);
   z_start_.assign(kept_, 0.0);
+  block_ready_ = false;  // block_forced_rate_ is the watcher's
+  if (extremum_) {
+    const Eigen::RowVectorXd& rate = extremum_->rate_row();
+    extremum_rate_.assign(rate.data(), rate.data() + rate.size());
+  }
   period_extremum_ = 0.0;
   return extremum_ != nullptr;
 }

@@ -2,6 +2,7 @@
 // held over each substep (zero-order hold on a, so the drive velocity v is a ramp).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -44,6 +45,11 @@ class ExactIntegrator final : public PlantIntegrator {
   bool WatchExtremum(int row) override;
   double PeriodExtremum() const override { return period_extremum_; }
   bool AdvanceAtRest(long periods) override;
+  // A small plant with a watched extremum (the block kernel computes each substep from the
+  // period's start state, so the inner ones can come later, the same bits).
+  bool DefersSubsteps() const override { return block_kernel_ && extremum_ != nullptr; }
+  void AdvancePeriodToEnd(const double* drive_accel, double* outputs) override;
+  void WriteDeferredSubsteps(double* outputs) const override;
 
   // Built on a plant reduced to the inputs `used` (MakeIntegrator), it takes the full
   // input vectors (`full_inputs` values) and picks those itself: no wrapper per call.
@@ -71,6 +77,20 @@ class ExactIntegrator final : public PlantIntegrator {
   void WriteOutputs(double* outputs) const;
   template <int K>
   void AdvanceBlock(const double* drive_accel, double* outputs);
+  // The forced part for drive_accel, unless it is the one held already.
+  void PrepareBlockInput(const double* drive_accel) {
+    if (!block_ready_ || !std::equal(drive_accel, drive_accel + num_inputs_, block_accel_.begin())) {
+      ComputeBlockInput(drive_accel);
+    }
+  }
+  void ComputeBlockInput(const double* drive_accel);
+  // Substeps [from, to) of the period that starts at z, written to outputs + j * width.
+  template <int K>
+  [[gnu::always_inline]] void WriteBlockOutputs(const double* z, int from, int to, double* outputs) const;
+  template <int K>
+  [[gnu::always_inline]] void AdvanceBlockState(const double* z);
+  template <int K>
+  void AdvanceToEnd(const double* drive_accel, double* outputs);
   void AdvanceStates(const double* drive_accel, double* outputs);
 
   int num_states_;
@@ -124,6 +144,8 @@ class ExactIntegrator final : public PlantIntegrator {
   Eigen::MatrixXd a_kept_;
   Eigen::MatrixXd b_kept_;
   std::unique_ptr<TickExtremum> extremum_;
+  std::vector<double> extremum_rate_;  // its rate_row(), for AdvanceToEnd
+  double block_forced_rate_ = 0.0;     // its ForcedRate of block_accel_
   std::vector<double> z_start_;
   double period_extremum_ = 0.0;
   long count_ = 0;

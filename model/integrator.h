@@ -167,6 +167,15 @@ class PlantIntegrator {
   // integrator cannot; it is then unchanged.
   virtual bool AdvanceAtRest(long /*periods*/) { return false; }
 
+  // Deferred substeps (a master that needs a period's inner substeps only now and then):
+  // AdvancePeriodToEnd is AdvancePeriod (same_input_periods 1) that writes only the last
+  // substep's outputs, at their place in `outputs` (substep substeps() - 1), and the
+  // extremum; WriteDeferredSubsteps then writes the period's other substeps, as
+  // AdvancePeriod would have written them, bit for bit. Only where DefersSubsteps().
+  virtual bool DefersSubsteps() const { return false; }
+  virtual void AdvancePeriodToEnd(const double* /*drive_accel*/, double* /*outputs*/) {}
+  virtual void WriteDeferredSubsteps(double* /*outputs*/) const {}
+
   // Whether AdvancePeriod makes use of same_input_periods (else the master may pass 1).
   virtual bool UsesInputHolds() const { return false; }
 

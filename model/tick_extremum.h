@@ -55,6 +55,19 @@ class TickExtremum {
     return Inside(z0, u, d0, d1);
   }
 
+  // LargestInside with y'(0) and y'(h) given: sums over rate_row() (c a) of z0 and z1, in
+  // index order, each plus ForcedRate(u), as LargestInside computes them (the same bits).
+  double LargestInsideWithRates(const double* z0, const double* u, double d0, double d1) {
+    if (single_pole_ && grid_ == 1 && !(d0 * d1 < 0.0)) return 0.0;
+    return Inside(z0, u, d0, d1);
+  }
+  const Eigen::RowVectorXd& rate_row() const { return c_a_; }
+  double ForcedRate(const double* u) const {
+    double forced = 0.0;
+    for (int i = 0; i < m_; ++i) forced += c_b_(i) * u[i];
+    return forced;
+  }
+
   // y at time t of the current period (after LargestInside set it up; 0 when it had
   // nothing to set up).
   double OutputAt(double t) const;

@@ -43,7 +43,11 @@ CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
   s.velocity.resize(s.n + 1);
   s.accel.assign(s.n + 1, Eigen::Vector3d::Zero());
   s.positions.assign(s.n + 1, command.start_m);
-  for (int axis = 0; axis < controller::kNumAxes; ++axis) SampleAxis(command, axis, &s);
+  for (int axis = 0; axis < controller::kNumAxes; ++axis) {
+    SampleAxis(command, axis, &s);
+    const std::vector<double>& v = command.axes[axis].velocity_m_s;
+    s.axis_moves[axis] = std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  }
   // Largest squared norms, their roots below: the root of the largest square is the
   // largest norm (norm() is the root of squaredNorm(), the root is monotone).
   double max_accel_sq = 0.0;
@@ -63,6 +67,19 @@ CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
     }
   }
   s.motion_ticks = std::min(last_moving + 1, s.n);
+  for (std::size_t k = 1; k <= s.n; ++k) {
+    const Eigen::Vector3d& a = s.accel[k];
+    const Eigen::Vector3d& before = s.accel[k - 1];
+    if (k == 1 || a(0) != before(0) || a(1) != before(1) || a(2) != before(2)) s.accel_changes.push_back(k);
+  }
+  for (std::size_t k = 1, run_start = 1; k <= s.n + 1; ++k) {
+    const bool steady =
+        k <= s.n && (s.velocity[k](0) != 0.0 || s.velocity[k](1) != 0.0 || s.velocity[k](2) != 0.0) &&
+        (s.accel[k].squaredNorm() == 0.0 || s.accel[k].norm() <= 1e-9 * s.max_accel_m_s2);
+    if (steady) continue;
+    if (k > run_start) s.steady_runs.emplace_back(run_start, k);
+    run_start = k + 1;
+  }
   return s;
 }
 

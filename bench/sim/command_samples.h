@@ -2,7 +2,9 @@
 // acceleration a_k held over period k (k = 1..n; a_0 = 0, also the tail's), position p_k.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -20,6 +22,14 @@ struct CommandSamples {
   double max_speed_m_s = 0.0;   // largest |v_k|, k >= 1
   // Motion ends at the tick after the last one whose commanded velocity is not zero.
   std::size_t motion_ticks = 0;
+  // The ticks k (1..n) whose acceleration differs from a_{k-1} (1 always): a run reads
+  // what depends on a_k alone once per held acceleration, not once per tick.
+  std::vector<std::size_t> accel_changes;
+  // The runs [first, end) of steady ticks: moving, the acceleration 0 or within 1e-9 of
+  // the largest (the cruise probes, run_window.cc).
+  std::vector<std::pair<std::size_t, std::size_t>> steady_runs;
+  // Per axis: whether any of the command's velocities (velocity_m_s) is not 0.
+  std::array<bool, controller::kNumAxes> axis_moves{};
 
   // The acceleration held over period k; after the command, none.
   const Eigen::Vector3d& AccelAt(std::size_t k) const { return k <= n ? accel[k] : accel[0]; }

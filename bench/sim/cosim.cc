@@ -11,6 +11,7 @@
 
 #include "bench/sim/command_samples.h"
 #include "bench/sim/damped_tail.h"
+#include "bench/sim/deferred_substeps.h"
 #include "bench/sim/metric_accumulator.h"
 #include "bench/sim/output_view.h"
 #include "bench/sim/residual_vibration.h"
@@ -169,8 +170,7 @@ struct SingleAxis {
   double length_m = 0.0;
 };
 
-SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
-                          const std::vector<Eigen::Vector3d>& positions, const OutputView& view,
+SingleAxis FindSingleAxis(const CommandSamples& samples, const OutputView& view,
                           const ContourGauge& gauge, bool has_stroke) {
   SingleAxis none;
   const controller::PathElement* e = gauge.single();
@@ -179,13 +179,10 @@ SingleAxis FindSingleAxis(const controller::MultiAxisCommand& command,
   if (axis < 0 || std::abs(e->direction(axis)) != 1.0) return none;
   for (int a = 0; a < controller::kNumAxes; ++a) {
     if (a == axis) continue;
-    if (e->direction(a) != 0.0) return none;
-    for (double v : command.axes[a].velocity_m_s) {
-      if (v != 0.0) return none;
-    }
+    if (e->direction(a) != 0.0 || samples.axis_moves[a]) return none;
     // Its velocities all (+ or -) 0, the axis' positions are its start plus sums of
     // zeros: each equals (==) the first.
-    if (positions.front()(a) != e->start_m(a)) return none;
+    if (samples.positions.front()(a) != e->start_m(a)) return none;
   }
   return {axis, e->start_m(axis), e->direction(axis), e->length_m};
 }
@@ -248,7 +245,9 @@ double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static
                           Eigen::Vector3d* vector) {
   double static_m = 0.0;
   std::size_t at = 0;
-  for (std::size_t k = 1; k <= s.n; ++k) {
+  // Once per held acceleration (the same a, the same value: the first tick reaching the
+  // largest is the first of its run).
+  for (const std::size_t k : s.accel_changes) {
     const double here = std::abs(view.Of(static_gain * s.accel[k]));
     if (here > static_m) {
       static_m = here;
@@ -305,6 +304,8 @@ class CoSimulation {
   template <RunPhase P> void SampleSingleAxis(std::size_t k, TickAccumulator* tick);
   template <RunPhase P> void SampleGeneral(std::size_t k, TickAccumulator* tick);
   template <RunPhase P> void SampleTick(std::size_t k, bool others_zero);
+  template <RunPhase P> void DeferredTick(std::size_t k);
+  template <RunPhase P> bool InnerSamplesMatter(std::size_t k, double y_end, double inside) const;
   void Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a,
               const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
   void ProbeMotionEnd();
@@ -346,6 +347,10 @@ class CoSimulation {
   std::vector<ArcWindow> arcs_;
   SingleAxis single_;
   SingleAxisSampling single_sampling_{};
+  // Inner substeps stepped only where they can change a metric (deferred_substeps.h):
+  // a single-axis run whose tool error is its deflection, exact path, no trace.
+  bool defer_substeps_ = false;
+  double period_start_m_ = 0.0;        // the deflection at the current period's start
   std::vector<int> watched_rows_;  // other axes' rows the single-axis samples must see at 0
   int width_ = 0;                  // outputs per substep in outputs_
   int deflection_at_ = 0;
@@ -379,7 +384,7 @@ CoSimulation::CoSimulation(const Scenario& scenario, const controller::MultiAxis
       own_samples_(options.command != nullptr && options.samples != nullptr ? CommandSamples{}
                                                                           : SampleCommand(command)),
       samples_(options.command != nullptr && options.samples != nullptr ? *options.samples : own_samples_),
-      view_(MakeOutputView(scenario.output, command)),
+      view_(MakeOutputView(scenario.output, samples_.axis_moves)),
       window_(PlanRunWindow(scenario, samples_, dynamics_, dt_)),
       has_stroke_(std::any_of(scenario.machine.stroke_m.begin(), scenario.machine.stroke_m.end(),
                               [](const auto& limits) { return limits.has_value(); })) {
@@ -478,7 +483,7 @@ void CoSimulation::SetUpSampling() {
            Eigen::Vector3d::Zero(), samples_.positions.front(), command_.block.empty() ? -1 : command_.block.front());
     return;
   }
-  single_ = FindSingleAxis(command_, samples_.positions, view_, contour_gauge_, has_stroke_);
+  single_ = FindSingleAxis(samples_, view_, contour_gauge_, has_stroke_);
   if (single_.axis < 0 || rows_ != model::kNumOutputRows) return;
   for (int r = 0; r < rows_; ++r) {
     if (r % 3 != single_.axis && !(integrator_ && integrator_->OutputRowIsZero(r))) watched_rows_.push_back(r);
@@ -495,6 +500,11 @@ void CoSimulation::SetUpSampling() {
   }
   single_sampling_ = {outputs_.data() + deflection_at_, outputs_.data() + tool_error_at_, taus_.data(),
                       width_, substeps_, single_};
+  // The tool error bounded by the deflection's bound needs the two rows to be one.
+  const model::LinearPlant& plant = machine_.plant;
+  defer_substeps_ = exact_extrema_ && watched_rows_.empty() && width_ == 2 && substeps_ > 1 &&
+                    integrator_->DefersSubsteps() && view_.axis == single_.axis &&
+                    plant.C.row(model::kDeflectionRow + single_.axis) == plant.C.row(model::kToolErrorRow + single_.axis);
 }
 
 // For how many periods from tick k on the held acceleration stays a_k (the tail's is
@@ -551,6 +561,18 @@ bool CoSimulation::StepPlant(std::size_t k) {
 }
 
 void CoSimulation::Tick(std::size_t k) {
+  if (defer_substeps_) {
+    if (k < window_.motion_ticks) {
+      DeferredTick<RunPhase::kMotion>(k);
+      if (k == next_probe_tick_) ProbeCruise(k);
+    } else if (k <= window_.window_end()) {
+      DeferredTick<RunPhase::kWindow>(k);
+      if (k == window_.motion_ticks) ProbeMotionEnd();
+    } else {
+      DeferredTick<RunPhase::kTail>(k);
+    }
+    return;
+  }
   const bool others_zero = StepPlant(k);
   if (k < window_.motion_ticks) {
     SampleTick<RunPhase::kMotion>(k, others_zero);
@@ -601,6 +623,63 @@ void CoSimulation::SampleTick(std::size_t k, bool others_zero) {
     }
   }
   acc_.Merge(tick, k, substeps_);
+}
+
+// SampleTick of a run with deferred substeps: the period stepped to its end; its inner
+// substeps written and sampled only where they can change a metric (InnerSamplesMatter).
+template <RunPhase P>
+void CoSimulation::DeferredTick(std::size_t k) {
+  integrator_->AdvancePeriodToEnd(samples_.AccelAt(k).data(), outputs_.data());
+  const double y_end = outputs_[static_cast<std::size_t>((substeps_ - 1) * width_ + deflection_at_)];
+  const double inside = integrator_->PeriodExtremum();
+  // The motion-end tick's end sample alone opens the residual window: sampled in full.
+  const bool inner = k == window_.motion_ticks || InnerSamplesMatter<P>(k, y_end, inside);
+  period_start_m_ = y_end;
+  if (!inner) {
+    // No sample of the period, its end included, reaches a maximum so far; the end sample
+    // can still be the last outside the settling band.
+    ++result_.deferred_periods;
+    if constexpr (P != RunPhase::kMotion) {
+      if (std::abs(y_end) >= acc_.band) {
+        acc_.last_outside_band = static_cast<long>(k) * substeps_;
+        acc_.quiet_since_tick = k;
+      }
+    }
+    return;
+  }
+  integrator_->WriteDeferredSubsteps(outputs_.data());
+  TickAccumulator tick = acc_.StartTick(P, k, window_.motion_ticks, substeps_);
+  SampleSingleAxis<P>(k, &tick);
+  tick.peak = std::max(tick.peak, inside);
+  if constexpr (P == RunPhase::kWindow) {
+    if (k != window_.motion_ticks) tick.residual = std::max(tick.residual, inside);
+  }
+  acc_.Merge(tick, k, substeps_);
+}
+
+// Whether a sample of period k (its end included) can change a metric: raise the peak,
+// the residual peak or the contour error so far, or be the last outside the settling band
+// while the period's end is inside it (the end sample alone, outside, is taken without the
+// others). The deflection (= the tool error) of every sample is within InnerSampleBound;
+// the tool position within that of the command's range over the period. NaN anywhere:
+// they matter (the samples then check finiteness).
+template <RunPhase P>
+bool CoSimulation::InnerSamplesMatter(std::size_t k, double y_end, double inside) const {
+  const double bound = InnerSampleBound(period_start_m_, y_end, inside, result_.metrics.static_displacement_m);
+  if (!(bound < acc_.peak)) return true;
+  if constexpr (P != RunPhase::kMotion) {
+    if (P == RunPhase::kWindow && !(bound < acc_.residual)) return true;
+    if (!(bound < acc_.band) && !(std::abs(y_end) >= acc_.band)) return true;
+  }
+  const bool commanded = k <= samples_.n;
+  const int ax = single_.axis;
+  const double p0 = (commanded ? samples_.positions[k - 1] : samples_.positions.back())(ax);
+  const double v0 = commanded ? samples_.velocity[k - 1](ax) : 0.0;
+  double lo = 0.0;
+  double hi = 0.0;
+  QuadraticRange(p0, v0, 0.5 * samples_.AccelAt(k)(ax), dt_, &lo, &hi);
+  const double off = OffLineBound(single_.start_m, single_.direction, single_.length_m, lo - bound, hi + bound);
+  return off != 0.0 && !(off * off < acc_.contour_sq);
 }
 
 template <RunPhase P>

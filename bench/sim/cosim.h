@@ -52,6 +52,9 @@ struct RunResult {
   int substeps = 0;
   double simulated_s = 0.0;  // the time of the last sample (motion and tail)
   bool tail_in_closed_form = false;  // the settling tail found without simulating it
+  // Periods whose inner output substeps were never stepped: no metric could read them
+  // (bench/sim/deferred_substeps.h).
+  long deferred_periods = 0;
   // What the user must be told beside the metrics (a failed CVODE cross-check under
   // integrator.cross_check: warn).
   std::vector<std::string> warnings;

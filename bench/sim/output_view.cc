@@ -5,6 +5,15 @@
 namespace shapebench::bench {
 
 OutputView MakeOutputView(const OutputConfig& output, const controller::MultiAxisCommand& command) {
+  std::array<bool, controller::kNumAxes> axis_moves{};
+  for (int a = 0; a < controller::kNumAxes; ++a) {
+    const auto& v = command.axes[a].velocity_m_s;
+    axis_moves[a] = std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  }
+  return MakeOutputView(output, axis_moves);
+}
+
+OutputView MakeOutputView(const OutputConfig& output, const std::array<bool, controller::kNumAxes>& axis_moves) {
   OutputView view;
   int axis = -1;
   switch (output.direction) {
@@ -15,8 +24,7 @@ OutputView MakeOutputView(const OutputConfig& output, const controller::MultiAxi
     case OutputDirection::kAuto: {
       int moving = 0;
       for (int a = 0; a < controller::kNumAxes; ++a) {
-        const auto& v = command.axes[a].velocity_m_s;
-        if (std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; })) {
+        if (axis_moves[a]) {
           ++moving;
           axis = a;
         }

@@ -2,6 +2,8 @@
 // {direction: ...}`): one signed component, or the magnitude.
 #pragma once
 
+#include <array>
+
 #include <Eigen/Dense>
 
 #include "bench/sim/scenario.h"
@@ -19,5 +21,7 @@ struct OutputView {
 
 // `auto` picks the only axis the command moves, else the magnitude.
 OutputView MakeOutputView(const OutputConfig& output, const controller::MultiAxisCommand& command);
+// The same from which axes the command moves (any velocity not 0), found before.
+OutputView MakeOutputView(const OutputConfig& output, const std::array<bool, controller::kNumAxes>& axis_moves);
 
 }  // namespace shapebench::bench

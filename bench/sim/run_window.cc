@@ -13,16 +13,12 @@ namespace {
 std::vector<char> CruiseTicks(const CommandSamples& s, std::size_t period_ticks,
                               std::vector<std::size_t>* probes) {
   std::vector<char> cruise_tick(s.n + 1, 0);
-  for (std::size_t k = 1, run_start = 1; k <= s.n + 1; ++k) {
-    const bool steady =
-        k <= s.n && (s.velocity[k](0) != 0.0 || s.velocity[k](1) != 0.0 || s.velocity[k](2) != 0.0) &&
-        (s.accel[k].squaredNorm() == 0.0 || s.accel[k].norm() <= 1e-9 * s.max_accel_m_s2);
-    if (steady) continue;
-    if (k - run_start >= period_ticks) {
-      std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + k, 1);
+  // A run of steady ticks at least a period long (SampleCommand's steady_runs).
+  for (const auto& [run_start, end] : s.steady_runs) {
+    if (end - run_start >= period_ticks) {
+      std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + end, 1);
       probes->push_back(run_start - 1 + period_ticks);
     }
-    run_start = k + 1;
   }
   return cruise_tick;
 }
