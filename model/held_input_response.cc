@@ -98,9 +98,16 @@ HeldInputResponse::HeldInputResponse(const LinearPlant& plant, double period_s, 
       out_a[r].row(j - 1) = c_z.row(r) * exact->gamma;
     }
   }
+  output_of_row_.assign(rows, -1);
   for (int r = 0; r < rows; ++r) {
     if (c_z.row(r).cwiseAbs().maxCoeff() == 0.0) continue;  // reaches no state: 0 throughout
-    output_rows_.push_back(r);
+    // A row equal to an earlier one (the kinematic drive's tool error and deflection) is
+    // that row's values.
+    for (int q = 0; q < r && output_of_row_[r] < 0; ++q) {
+      if (output_of_row_[q] >= 0 && c_z.row(q) == c_z.row(r)) output_of_row_[r] = output_of_row_[q];
+    }
+    if (output_of_row_[r] >= 0) continue;
+    output_of_row_[r] = static_cast<int>(outputs_rows_.size());
     outputs_rows_.emplace_back(out_z[r], out_a[r]);
   }
   const auto tick = DiscretizeExactly(plant, period_s);
@@ -108,7 +115,7 @@ HeldInputResponse::HeldInputResponse(const LinearPlant& plant, double period_s, 
   tick_gamma_ = tick->gamma;
   series_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(pieces_) * num_probes() * kNodes);
   slopes_ = series_;
-  tick_outputs_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(output_rows_.size()) * substeps);
+  tick_outputs_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(outputs_rows_.size()) * substeps);
   Reset(Eigen::VectorXd::Zero(nz_));
 }
 
@@ -165,9 +172,9 @@ void HeldInputResponse::Probe(double tau, double* values, double* rates) const {
 }
 
 void HeldInputResponse::OutputsAt(int j, double* outputs) const {
-  std::fill(outputs, outputs + plant_.num_outputs(), 0.0);
-  for (std::size_t r = 0; r < output_rows_.size(); ++r) {
-    outputs[output_rows_[r]] = tick_outputs_(static_cast<Eigen::Index>(r) * substeps_ + j - 1);
+  for (std::size_t r = 0; r < output_of_row_.size(); ++r) {
+    const int at = output_of_row_[r];
+    outputs[r] = at < 0 ? 0.0 : tick_outputs_(static_cast<Eigen::Index>(at) * substeps_ + j - 1);
   }
 }
 

@@ -73,9 +73,10 @@ class HeldInputResponse {
   double piece_s_;
   Eigen::MatrixXd probes_;
   std::vector<Rows> series_rows_;  // per piece and probe (piece * probes + probe): b_k
-  // Per output row that is not 0: its value at every substep j, C_row z_p(j h / S).
-  std::vector<int> output_rows_;
+  // Per distinct output row that is not 0: its value at every substep j, C_row z_p(j h / S);
+  // per output row the one it is (-1: 0 throughout).
   std::vector<Rows> outputs_rows_;
+  std::vector<int> output_of_row_;
   Eigen::MatrixXd tick_phi_;
   Eigen::MatrixXd tick_gamma_;
   Eigen::VectorXd start_;
@@ -83,7 +84,7 @@ class HeldInputResponse {
   Eigen::VectorXd next_;
   Eigen::VectorXd gathered_;  // scratch
   // This tick's series, their derivatives' (per unit of the piece's [-1, 1] variable), and
-  // its outputs at the substeps (per row in output_rows_, the substeps in a row).
+  // its outputs at the substeps (per row of outputs_rows_, the substeps in a row).
   Eigen::VectorXd series_;
   Eigen::VectorXd slopes_;
   Eigen::VectorXd tick_outputs_;
