@@ -16,20 +16,13 @@
 
 #include "bench/sim/cosim.h"
 #include "bench/sim/deferred_substeps.h"
+#include "tests/bench/same_metric_bits.h"
 #include "tests/bench/sdof_fixture.h"
 
 namespace shapebench::bench {
 namespace {
 
-void ExpectSameBits(const Metrics& a, const Metrics& b, const std::string& what) {
-  const auto x = a.Named();
-  const auto y = b.Named();
-  ASSERT_EQ(x.size(), y.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    EXPECT_EQ(std::memcmp(&x[i].second, &y[i].second, sizeof(double)), 0)
-        << what << ": " << x[i].first << " " << x[i].second << " vs " << y[i].second;
-  }
-}
+using testing::ExpectSameBits;
 
 // Returns how many periods the untraced run deferred.
 long ExpectSameAsEverySubstep(const Scenario& scenario, const std::string& what) {
