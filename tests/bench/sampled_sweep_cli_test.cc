@@ -121,11 +121,14 @@ std::vector<double> Residuals(const std::vector<std::vector<std::string>>& rows,
   return values;
 }
 
-std::string Text17(double value) {
+// `value` printed with a printf format of one double.
+std::string Printed(const char* format, double value) {
   char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
+  std::snprintf(text, sizeof text, format, value);
   return text;
 }
+
+std::string Text17(double value) { return Printed("%.17g", value); }
 
 // Tests that a quantile gate passes with max at the sample quantile (the rank ceil(q N)
 // sample of results.csv, sorted here) and fails just below it, and a yield gate passes
@@ -196,11 +199,7 @@ std::pair<double, double> Wilson(int k, int n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-std::string Fixed3(double value) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%.3f", value);
-  return text;
-}
+std::string Fixed3(double value) { return Printed("%.3f", value); }
 
 // Tests the shipped yield study: each method's yield that `check --json` reports is the
 // fraction of its rows in results.csv with residual_ratio <= 0.05, counted here, with the

@@ -15,6 +15,7 @@
 #include "bench/sweep/sampling.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
+#include "sweep_file.h"
 #include "common/sample_math.h"
 
 namespace shapebench::bench {
@@ -25,18 +26,7 @@ using testing::ErrorOf;
 using testing::ExpectError;
 using testing::ScratchDir;
 
-class SampledSweep {
- public:
-  explicit SampledSweep(const std::string& body) {
-    path_ = dir_.Write("sweep.yaml", "base: " + DataPath("sweeps/sdof_method1.yaml") + "\n" + body);
-  }
-  const std::string& path() const { return path_; }
-  Sweep Load() const { return LoadSweep(path_, {}); }
-
- private:
-  ScratchDir dir_;
-  std::string path_;
-};
+using SampledSweep = testing::SweepFile;
 
 // The values of the sampled key `key` of a loaded sweep, as the points run them (their text).
 std::vector<double> Samples(const Sweep& sweep, const std::string& key) {

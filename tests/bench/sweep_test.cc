@@ -16,6 +16,7 @@
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
 #include "bench_test_support.h"
+#include "sweep_file.h"
 
 namespace shapebench::bench {
 namespace {
@@ -23,21 +24,7 @@ namespace {
 using testing::DataPath;
 using testing::ScratchDir;
 
-// A sweep file in a scratch directory, its base the SDOF scenario of the test data.
-class SweepFile {
- public:
-  explicit SweepFile(const std::string& body) {
-    path_ = dir_.Write("sweep.yaml", "base: " + DataPath("sweeps/sdof_method1.yaml") + "\n" + body);
-  }
-  const std::string& path() const { return path_; }
-  Sweep Load(const std::vector<Override>& sets = {}, const SweepLoadOptions& options = {}) const {
-    return LoadSweep(path_, sets, options);
-  }
-
- private:
-  ScratchDir dir_;
-  std::string path_;
-};
+using testing::SweepFile;
 
 std::vector<std::string> Texts(const Sweep& sweep, std::uint64_t point) {
   return MakePoint(sweep, point, {}).texts;
