@@ -62,7 +62,6 @@ void HeldInputResponse::Rows::Apply(const Eigen::VectorXd& state, const Eigen::V
 HeldInputResponse::HeldInputResponse(const LinearPlant& plant, double period_s, int substeps,
                                      const Eigen::MatrixXd& probes)
     : plant_(plant),
-      period_s_(period_s),
       substeps_(substeps),
       nz_(plant.num_states() + plant.num_inputs()),
       probes_(probes) {

@@ -66,7 +66,6 @@ class HeldInputResponse {
   void UpdateSeries();
 
   LinearPlant plant_;
-  double period_s_;
   int substeps_;
   int nz_;
   int pieces_ = 1;

@@ -77,13 +77,6 @@ std::vector<double> NonlinearDynamics::BristleScales() const {
   return scales;
 }
 
-Eigen::VectorXd NonlinearDynamics::Row(int i) const {
-  Eigen::VectorXd row = Eigen::VectorXd::Zero(nz_);
-  const Sparse& r = elements_[i].row;
-  for (std::size_t k = 0; k < r.index.size(); ++k) row(r.index[k]) = r.value[k];
-  return row;
-}
-
 void NonlinearDynamics::SetForcing(const Eigen::VectorXd& forcing) {
   forcing_ = forcing;
   for (Element& e : elements_) e.row_forcing = e.row.Dot(forcing_.data());

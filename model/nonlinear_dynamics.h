@@ -48,8 +48,6 @@ class NonlinearDynamics {
   }
   // Whether the offsets' rates are read (only a stuck element's holding force reads them).
   bool ReadsRates() const { return !stuck_.empty(); }
-  // Element i's row over z (what an offset is the value of).
-  Eigen::VectorXd Row(int i) const;
   // Modes at rest (y from Reset): sliding where w != 0, stuck where w == 0 and F_s > 0.
   void InitModes(const double* y);
   // After the input changed: releases stuck elements the new forcing breaks loose. True

@@ -128,7 +128,9 @@ NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, 
   }
   if (config.tuning.split_linear_part && SplitPays(plant)) {
     Eigen::MatrixXd probes(dynamics_.num_elements(), dynamics_.num_augmented());
-    for (int i = 0; i < dynamics_.num_elements(); ++i) probes.row(i) = dynamics_.Row(i).transpose();
+    for (int i = 0; i < dynamics_.num_elements(); ++i) {
+      probes.row(i) << plant.elements[i].row_x.transpose(), plant.elements[i].row_v.transpose();
+    }
     particular_ = std::make_unique<HeldInputResponse>(plant.linear, period_s, substeps, probes);
     // Split, e's Newton matrix I - gamma J may wait for gamma to change by 100% (CVODE's
     // default 30%): the steps truncated at every tick's end change gamma each tick. Measured
