@@ -17,6 +17,7 @@
 #include "bench/sim/residual_vibration.h"
 #include "bench/sim/run_memory.h"
 #include "bench/sim/run_window.h"
+#include "bench/sim/single_mode_run.h"
 #include "controller/path_geometry.h"
 #include "controller/shaper_registry.h"
 #include "controller/stroke_end.h"
@@ -835,22 +836,6 @@ void CoSimulation::Finish(std::size_t last_tick, bool settled) {
   }
 }
 
-// What the pattern was designed for: its lowest design frequency and that mode's damping
-// ratio (methods 1-4: undamped). NaN for a pattern that does not shape for a frequency
-// (none, custom, mode off).
-void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
-  const controller::ShaperKind kind = controller::FindShaper(pattern.method).kind;
-  if (pattern.mode == controller::PatternMode::kOff ||
-      (kind != controller::ShaperKind::kPatentStep && kind != controller::ShaperKind::kImpulse)) {
-    return;
-  }
-  const std::vector<double> frequencies = pattern.DesignFrequencies();
-  const std::size_t lowest = static_cast<std::size_t>(
-      std::min_element(frequencies.begin(), frequencies.end()) - frequencies.begin());
-  m->pattern_frequency_hz = frequencies[lowest];
-  m->pattern_damping_ratio =
-      kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
-}
 
 // A nonlinear plant (docs/metrics.md): the residual from its free response after motion end
 // (half its peak-to-peak: one undamped mode's amplitude exactly), where it comes to rest, and
@@ -908,6 +893,20 @@ void RefuseInfiniteMetrics(const Metrics& m) {
 
 }  // namespace
 
+void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
+  const controller::ShaperKind kind = controller::FindShaper(pattern.method).kind;
+  if (pattern.mode == controller::PatternMode::kOff ||
+      (kind != controller::ShaperKind::kPatentStep && kind != controller::ShaperKind::kImpulse)) {
+    return;
+  }
+  const std::vector<double> frequencies = pattern.DesignFrequencies();
+  const std::size_t lowest = static_cast<std::size_t>(
+      std::min_element(frequencies.begin(), frequencies.end()) - frequencies.begin());
+  m->pattern_frequency_hz = frequencies[lowest];
+  m->pattern_damping_ratio =
+      kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
+}
+
 controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program) {
   controller::ControllerConfig controller = scenario.controller;
   controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
@@ -925,8 +924,28 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   if (options.command == nullptr) result.command = GenerateScenarioCommand(scenario, result.program);
   const controller::MultiAxisCommand& command = options.command != nullptr ? *options.command : result.command;
   const controller::PathGeometry path(result.program);
+  // One mode along one line: the metrics from the closed forms of single_mode_run.h; with a
+  // trace, the general path below records it and the metrics stay the closed forms' (one
+  // answer whatever a run records: run, run --json, a sweep's point, the Python API).
+  CommandSamples own_samples;
+  RunOptions sampled = options;
+  RunResult closed;
+  if (options.single_mode && SingleModeQualifies(scenario, path)) {
+    if (options.command == nullptr || options.samples == nullptr) {
+      own_samples = SampleCommand(command);
+      sampled.command = &command;
+      sampled.samples = &own_samples;
+    }
+    closed.single_mode = RunSingleMode(scenario, command, *sampled.samples, path, &closed);
+    if (closed.single_mode) RefuseInfiniteMetrics(closed.metrics);
+    if (closed.single_mode && !options.record_trace) {
+      closed.program = std::move(result.program);
+      closed.command = std::move(result.command);
+      return closed;
+    }
+  }
   // Stage 2, the set-up: the plant, the command's samples, the run window, the samplers.
-  CoSimulation sim(scenario, command, path, options, &result);
+  CoSimulation sim(scenario, command, path, sampled, &result);
   // Stage 3, the tick loop (FMI order in Tick: set the input, step, read the outputs).
   bool settled = false;
   std::size_t last_tick = 0;
@@ -939,6 +958,11 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   // Stage 4, the metrics.
   sim.Finish(last_tick, settled);
   RefuseInfiniteMetrics(result.metrics);
+  if (closed.single_mode) {
+    result.metrics = closed.metrics;
+    result.residual_modes = std::move(closed.residual_modes);
+    result.single_mode = true;
+  }
   return result;
 }
 

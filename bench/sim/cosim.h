@@ -55,6 +55,9 @@ struct RunResult {
   // Periods whose inner output substeps were never stepped: no metric could read them
   // (bench/sim/deferred_substeps.h).
   long deferred_periods = 0;
+  // The metrics (and residual_modes) are the closed forms' of one mode along one line
+  // (single_mode_run.h); a trace, if any, is the general exact path's.
+  bool single_mode = false;
   // What the user must be told beside the metrics (a failed CVODE cross-check under
   // integrator.cross_check: warn).
   std::vector<std::string> warnings;
@@ -71,11 +74,20 @@ struct RunOptions {
   // SampleCommand(*command), computed before with it (a sweep shares both, read-only,
   // between its points and threads). Null: computed here. Ignored without `command`.
   const CommandSamples* samples = nullptr;
+  // A run of one mode along one line takes its metrics from its closed forms
+  // (single_mode_run.h; without a trace, nothing else runs). False: the general exact
+  // path's metrics (the same to rounding).
+  bool single_mode = true;
 };
 
 // The command RunScenario generates for the scenario's controller and program (the CNC's
 // stroke check and the memory budget included): what a sweep generates once and shares.
 controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program);
+
+// What the pattern was designed for: its lowest design frequency and that mode's damping
+// ratio (methods 1-4: undamped), into *m. NaN for a pattern that does not shape for a
+// frequency (none, custom, mode off).
+void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m);
 
 // Throws ValidationError (bad scenario), model::SolverError (CVODE failure).
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options = {});

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/sim/cosim.h"
+#include "tests/bench/general_path.h"
 #include "bench/config/scenario_loader.h"
 #include "tests/bench/same_metric_bits.h"
 #include "tests/bench/sdof_fixture.h"
@@ -18,8 +19,8 @@ namespace {
 using testing::ExpectSameBits;
 
 void ExpectSameMetrics(const Scenario& scenario, const std::string& what) {
-  const RunResult traced = RunScenario(scenario);
-  const RunResult fast = RunScenario(scenario, RunOptions{false});
+  const RunResult traced = RunScenario(scenario, testing::GeneralPath(true));
+  const RunResult fast = RunScenario(scenario, testing::GeneralPath(false));
   EXPECT_FALSE(traced.trace.time_s.empty());
   EXPECT_TRUE(fast.trace.time_s.empty()) << what << ": no trace recorded";
   EXPECT_GT(fast.metrics.peak_ratio, 0.5) << what;
@@ -53,8 +54,8 @@ TEST(CosimFastPath, ShippedScenariosMatchTheTracedRun) {
   for (const char* name : {"method1.yaml", "method2.yaml", "exponential.yaml", "pocket_corner.yaml",
                            "circle_test.yaml", "stroke_end.yaml", "um_zv.yaml"}) {
     const Scenario s = LoadScenario(dir + name, {});
-    const RunResult traced = RunScenario(s);
-    const RunResult fast = RunScenario(s, RunOptions{false});
+    const RunResult traced = RunScenario(s, testing::GeneralPath(true));
+    const RunResult fast = RunScenario(s, testing::GeneralPath(false));
     ExpectSameBits(traced.metrics, fast.metrics, name);
   }
 }

@@ -10,6 +10,7 @@
 
 #include "bench/config/scenario_loader.h"
 #include "bench/sim/cosim.h"
+#include "tests/bench/general_path.h"
 
 namespace shapebench::bench {
 namespace {
@@ -22,8 +23,8 @@ TEST_P(DampedTailTest, SettlingEqualsTheSimulatedTail) {
     const Scenario s = LoadScenario(std::string(SHAPEBENCH_SOURCE_DIR) + "/benchmarks/cases/case1.yaml",
                                     {{"machine.modes[0].frequency_hz", std::to_string(GetParam())},
                                      {"machine.modes[0].damping_ratio", zeta}});
-    const RunResult simulated = RunScenario(s);
-    const RunResult closed = RunScenario(s, RunOptions{false});
+    const RunResult simulated = RunScenario(s, testing::GeneralPath(true));
+    const RunResult closed = RunScenario(s, testing::GeneralPath(false));
     EXPECT_FALSE(simulated.tail_in_closed_form);
     const double resolution = 0.001 / closed.substeps;
     if (std::isnan(simulated.metrics.settling_time_s)) {

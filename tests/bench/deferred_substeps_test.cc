@@ -16,6 +16,7 @@
 
 #include "bench/sim/cosim.h"
 #include "bench/sim/deferred_substeps.h"
+#include "tests/bench/general_path.h"
 #include "tests/bench/same_metric_bits.h"
 #include "tests/bench/sdof_fixture.h"
 
@@ -24,10 +25,13 @@ namespace {
 
 using testing::ExpectSameBits;
 
+// The general exact path's deferral is what these tests are about (general_path.h).
+RunOptions Deferred() { return testing::GeneralPath(false); }
+
 // Returns how many periods the untraced run deferred.
 long ExpectSameAsEverySubstep(const Scenario& scenario, const std::string& what) {
-  const RunResult traced = RunScenario(scenario);
-  const RunResult deferred = RunScenario(scenario, RunOptions{false});
+  const RunResult traced = RunScenario(scenario, testing::GeneralPath(true));
+  const RunResult deferred = RunScenario(scenario, Deferred());
   EXPECT_EQ(traced.deferred_periods, 0) << what << ": a trace needs every substep";
   EXPECT_GT(deferred.metrics.peak_ratio, 0.5) << what;  // a run that moved
   ExpectSameBits(traced.metrics, deferred.metrics, what);
@@ -50,7 +54,7 @@ TEST(DeferredSubsteps, MetricsSameAsEverySubstep) {
         const long deferred = ExpectSameAsEverySubstep(s, what);
         // At least 80% of the motion's periods (a damped run's settling tail is closed form,
         // not ticked at all).
-        const RunResult run = RunScenario(s, RunOptions{false});
+        const RunResult run = RunScenario(s, Deferred());
         EXPECT_GT(static_cast<double>(deferred), 0.8 * run.metrics.motion_time_s / s.controller.period_s) << what;
       }
     }
