@@ -154,16 +154,34 @@ double* FieldOf(model::MachineConfig& machine, const StructureKey& key) {
                     machine.form);
 }
 
+
+// ParseStructureKey of the keys this thread parsed last: a sweep asks for the same one or
+// two keys at every point (a function of the text alone, so the same answer).
+const std::optional<StructureKey>& ParsedStructureKey(const std::string& key_path) {
+  struct Parsed {
+    std::string text;
+    std::optional<StructureKey> key;
+  };
+  constexpr std::size_t kKept = 8;
+  thread_local std::vector<Parsed> parsed;
+  for (const Parsed& p : parsed) {
+    if (p.text == key_path) return p.key;
+  }
+  if (parsed.size() == kKept) parsed.erase(parsed.begin());
+  parsed.push_back({key_path, ParseStructureKey(key_path)});
+  return parsed.back().key;
+}
+
 }  // namespace
 
 bool IsStructureNumberKey(const std::string& key_path) {
-  return ParseStructureKey(key_path).has_value();
+  return ParsedStructureKey(key_path).has_value();
 }
 
 bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values) {
   model::MultiAxisMachineConfig& machine = scenario->machine;
   for (const Override& value : values) {
-    const std::optional<StructureKey> key = ParseStructureKey(value.key_path);
+    const std::optional<StructureKey>& key = ParsedStructureKey(value.key_path);
     const std::optional<double> number = PlainNumber(value.value_yaml);
     if (!key || !number) return false;
     // The single form's keys have no axis; the axes form's name theirs.

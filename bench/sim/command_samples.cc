@@ -56,6 +56,18 @@ CommandSamples SampleCommand(const controller::MultiAxisCommand& command) {
     max_accel_sq = std::max(max_accel_sq, s.accel[k].squaredNorm());
     max_speed_sq = std::max(max_speed_sq, s.velocity[k].squaredNorm());
   }
+  for (int axis = 0; axis < controller::kNumAxes; ++axis) {
+    double l1 = 0.0;
+    bool up = true;
+    bool down = true;
+    for (std::size_t k = 1; k <= s.n; ++k) {
+      l1 += std::abs(s.accel[k](axis));
+      up = up && s.positions[k](axis) >= s.positions[k - 1](axis);
+      down = down && s.positions[k](axis) <= s.positions[k - 1](axis);
+    }
+    s.accel_l1_m_s[axis] = l1 * command.period_s;
+    s.monotone[axis] = up ? 1 : down ? -1 : 0;
+  }
   s.max_accel_m_s2 = std::sqrt(max_accel_sq);
   s.max_speed_m_s = std::sqrt(max_speed_sq);
   std::size_t last_moving = 0;

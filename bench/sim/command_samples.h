@@ -30,6 +30,13 @@ struct CommandSamples {
   std::vector<std::pair<std::size_t, std::size_t>> steady_runs;
   // Per axis: whether any of the command's velocities (velocity_m_s) is not 0.
   std::array<bool, controller::kNumAxes> axis_moves{};
+  // Per axis: sum over k of |a_k| times the period (m/s): a mode starting at rest never
+  // deflects by more than its gain / w_d times this (|impulse response| <= 1 / w_d), which
+  // tells a run where the tool cannot reach a line's ends (single_mode_run.cc).
+  std::array<double, controller::kNumAxes> accel_l1_m_s{};
+  // Per axis: the positions never decrease (+1) or never increase (-1) from tick to tick;
+  // 0 when they do both.
+  std::array<int, controller::kNumAxes> monotone{};
 
   // The acceleration held over period k; after the command, none.
   const Eigen::Vector3d& AccelAt(std::size_t k) const { return k <= n ? accel[k] : accel[0]; }

@@ -66,14 +66,17 @@ class SingleModeKernel {
   SingleModeKernel(const model::ModalMode& mode, const controller::PathElement& line, int axis,
                    const CommandSamples& samples, double dt, int substeps)
       : s_(samples), axis_(axis), dt_(dt), substeps_(substeps) {
-    w_ = 2.0 * kPi * mode.frequency_hz;
-    sigma_ = mode.damping_ratio * w_;
-    wd_ = w_ * std::sqrt(1.0 - mode.damping_ratio * mode.damping_ratio);
+    const double w = 2.0 * kPi * mode.frequency_hz;
+    w2_ = w * w;
+    sigma_ = mode.damping_ratio * w;
+    wd_ = w * std::sqrt(1.0 - mode.damping_ratio * mode.damping_ratio);
     gain_ = mode.gain;
     start_ = line.start_m(axis);
     direction_ = line.direction(axis);
     length_ = line.length_m;
     period_ = At(dt);
+    g_q_ = -(1.0 - period_.xx) / w2_;
+    g_v_ = period_.vx / w2_;
     inner_.resize(static_cast<std::size_t>(substeps));
     taus_.resize(static_cast<std::size_t>(substeps));
     for (int j = 1; j <= substeps; ++j) {
@@ -85,24 +88,65 @@ class SingleModeKernel {
   double ModalAmplitude() const {  // of the free vibration about q = 0 (a = 0)
     return std::abs(gain_) * std::hypot(q_, (v_ + sigma_ * q_) / wd_);
   }
-  double StaticGain() const { return -gain_ / (w_ * w_); }  // deflection per m/s^2
+  double StaticGain() const { return -gain_ / w2_; }  // deflection per m/s^2
+  // |deflection| never exceeds this from rest under accelerations of the given sum of
+  // |a| dt (m/s): |impulse response| <= 1 / w_d.
+  double DeflectionBound(double accel_l1_m_s) const { return std::abs(gain_) / wd_ * accel_l1_m_s; }
 
-  // Period k: the state to its end; returns |deflection| at the end and sets *inside to
-  // the largest |deflection| at a stationary point inside (0 when none).
-  double Advance(double a, double* inside) {
-    q_eq_ = -a / (w_ * w_);
-    x0_ = q_ - q_eq_;
+  // Period k under the held a: the state to its end, as the floor benchmark steps it;
+  // returns |deflection| at the end and sets *inside to the largest |deflection| at a
+  // stationary point inside the period (0 when none).
+  // The extremum is computed only where it can exceed `needed` (the metrics it could
+  // raise); *within bounds |deflection| inside the period: the extremum where computed,
+  // else a bound of it (0 without a stationary point).
+  double Advance(double a, double needed, double* inside, double* within) {
+    const double q1 = period_.xx * q_ + period_.xv * v_ + g_q_ * a;
+    const double v1 = period_.vx * q_ + period_.vv * v_ + g_v_ * a;
+    q0_ = q_;
     v0_ = v_;
-    const double x1 = period_.xx * x0_ + period_.xv * v0_;
-    v_ = period_.vx * x0_ + period_.vv * v0_;
-    q_ = x1 + q_eq_;
-    *inside = v0_ * v_ < 0.0 ? Extremum() : 0.0;
-    return std::abs(gain_ * q_);
+    a_ = a;
+    q_ = q1;
+    v_ = v1;
+    *inside = 0.0;
+    *within = 0.0;
+    if ((v0_ > 0.0 && v1 < 0.0) || (v0_ < 0.0 && v1 > 0.0)) {
+      *within = ExtremumBound(q0_, v0_, a);
+      if (!(*within < needed)) *inside = *within = Extremum(q0_, v0_, a);
+    }
+    return std::abs(gain_ * q1);
+  }
+  // Periods [from, to) of the motion in which only the peak can change (the tool stays
+  // inside the line, no cruise probe): Advance's arithmetic with the state in registers,
+  // the floor's loop. Returns the peak so far; *end_abs the last period's |deflection|.
+  double AdvancePeaks(std::size_t from, std::size_t to, double peak, double* end_abs) {
+    const double* accel = s_.accel.front().data() + axis_;  // Vector3d: 3 doubles, packed
+    double q = q_;
+    double v = v_;
+    double q0 = q0_, v0 = v0_, a = a_;
+    for (std::size_t k = from; k < to; ++k) {
+      q0 = q;
+      v0 = v;
+      a = accel[3 * k];
+      q = period_.xx * q0 + period_.xv * v0 + g_q_ * a;
+      v = period_.vx * q0 + period_.vv * v0 + g_v_ * a;
+      if (((v0 > 0.0 && v < 0.0) || (v0 < 0.0 && v > 0.0)) && !(ExtremumBound(q0, v0, a) < peak)) {
+        peak = std::max(peak, Extremum(q0, v0, a));
+      }
+      peak = std::max(peak, std::abs(gain_ * q));
+    }
+    q_ = q;
+    v_ = v;
+    q0_ = q0;
+    v0_ = v0;
+    a_ = a;
+    *end_abs = std::abs(gain_ * q);
+    return peak;
   }
   // The deflection at substep j (0-based) of the period Advance stepped last.
   double Substep(int j) const {
     const Transition& t = inner_[static_cast<std::size_t>(j)];
-    return gain_ * (t.xx * x0_ + t.xv * v0_ + q_eq_);
+    const double q_eq = -a_ / w2_;
+    return gain_ * (t.xx * (q0_ - q_eq) + t.xv * v0_ + q_eq);
   }
   // The free response from the current state (input 0 from now on) as one pole pair.
   model::FreeTerms Free() const {
@@ -124,25 +168,44 @@ class SingleModeKernel {
     const double e = std::exp(-sigma_ * tau);
     const double c = std::cos(wd_ * tau);
     const double sn = std::sin(wd_ * tau);
-    return {e * (c + sigma_ / wd_ * sn), e * sn / wd_, -e * (w_ * w_) / wd_ * sn, e * (c - sigma_ / wd_ * sn)};
+    return {e * (c + sigma_ / wd_ * sn), e * sn / wd_, -e * w2_ / wd_ * sn, e * (c - sigma_ / wd_ * sn)};
   }
-  // Where q' = e^{-sigma t} (v0 cos(w_d t) - ((sigma v0 + w^2 x0) / w_d) sin(w_d t))
-  // vanishes inside the period: w_d t = atan2(w_d v0, sigma v0 + w^2 x0) (mod pi).
-  double Extremum() const {
-    const double half = kPi / wd_;
-    double t = std::fmod(std::atan2(wd_ * v0_, sigma_ * v0_ + w_ * w_ * x0_), kPi) / wd_;
-    if (t < 0.0) t += half;
-    if (!(t > 0.0 && t < dt_)) return 0.0;  // rounding at an end: the ends are samples
-    const double b = (v0_ + sigma_ * x0_) / wd_;
-    const double x = std::exp(-sigma_ * t) * (x0_ * std::cos(wd_ * t) + b * std::sin(wd_ * t));
-    return std::abs(gain_ * (x + q_eq_));
+  // The period's stationary point (q' changed sign). About the equilibrium, x0 = q0 + a /
+  // w^2; undamped, the extremum is the free oscillation's amplitude sqrt(x0^2 + (v0 /
+  // w)^2), a maximum where v0 > 0; damped, it lies where q' = e^{-sigma t} (v0 cos(w_d t) -
+  // ((sigma v0 + w^2 x0) / w_d) sin(w_d t)) vanishes: w_d t = atan2(w_d v0, sigma v0 + w^2
+  // x0) (mod pi).
+  // |deflection| within the period starting at (q0, v0) under a: the free oscillation's
+  // amplitude about the equilibrium (which decays) plus the equilibrium's distance from 0,
+  // with a margin for the rounding of both (1e-12: a bound, not a value).
+  double ExtremumBound(double q0, double v0, double a) const {
+    const double q_eq = -a / w2_;
+    const double x0 = q0 - q_eq;
+    const double b = (v0 + sigma_ * x0) / wd_;
+    return std::abs(gain_) * (std::sqrt(x0 * x0 + b * b) + std::abs(q_eq)) * (1.0 + 1e-12);
+  }
+  // Out of line: rare (twice a natural period), and the loops stay small.
+  [[gnu::noinline]] double Extremum(double q0, double v0, double a) const {
+    const double q_eq = -a / w2_;
+    const double x0 = q0 - q_eq;
+    double x = 0.0;
+    if (sigma_ == 0.0) {
+      x = std::copysign(std::sqrt(x0 * x0 + v0 * v0 / w2_), v0);
+    } else {
+      double t = std::fmod(std::atan2(wd_ * v0, sigma_ * v0 + w2_ * x0), kPi) / wd_;
+      if (t < 0.0) t += kPi / wd_;
+      if (!(t > 0.0 && t < dt_)) return 0.0;  // rounding at an end: the ends are samples
+      x = std::exp(-sigma_ * t) * (x0 * std::cos(wd_ * t) + (v0 + sigma_ * x0) / wd_ * std::sin(wd_ * t));
+    }
+    return std::abs(gain_ * (x + q_eq));
   }
 
-  double w_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0;
+  double w2_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0;
   Transition period_;
+  double g_q_ = 0.0, g_v_ = 0.0;  // the period's response to a held a = 1 from rest
   std::vector<Transition> inner_;
-  double q_ = 0.0, v_ = 0.0;                // the state at the last period's end
-  double x0_ = 0.0, v0_ = 0.0, q_eq_ = 0.0;  // the last period's start, about its equilibrium
+  double q_ = 0.0, v_ = 0.0;              // the state at the last period's end
+  double q0_ = 0.0, v0_ = 0.0, a_ = 0.0;  // the last period's start and input
 };
 
 // The master's loop over the run's ticks, its accumulators as the general path keeps them
@@ -156,14 +219,21 @@ class SingleModeMaster {
     next_probe_ = window.cruise_probe_ticks.begin();
     // Far above the rounding OffLineBound allows for (a few ulps of the coordinates).
     safe_margin_ = 1e-9 * (std::abs(kernel->start_) + kernel->length_) + 1e-12;
+    FindInnerTicks();
+    const CommandSamples& s = kernel->s_;
+    const double end = s.positions.back()(kernel->axis_);
+    end_off_ = std::abs((end - kernel->start_) * kernel->direction_ - kernel->length_) +
+               8.0 * std::numeric_limits<double>::epsilon() * (std::abs(kernel->start_) + std::abs(end) + kernel->length_);
   }
 
   void Run(RunResult* result);
 
  private:
   template <RunPhase P> void Tick(std::size_t k);
+  void FindInnerTicks();
   void Contour(std::size_t k, double bound);
   bool SettleTail(std::size_t k);
+  long LastSampleOutside(const model::FreeTerms& free) const;
 
   SingleModeKernel& m_;
   const RunWindow& window_;
@@ -176,6 +246,10 @@ class SingleModeMaster {
   bool first_probe_ = true;
   long deferred_ = 0;
   double safe_margin_ = 0.0;
+  double end_off_ = 0.0;  // the command's end from the line's end, and the rounding there
+  // Ticks [inner_from_, inner_to_]: the tool stays inside the line, whatever the mode does.
+  std::size_t inner_from_ = 1;
+  std::size_t inner_to_ = 0;
   std::size_t last_tick_ = 0;
   bool settled_ = false;
   bool tail_closed_ = false;
@@ -183,11 +257,13 @@ class SingleModeMaster {
 
 template <RunPhase P>
 void SingleModeMaster::Tick(std::size_t k) {
-  double inside = 0.0;
-  const double end = m_.Advance(m_.s_.AccelAt(k)(m_.axis_), &inside);
-  const double largest = std::max(std::max(start_abs_, end), inside);
-  acc_.peak = std::max(acc_.peak, std::max(end, inside));
   const bool motion_end = k == window_.motion_ticks;
+  const double needed = P == RunPhase::kWindow && !motion_end ? std::min(acc_.peak, acc_.residual) : acc_.peak;
+  double inside = 0.0;
+  double within = 0.0;
+  const double end = m_.Advance(m_.s_.AccelAt(k)(m_.axis_), needed, &inside, &within);
+  const double largest = std::max(std::max(start_abs_, end), within);
+  acc_.peak = std::max(acc_.peak, std::max(end, inside));
   if constexpr (P == RunPhase::kWindow) {
     acc_.residual = std::max(acc_.residual, motion_end ? end : std::max(end, inside));
   }
@@ -207,27 +283,60 @@ void SingleModeMaster::Tick(std::size_t k) {
       acc_.quiet_since_tick = k;
     }
   }
-  Contour(k, largest + kDeferredMargin * (largest + static_m_));
+  if (k < inner_from_ || k > inner_to_) {
+    Contour(k, largest + kDeferredMargin * (largest + static_m_));
+  } else {
+    ++deferred_;
+  }
   start_abs_ = end;
+}
+
+// The ticks in which no sample can leave the line, found once a run (two binary searches)
+// instead of bounding every tick: the command's positions move one way along the line
+// from its start at 0, within max speed dt + max |a| dt^2 / 2 of the tick's first one,
+// and the deflection stays within DeflectionBound of the whole command's |a|.
+void SingleModeMaster::FindInnerTicks() {
+  const CommandSamples& s = m_.s_;
+  const int ax = m_.axis_;
+  if (m_.start_ != 0.0 || s.n < 2 || s.monotone[ax] != (m_.direction_ > 0.0 ? 1 : -1)) return;
+  const double dt = m_.dt_;
+  const double keep = s.max_speed_m_s * dt + 0.5 * s.max_accel_m_s2 * dt * dt +
+                      m_.DeflectionBound(s.accel_l1_m_s[ax]) * (1.0 + 1e-9) + safe_margin_;
+  const auto along = [&](std::size_t i) { return (s.positions[i](ax) - m_.start_) * m_.direction_; };
+  // Tick k spans positions k - 1 to k (nondecreasing along the line).
+  std::size_t lo = 0;
+  std::size_t hi = s.n + 1;  // the first position beyond `keep`
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (along(mid) > keep) hi = mid; else lo = mid + 1;
+  }
+  inner_from_ = lo + 1;
+  lo = 0;
+  hi = s.n + 1;  // the first position not below length - keep
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (along(mid) < m_.length_ - keep) lo = mid + 1; else hi = mid;
+  }
+  inner_to_ = lo == 0 ? 0 : lo - 1;
 }
 
 // The largest squared contour error, from the substeps of the periods where the tool can
 // leave the line (its ends: OffLineBound, deferred_substeps.h).
 void SingleModeMaster::Contour(std::size_t k, double bound) {
   const CommandSamples& s = m_.s_;
+  if (k > s.n) {
+    // The command at rest at its end: OffLineBound's value is at most this (the residual
+    // window's periods, most of them below the overshoot seen at the end of motion).
+    const double off = bound * (1.0 + 1e-15) + end_off_;
+    if (off * off < acc_.contour_sq) {
+      ++deferred_;
+      return;
+    }
+  }
   const bool commanded = k <= s.n;
   const double p0 = (commanded ? s.positions[k - 1] : s.positions.back())(m_.axis_);
   const double v0 = commanded ? s.velocity[k - 1](m_.axis_) : 0.0;
   const double half_a = 0.5 * s.AccelAt(k)(m_.axis_);
-  // Most periods lie well inside the line: the command moves at most |v0| h + |a| h^2 / 2
-  // from p0 (no division, unlike the vertex), the tool within `bound` of it. From a start
-  // at 0 only (as OffLineBound: elsewhere a sample's distance is a rounding residue).
-  const double reach = std::abs(v0) * m_.dt_ + std::abs(half_a) * m_.dt_ * m_.dt_ + bound;
-  const double along = (p0 - m_.start_) * m_.direction_;
-  if (m_.start_ == 0.0 && along - reach > safe_margin_ && along + reach < m_.length_ - safe_margin_) {
-    ++deferred_;
-    return;
-  }
   double lo = 0.0;
   double hi = 0.0;
   QuadraticRange(p0, v0, half_a, m_.dt_, &lo, &hi);
@@ -253,18 +362,13 @@ bool SingleModeMaster::SettleTail(std::size_t k) {
   constexpr double kMargin = 1.0 + 1e-9;
   const double envelope = free.Envelope(0.0);
   if (!(envelope * kMargin <= acc_.peak) || !(envelope * envelope * kMargin <= acc_.contour_sq)) return false;
-  const double crossing = model::LastBandCrossing(free, acc_.band);
-  if (std::isnan(crossing)) return false;
-  const int substeps = m_.substeps_;
+  const long last = LastSampleOutside(free);
+  if (last == -2) return false;
   long last_outside = acc_.last_outside_band;
   std::size_t quiet = acc_.quiet_since_tick;
-  const long from = crossing >= 0.0 ? static_cast<long>(std::floor(crossing * substeps / m_.dt_)) + 1 : 0;
-  for (long j = from; j >= 1; --j) {
-    if (std::abs(free.At(m_.dt_ * static_cast<double>(j) / substeps)) >= acc_.band) {
-      last_outside = static_cast<long>(k) * substeps + j;
-      quiet = static_cast<std::size_t>((last_outside - 1) / substeps + 1);
-      break;
-    }
+  if (last >= 1) {
+    last_outside = static_cast<long>(k) * m_.substeps_ + last;
+    quiet = static_cast<std::size_t>((last_outside - 1) / m_.substeps_ + 1);
   }
   const std::size_t stop = quiet + window_.period_ticks;
   acc_.last_outside_band = last_outside;
@@ -275,11 +379,55 @@ bool SingleModeMaster::SettleTail(std::size_t k) {
   return true;
 }
 
+// The last sample j >= 1 of the free response's grid (dt / substeps) with |y| >= band; 0
+// when there is none; -2 when undecided (no decay). From the envelope's crossing, where
+// |y| < band for good, back sample by sample (y_j = Re(q z^j): one complex product a
+// sample): a sample outside lies within half a natural period of it unless the damping
+// is below about 1e-4 (the grid can miss the last crests, each only pi zeta higher than
+// the next): beyond four periods back, model/band_crossing.h's search decides, as the
+// general path's tail does.
+long SingleModeMaster::LastSampleOutside(const model::FreeTerms& free) const {
+  const double band = acc_.band;
+  const std::complex<double> q = free.q.front();
+  const std::complex<double> lambda = free.lambda.front();
+  const double envelope = std::abs(q);
+  if (!(band > 0.0) || !(lambda.real() < 0.0)) return -2;
+  if (envelope < band) return 0;
+  const double h = m_.dt_ / m_.substeps_;
+  const double crossing = std::log(envelope / band) / -lambda.real();
+  const long top = static_cast<long>(std::floor(crossing / h)) + 1;
+  const long reach = 4 * static_cast<long>(window_.period_ticks) * m_.substeps_ + 2;
+  std::complex<double> term = q * std::exp(lambda * (h * static_cast<double>(top)));
+  const std::complex<double> back = std::exp(-lambda * h);
+  for (long j = top; j >= 1 && top - j <= reach; --j, term *= back) {
+    if (std::abs(term.real()) >= band) return j;
+  }
+  if (top <= reach) return 0;
+  // The bisection's last crossing, then the grid back from it (cosim.cc SettleTail).
+  const double last = model::LastBandCrossing(free, band);
+  if (std::isnan(last)) return -2;
+  for (long j = last >= 0.0 ? static_cast<long>(std::floor(last / h)) + 1 : 0; j >= 1; --j) {
+    if (std::abs(free.At(h * static_cast<double>(j))) >= band) return j;
+  }
+  return 0;
+}
+
 void SingleModeMaster::Run(RunResult* result) {
   const std::size_t motion = window_.motion_ticks;
   for (std::size_t k = 1; k <= window_.max_ticks; ++k) {
     last_tick_ = k;
     if (k < motion) {
+      if (k >= inner_from_ && k <= inner_to_) {
+        std::size_t end = std::min(inner_to_ + 1, motion);
+        if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
+        if (end > k) {
+          acc_.peak = m_.AdvancePeaks(k, end, acc_.peak, &start_abs_);
+          deferred_ += static_cast<long>(end - k);
+          k = end - 1;
+          last_tick_ = k;
+          continue;
+        }
+      }
       Tick<RunPhase::kMotion>(k);
       if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
         ++next_probe_;

@@ -3,6 +3,7 @@
 #include "common/field_list.h"
 
 #include <algorithm>
+#include <charconv>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -675,13 +676,21 @@ std::uint64_t SweepValues::size() const {
   return kind == Kind::kList ? static_cast<std::uint64_t>(texts.size()) : steps;
 }
 
+namespace {
+
+// printf's "%.15g" (std::to_chars' general format with a precision is that, to the
+// character), without printf's cost: a sweep writes one a point.
+std::string Digits15(double value) {
+  char text[40];
+  const std::to_chars_result written = std::to_chars(text, text + sizeof text, value, std::chars_format::general, 15);
+  return std::string(text, written.ptr);
+}
+
+}  // namespace
+
 std::string SweepValues::Text(std::uint64_t i) const {
   if (kind == Kind::kList) return texts[i];
-  if (kind == Kind::kSampled) {
-    char text[40];
-    std::snprintf(text, sizeof text, "%.15g", (*samples)[i]);
-    return text;
-  }
+  if (kind == Kind::kSampled) return Digits15((*samples)[i]);
   if (i == 0) return ShortestDouble(from);
   if (i + 1 == steps) return ShortestDouble(to);
   // Inner values in 15 significant digits: 15.3, not 15.300000000000001 (the value a
@@ -692,9 +701,7 @@ std::string SweepValues::Text(std::uint64_t i) const {
       kind == Kind::kLinear
           ? from + (to - from) * k / last
           : std::exp(std::log(from) + (std::log(to) - std::log(from)) * k / last);
-  char text[40];
-  std::snprintf(text, sizeof text, "%.15g", value);
-  return text;
+  return Digits15(value);
 }
 
 std::string SweepValues::Yaml(std::uint64_t i) const {
@@ -738,7 +745,9 @@ SweepPoint MakePoint(const Sweep& sweep, std::uint64_t index, const std::vector<
     for (const auto& values : sweep.axes[a].keys) {
       point.keys.push_back(values.key);
       point.texts.push_back(values.Text(digits[a]));
-      point.overrides.push_back(Override{values.key, values.Yaml(digits[a])});
+      // Yaml is Text except for a list's values (one conversion a point, not two).
+      point.overrides.push_back(
+          Override{values.key, values.kind == SweepValues::Kind::kList ? values.Yaml(digits[a]) : point.texts.back()});
     }
   }
   point.overrides.insert(point.overrides.end(), sets.begin(), sets.end());
@@ -842,12 +851,15 @@ bool PlantOnlyKey(const std::string& key) {
   for (const char* prefix : {"drive", "integrator", "output", "checks"}) {
     if (IsPathPrefix(prefix, key)) return true;
   }
-  std::vector<std::string> lists;
-  model::ForEachMachineForm([&](const auto& form) {
-    for (std::string& list : ListNames<std::decay_t<decltype(form)>>()) lists.push_back(std::move(list));
-  });
-  lists.emplace_back(model::LumpedDamping::kKey);
-  lists.emplace_back(model::ModalMachineConfig::kModalFileKey);
+  static const std::vector<std::string> lists = [] {
+    std::vector<std::string> names;
+    model::ForEachMachineForm([&](const auto& form) {
+      for (std::string& list : ListNames<std::decay_t<decltype(form)>>()) names.push_back(std::move(list));
+    });
+    names.emplace_back(model::LumpedDamping::kKey);
+    names.emplace_back(model::ModalMachineConfig::kModalFileKey);
+    return names;
+  }();
   for (const std::string& list : lists) {
     if (IsPathPrefix("machine." + list, key)) return true;
     for (const char* axis : {"x", "y", "z"}) {
@@ -894,11 +906,26 @@ std::string WarningText(const std::vector<std::string>& warnings) {
 }  // namespace
 
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
-  PointOutcome outcome;
-  outcome.index = index;
   SweepPoint point;
   try {
     point = MakePoint(sweep, index, sets);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& error) {
+    PointOutcome outcome;
+    outcome.index = index;
+    outcome.status = dynamic_cast<const ConfigError*>(&error) != nullptr ? PointOutcome::Status::kBadInput
+                                                                         : PointOutcome::Status::kFailed;
+    outcome.error = error.what();
+    return outcome;
+  }
+  return RunPoint(sweep, point);
+}
+
+PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
+  PointOutcome outcome;
+  outcome.index = point.index;
+  try {
     // A point that changes only numbers of the structure takes the scenario the last
     // point loaded on this thread and sets them (structure_numbers.h). Otherwise the base
     // (and its machine file) is parsed once per thread (ParseCacheScope); a point whose

@@ -182,6 +182,8 @@ struct PointOutcome {
 // point: a row "error" would be kept by a resumed sweep, so the sweep stops instead). An error caused by one of the point's values
 // is located at that value in the sweep file; one caused by a --set reads --set:N:1.
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index);
+// The same for the point MakePoint(sweep, point.index, sets) made.
+PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point);
 
 // A hash (16 hex digits) of everything results.csv depends on: the base scenario as read
 // (machine and program files included), the expanded grid, the --set options and the

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -90,17 +91,20 @@ std::vector<const MetricInfo*> MetricColumns(const std::vector<std::string>& met
 Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
               const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
   const SweepPoint point = MakePoint(sweep, point_index, sets);
-  const PointOutcome outcome = RunPoint(sweep, sets, point_index);
-  std::vector<std::string> fields;
-  fields.reserve(3 + point.texts.size() + metric_columns.size());
-  fields.push_back(std::to_string(point_index));
-  fields.insert(fields.end(), point.texts.begin(), point.texts.end());
+  const PointOutcome outcome = RunPoint(sweep, point);
+  // CsvRecord's line, written in place: a number (ExactDouble's text) never needs quotes.
+  std::string line = std::to_string(point_index);
+  for (const std::string& text : point.texts) line += ',' + CsvField(text);
+  char number[40];
   for (const MetricInfo* info : metric_columns) {
-    fields.push_back(outcome.ok() ? ExactDouble(outcome.metrics.*info->field) : std::string());
+    line += ',';
+    const double value = outcome.metrics.*info->field;
+    if (outcome.ok() && !std::isnan(value)) line.append(number, AppendExactDouble(number, number + sizeof number, value));
   }
-  fields.push_back(outcome.ok() ? "ok" : "error");
-  fields.push_back(outcome.error);
-  return Row{CsvRecord(fields), outcome.ok()};
+  line += outcome.ok() ? ",ok," : ",error,";
+  line += CsvField(outcome.error);
+  line += '\n';
+  return Row{std::move(line), outcome.ok()};
 }
 
 // A row between MPI ranks: '1' (ok) or '0', then its text.
@@ -109,10 +113,20 @@ Row DecodeRow(const std::string& bytes) {
   return Row{bytes.empty() ? std::string() : bytes.substr(1), !bytes.empty() && bytes[0] == '1'};
 }
 
-void WriteAll(std::FILE* file, const std::string& text, const std::string& path) {
-  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) {
+// Rows reach the file at least every kFlushEvery (a watcher sees the sweep progress; a
+// crash loses at most that much work: resume runs a torn tail again, sweep_files.cc), not
+// one write per row (a fast sweep's rows cost microseconds each). An interrupted sweep
+// closes the file, which writes every row it kept.
+constexpr std::chrono::milliseconds kFlushEvery{100};
+
+void WriteAll(std::FILE* file, const std::string& text, const std::string& path,
+              std::chrono::steady_clock::time_point* flushed) {
+  const auto now = std::chrono::steady_clock::now();
+  const bool flush = now - *flushed >= kFlushEvery;
+  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || (flush && std::fflush(file) != 0)) {
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   }
+  if (flush) *flushed = now;
 }
 
 }  // namespace
@@ -155,19 +169,20 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
+    auto flushed = std::chrono::steady_clock::now();
     try {
       // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
       RunDistributed<Row>(
           summary.resumed, shard.Size(), options.jobs,
           [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
           [&](std::uint64_t, Row&& row) {
-            WriteAll(file, row.text, partial.string());
+            WriteAll(file, row.text, partial.string(), &flushed);
             if (!row.ok) ++summary.errors;
             progress.Update(++written);
           },
           EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
       progress.Finish(written);
-      if (fsync(fileno(file)) != 0) {
+      if (std::fflush(file) != 0 || fsync(fileno(file)) != 0) {
         throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
       }
     } catch (...) {
