@@ -136,7 +136,9 @@ void Case3(benchmark::State& state, const std::string& method,
            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   };
   for (auto _ : state) {
+    state.PauseTiming();  // the last run's files: not this run's work
     std::filesystem::remove_all(dir);
+    state.ResumeTiming();
     SweepRunOptions options;
     options.out_dir = dir;
     options.jobs = static_cast<int>(state.range(0));

@@ -541,6 +541,22 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
 }  // namespace
 
 double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
+  const double motion_s = MinimumMotionSeconds(scenario, breakdown);
+  const double tail_s = ResidualWindowSeconds(scenario);
+  if (breakdown != nullptr) *breakdown += "; residual window " + Seconds(tail_s);
+  return motion_s + tail_s;
+}
+
+double ResidualWindowSeconds(const Scenario& scenario) {
+  // Three periods of the lowest mode (0.1 s for a rigid machine).
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+    for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  return 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
+}
+
+double MinimumMotionSeconds(const Scenario& scenario, std::string* breakdown) {
   const controller::ControllerConfig& c = scenario.controller;
   const controller::Program program = scenario.RunProgram();
   const controller::PathGeometry path(program);
@@ -581,20 +597,13 @@ double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
     filter_s = post.table.empty() ? post.moving_average_s
                                   : static_cast<double>(post.table.size()) * c.period_s;
   }
-  // The residual window: three periods of the lowest mode (0.1 s for a rigid machine).
-  double lowest_hz = std::numeric_limits<double>::infinity();
-  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
-    for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
-  }
-  const double tail_s = 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
   const double motion_s = std::max(feed_s, accel_s) + dwell_s + pattern_s + filter_s;
   if (breakdown != nullptr) {
     *breakdown = "motion " + Seconds(motion_s) + ": the path at its feeds " + Seconds(feed_s) +
                  " or acc/dec " + Seconds(accel_s) + ", dwells " + Seconds(dwell_s) +
-                 ", pattern " + Seconds(pattern_s) + ", post-interpolation " + Seconds(filter_s) +
-                 "; residual window " + Seconds(tail_s);
+                 ", pattern " + Seconds(pattern_s) + ", post-interpolation " + Seconds(filter_s);
   }
-  return motion_s + tail_s;
+  return motion_s;
 }
 
 std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks, nullptr); }
@@ -667,11 +676,12 @@ model::MachineConfig LoadMachine(const std::string& path,
   return *driven;
 }
 
-bool MachineChecksPass(const Scenario& scenario) {
+bool MachineChecksPass(const Scenario& scenario, std::optional<double> motion_s) {
   try {
     scenario.machine.validate();
     CheckPlantFinite(scenario);
-    return RunLengthWithinLimits(scenario, MinimumRunSeconds(scenario));
+    const double motion = motion_s ? *motion_s : MinimumMotionSeconds(scenario);
+    return RunLengthWithinLimits(scenario, motion + ResidualWindowSeconds(scenario));
   } catch (const std::exception&) {
     return false;
   }

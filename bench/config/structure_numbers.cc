@@ -178,7 +178,7 @@ bool IsStructureNumberKey(const std::string& key_path) {
   return ParsedStructureKey(key_path).has_value();
 }
 
-bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values) {
+bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values, std::optional<double> motion_s) {
   model::MultiAxisMachineConfig& machine = scenario->machine;
   for (const Override& value : values) {
     const std::optional<StructureKey>& key = ParsedStructureKey(value.key_path);
@@ -192,7 +192,7 @@ bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values
     if (field == nullptr) return false;
     *field = *number;
   }
-  return MachineChecksPass(*scenario);
+  return MachineChecksPass(*scenario, motion_s);
 }
 
 }  // namespace shapebench::bench

@@ -7,6 +7,7 @@
 // compares the two.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ bool IsStructureNumberKey(const std::string& key_path);
 // out of range, an axis without a model), a value is not a plain decimal number or is out
 // of range, or the changed machine fails MachineChecksPass: the caller then loads the
 // point from its sources, which gives the located error.
-bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values);
+// `motion_s`: MinimumMotionSeconds of the scenario, when the caller knows it (the numbers
+// of the structure do not change it).
+bool SetStructureNumbers(Scenario* scenario, const std::vector<Override>& values,
+                         std::optional<double> motion_s = std::nullopt);
 
 }  // namespace shapebench::bench

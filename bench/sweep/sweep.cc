@@ -834,9 +834,12 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
   static std::atomic<std::uint64_t> next_id{1};
   sweep.id = next_id++;
   CheckSetsAvoidGrid(sweep, sets);
-  const Scenario base_scenario = LoadScenario(sweep.base, sets);  // the base must be valid
-  sweep.design_modes = FindDesignModes(base_scenario.machine, base_scenario.RunProgram());
-  sweep.note = MachineDefaultsNote(sweep, base_scenario);
+  const auto base_scenario = std::make_shared<const Scenario>(LoadScenario(sweep.base, sets));  // must be valid
+  sweep.design_modes = FindDesignModes(base_scenario->machine, base_scenario->RunProgram());
+  sweep.note = MachineDefaultsNote(sweep, *base_scenario);
+  sweep.base_scenario = base_scenario;
+  sweep.base_hash = BaseScenarioHash(sweep);  // the files as this load read them
+  for (const Override& set : sets) sweep.base_sets_key += set.key_path + "=" + set.value_yaml + "\n";
   CheckGridAgainstBase(sweep, sets);
   return sweep;
 }
@@ -885,6 +888,7 @@ struct LoadedScenario {
   std::uint64_t sweep_id = 0;
   std::string sets_key;
   Scenario scenario;
+  double motion_s = 0.0;  // MinimumMotionSeconds(scenario): the same for every such point
 };
 
 std::string SetsKey(const SweepPoint& point) {
@@ -934,25 +938,38 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
     const bool structure_only =
         std::all_of(point.keys.begin(), point.keys.end(), IsStructureNumberKey);
     const std::string sets_key = SetsKey(point);
-    Scenario scenario;
+    Scenario loaded_here;
+    const Scenario* run = &loaded_here;
     bool set = false;
+    if (structure_only && sweep.id != 0 && !(loaded.sweep_id == sweep.id && loaded.sets_key == sets_key) &&
+        sweep.base_scenario != nullptr && sweep.base_sets_key == sets_key) {
+      loaded = {sweep.id, sets_key, *sweep.base_scenario, MinimumMotionSeconds(*sweep.base_scenario)};
+    }
     if (structure_only && loaded.sweep_id == sweep.id && sweep.id != 0 && loaded.sets_key == sets_key) {
-      scenario = loaded.scenario;
+      // Set in place: every such point sets every swept number, so what the last one set
+      // is overwritten (no copy of the scenario a point). A refused value may have left some
+      // set: the cache is dropped then.
       const std::vector<Override> values(point.overrides.begin(),
                                          point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
-      set = SetStructureNumbers(&scenario, values);
+      set = SetStructureNumbers(&loaded.scenario, values, loaded.motion_s);
+      if (set) {
+        run = &loaded.scenario;
+      } else {
+        loaded = LoadedScenario{};
+      }
     }
     if (!set) {
       LoadOptions options;
       options.design_modes = sweep.design_modes;  // the base's: the pattern stays fixed
       try {
         const ParseCacheScope parse_once;
-        scenario = LoadScenario(sweep.base, point.overrides, options);
+        loaded_here = LoadScenario(sweep.base, point.overrides, options);
       } catch (const std::exception&) {
-        scenario = LoadScenario(sweep.base, point.overrides, options);
+        loaded_here = LoadScenario(sweep.base, point.overrides, options);
       }
-      if (structure_only) loaded = {sweep.id, sets_key, scenario};
+      if (structure_only) loaded = {sweep.id, sets_key, loaded_here, MinimumMotionSeconds(loaded_here)};
     }
+    const Scenario& scenario = *run;
     try {
       // Points that differ only in keys the controller does not read (the natural-period
       // sweep: the plant's frequency) share one command and its samples, generated once for
@@ -990,7 +1007,7 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
   return outcome;
 }
 
-std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
+std::uint64_t BaseScenarioHash(const Sweep& sweep) {
   std::uint64_t hash = 0xcbf29ce484222325ULL;
   HashText(&hash, "shapebench sweep 1");
   const YAML::Node base = BuildScenarioTree(sweep.base, {});
@@ -999,6 +1016,11 @@ std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
     const fs::path program = fs::path(sweep.base).parent_path() / base["program_file"].Scalar();
     HashText(&hash, FileBytes(program.string()));
   }
+  return hash;
+}
+
+std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
+  std::uint64_t hash = sweep.base_hash != 0 ? sweep.base_hash : BaseScenarioHash(sweep);
   for (const Override& set : sets) HashText(&hash, set.key_path + "=" + set.value_yaml);
   HashText(&hash, "grid");
   for (const auto& axis : sweep.axes) {

@@ -127,6 +127,14 @@ struct Sweep {
   // Said once on stderr by the commands that run the sweep: the pattern is left to the
   // machine while swept keys change the machine (empty when not).
   std::string note;
+  // The base scenario as LoadSweep loaded it with its --set options (base_sets_key: each
+  // "key=value\n"): the structure-only points of every thread start from it and set their
+  // numbers (structure_numbers.h) instead of loading it again. Null: loaded per thread.
+  std::shared_ptr<const Scenario> base_scenario;
+  std::string base_sets_key;
+  // SweepHash's state after the base scenario's files (BaseScenarioHash), hashed when
+  // LoadSweep read them; 0: hashed when asked.
+  std::uint64_t base_hash = 0;
 
   // Every swept key in column order (axes in order, a zip group's keys as written).
   std::vector<std::string> Keys() const;
@@ -184,6 +192,8 @@ struct PointOutcome {
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index);
 // The same for the point MakePoint(sweep, point.index, sets) made.
 PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point);
+
+std::uint64_t BaseScenarioHash(const Sweep& sweep);
 
 // A hash (16 hex digits) of everything results.csv depends on: the base scenario as read
 // (machine and program files included), the expanded grid, the --set options and the

@@ -417,7 +417,14 @@ ResumedRows KeepResumableRows(const std::string& dir_name, const std::vector<std
     return resumed;
   }
   const RowScan scan = ScanRows(partial.string(), columns, shard, grid);
-  if (!scan.header_ok) {
+  if (!scan.header_ok && !fs::exists(partial)) {
+    // A new sweep: the header is written as the rows will be, synced with them at the end
+    // (RunSweep). A crash before that leaves at worst a torn header, which the next run
+    // finds not ok and writes again (below): no need for two syncs of its own.
+    std::ofstream out(partial, std::ios::binary);
+    out << CsvRecord(columns);
+    if (!out.flush()) throw std::runtime_error("cannot write " + partial.string());
+  } else if (!scan.header_ok) {
     WriteFileAtomically(partial.string(), [&](std::ostream& out) { out << CsvRecord(columns); });
   } else if (scan.good_bytes != fs::file_size(partial)) {
     fs::resize_file(partial, scan.good_bytes);  // a torn or foreign tail is run again
