@@ -247,6 +247,7 @@ class SingleModeMaster {
   SingleModeMaster(SingleModeKernel* kernel, const RunWindow& window, double static_m)
       : m_(*kernel), window_(window), static_m_(static_m) {
     acc_.band = RunWindow::kSettlingBand * static_m;
+    contour_floor_ = 1e-12 * static_m;
     acc_.quiet_since_tick = window.motion_ticks;
     next_probe_ = window.cruise_probe_ticks.begin();
     // Far above the rounding OffLineBound allows for (a few ulps of the coordinates).
@@ -268,7 +269,7 @@ class SingleModeMaster {
  private:
   template <RunPhase P> void Tick(std::size_t k);
   void FindInnerTicks();
-  bool ContourCannotGrow(std::size_t k, double bound) const;
+  [[gnu::always_inline]] bool ContourCannotGrow(std::size_t k, double bound) const;
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
   bool SettleTail(std::size_t k);
   long LastSampleOutside(const model::FreeTerms& free) const;
@@ -285,6 +286,10 @@ class SingleModeMaster {
   long deferred_ = 0;
   double safe_margin_ = 0.0;
   double end_off_ = 0.0;
+  // Contour errors below this are rounding (1e-12 of the static displacement: femtometres):
+  // not sampled for (a quiet residual window would otherwise be sampled throughout, chasing
+  // distances of 1e-15 m that the samples' own arithmetic makes).
+  double contour_floor_ = 0.0;
   double rounding_ = 0.0;  // OffLineBound's rounding term, at most  // the command's end from the line's end, and the rounding there
   // Ticks [inner_from_, inner_to_]: the tool stays inside the line, whatever the mode does.
   std::size_t inner_from_ = 1;
@@ -335,7 +340,7 @@ void SingleModeMaster::Tick(std::size_t k) {
 // command within |v0| h + |a| h^2 / 2 of p0 (at rest at its end after the command), the
 // tool within `bound` of it: its distance from the line is at most this; Contour's bound
 // (OffLineBound on the exact range) is never larger.
-bool SingleModeMaster::ContourCannotGrow(std::size_t k, double bound) const {
+inline bool SingleModeMaster::ContourCannotGrow(std::size_t k, double bound) const {
   const CommandSamples& s = m_.s_;
   double off = 0.0;
   if (k > s.n) {
@@ -349,7 +354,7 @@ bool SingleModeMaster::ContourCannotGrow(std::size_t k, double bound) const {
     if (m_.start_ == 0.0 && along - reach > rounding_ && along + reach < m_.length_ - rounding_) return true;
     off = std::max(0.0, std::max(reach - along, along + reach - m_.length_)) * (1.0 + 1e-15) + rounding_;
   }
-  return off * off < acc_.contour_sq;
+  return off < contour_floor_ || off * off < acc_.contour_sq;
 }
 
 // The ticks in which no sample can leave the line, found once a run (two binary searches)
@@ -501,6 +506,7 @@ void SingleModeMaster::Run(RunResult* result) {
     if (k <= window_.window_end()) {
       Tick<RunPhase::kWindow>(k);
       if (k == motion) residual_m_ = m_.ModalAmplitude();
+      if (k < window_.window_end()) continue;  // the run can stop only from the window's end on
     } else {
       Tick<RunPhase::kTail>(k);
     }

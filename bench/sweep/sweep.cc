@@ -979,9 +979,22 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
       RunOptions options{false};  // no trace needed
       std::shared_ptr<const SharedCommand> shared;
       if (sweep.id != 0 && SharedCommandCache::Enabled()) {
-        shared = SharedCommandCache::Instance().Get(sweep.id, CommandKey(point), [&] {
-          return GenerateScenarioCommand(scenario, scenario.RunProgram());
-        });
+        // The command this thread used last, when the point's is the same one: no lock a
+        // point (the threads of a sweep would take turns at the cache's).
+        thread_local struct {
+          std::uint64_t sweep_id = 0;
+          std::string key;
+          std::shared_ptr<const SharedCommand> command;
+        } last;
+        std::string key = CommandKey(point);
+        if (last.command != nullptr && last.sweep_id == sweep.id && last.key == key) {
+          shared = last.command;
+        } else {
+          shared = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
+            return GenerateScenarioCommand(scenario, scenario.RunProgram());
+          });
+          last = {sweep.id, std::move(key), shared};
+        }
         options.command = &shared->command;
         options.samples = &shared->samples;
       }

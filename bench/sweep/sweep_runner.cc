@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -150,43 +151,75 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
                              (ec ? ec.message() : "not a directory"));
   }
   const OutputDirLock lock(dir.string());  // one writer at a time, until we return
-  CheckResumeDirectory(dir.string(), manifest);
-  WriteFileAtomically((dir / kSweepManifestFile).string(),
-                      [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
-
   SweepRunSummary summary;
   summary.points = shard.Size();
   summary.results = (dir / kSweepResultsFile).string();
   const fs::path partial = dir / kSweepPartialFile;
-  const ResumedRows resumed = KeepResumableRows(dir.string(), columns, shard, GridTexts::Of(sweep));
+  // The manifest (synced: two syncs of the disk) and the partial file's header, before any
+  // row. A new directory's are written on another thread while the first points run: the
+  // first row waits for them, so no row is on disk before the manifest that says whose it
+  // is. A directory with files (a resume) is prepared here: its rows decide where to start.
+  const bool fresh = !fs::exists(dir / kSweepManifestFile) && !fs::exists(partial) &&
+                     !fs::exists(dir / kSweepResultsFile);
+  CheckResumeDirectory(dir.string(), manifest);
+  auto prepare = [&] {
+    WriteFileAtomically((dir / kSweepManifestFile).string(),
+                        [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
+    return KeepResumableRows(dir.string(), columns, shard, GridTexts::Of(sweep));
+  };
+  std::future<ResumedRows> preparing;
+  const ResumedRows resumed = fresh ? ResumedRows{} : prepare();
+  if (fresh) preparing = std::async(std::launch::async, prepare);
   summary.resumed = resumed.rows;
   summary.errors = resumed.errors;
   if (!resumed.finished) {
-    std::FILE* file = std::fopen(partial.c_str(), "ab");
-    if (file == nullptr) {
-      throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
-    }
     const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
     auto flushed = std::chrono::steady_clock::now();
+    std::FILE* file = nullptr;
+    std::string waiting;  // rows computed before the file was ready, in order
+    auto open = [&] {
+      if (preparing.valid()) preparing.get();
+      file = std::fopen(partial.c_str(), "ab");
+      if (file == nullptr) {
+        throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
+      }
+      if (!waiting.empty()) WriteAll(file, waiting, partial.string(), &flushed);
+      waiting.clear();
+    };
     try {
+      if (!fresh) open();
       // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
       RunDistributed<Row>(
           summary.resumed, shard.Size(), options.jobs,
           [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
           [&](std::uint64_t, Row&& row) {
-            WriteAll(file, row.text, partial.string(), &flushed);
+            const bool ready = file != nullptr || !preparing.valid() ||
+                               preparing.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+            if (ready && file == nullptr) open();
+            if (ready) {
+              WriteAll(file, row.text, partial.string(), &flushed);
+            } else {
+              waiting += row.text;
+            }
             if (!row.ok) ++summary.errors;
             progress.Update(++written);
           },
           EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
+      if (file == nullptr) open();  // rows still waiting for it, or none (interrupted before the first)
       progress.Finish(written);
       if (std::fflush(file) != 0 || fsync(fileno(file)) != 0) {
         throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
       }
     } catch (...) {
-      std::fclose(file);
+      // The rows computed before the failure are kept, as those written already.
+      try {
+        if (file == nullptr && !waiting.empty()) open();
+      } catch (...) {
+      }
+      if (preparing.valid()) preparing.wait();  // it reads this frame's variables
+      if (file != nullptr) std::fclose(file);
       throw;
     }
     if (std::fclose(file) != 0) {
