@@ -977,26 +977,24 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
       // metrics bit for bit (tests/bench/sweep_test.cc checks the rows against independent
       // runs, tests/bench/shared_command_test.cc against a sweep without sharing).
       RunOptions options{false};  // no trace needed
-      std::shared_ptr<const SharedCommand> shared;
       if (sweep.id != 0 && SharedCommandCache::Enabled()) {
-        // The command this thread used last, when the point's is the same one: no lock a
-        // point (the threads of a sweep would take turns at the cache's).
+        // The command this thread used last, when the point's is the same one: no lock and
+        // no count of its owners a point (the threads of a sweep would take turns at the
+        // cache's lock and at the shared count's cache line; the thread's copy keeps it).
         thread_local struct {
           std::uint64_t sweep_id = 0;
           std::string key;
           std::shared_ptr<const SharedCommand> command;
         } last;
         std::string key = CommandKey(point);
-        if (last.command != nullptr && last.sweep_id == sweep.id && last.key == key) {
-          shared = last.command;
-        } else {
-          shared = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
+        if (last.command == nullptr || last.sweep_id != sweep.id || last.key != key) {
+          std::shared_ptr<const SharedCommand> got = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
             return GenerateScenarioCommand(scenario, scenario.RunProgram());
           });
-          last = {sweep.id, std::move(key), shared};
+          last = {sweep.id, std::move(key), std::move(got)};
         }
-        options.command = &shared->command;
-        options.samples = &shared->samples;
+        options.command = &last.command->command;
+        options.samples = &last.command->samples;
       }
       const RunResult result = RunScenario(scenario, options);
       outcome.metrics = result.metrics;
