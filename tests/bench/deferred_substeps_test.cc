@@ -65,15 +65,9 @@ TEST(DeferredSubsteps, MetricsSameAsEverySubstep) {
 // pattern's design frequency, the period; seeded): the same metrics bit for bit.
 TEST(DeferredSubsteps, RandomMovesSameAsEverySubstep) {
   std::mt19937 random(2026);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   long deferred = 0;
   for (int trial = 0; trial < 60; ++trial) {
-    Scenario s = testing::SdofScenario(5.0 + 75.0 * u(random), trial % 3 == 0 ? 0.0 : 0.3 * u(random) * u(random));
-    s.controller.period_s = trial % 4 == 0 ? 0.002 : 0.001;
-    s.controller.feed_mm_min = 1000.0 + 19000.0 * u(random);
-    s.controller.accel_time_s = 0.01 + 0.2 * u(random);
-    s.controller.pattern.frequency_hz = 10.0 + 40.0 * u(random);
-    s.move.distance_mm = (trial % 2 == 0 ? 1.0 : -1.0) * (1.0 + 299.0 * u(random));
+    const Scenario s = testing::RandomSdofMove(&random, trial);
     deferred += ExpectSameAsEverySubstep(s, "trial " + std::to_string(trial));
   }
   EXPECT_GT(deferred, 0);

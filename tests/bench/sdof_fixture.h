@@ -1,6 +1,8 @@
 // A single undamped 25 Hz mode driven by the kinematic drive: the patent's analysis case.
 #pragma once
 
+#include <random>
+
 #include "bench/sim/scenario.h"
 
 namespace shapebench::bench::testing {
@@ -18,6 +20,20 @@ inline Scenario SdofScenario(double frequency_hz = 25.0, double damping_ratio = 
   s.move.distance_mm = 213;  // cruise of 126 ms: 3.15 natural periods, not a whole number
   s.integrator.method = method;
   s.integrator.rtol = 1e-10;
+  return s;
+}
+
+// A random single-axis move of one mode (seeded by the caller's generator): the mode's
+// frequency and damping, the period, feed, acc/dec time, the pattern's design frequency and
+// the distance, both directions (trial's parity). For tests that compare two paths of a run.
+inline Scenario RandomSdofMove(std::mt19937* random, int trial) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Scenario s = SdofScenario(5.0 + 75.0 * u(*random), trial % 3 == 0 ? 0.0 : 0.3 * u(*random) * u(*random));
+  s.controller.period_s = trial % 4 == 0 ? 0.002 : 0.001;
+  s.controller.feed_mm_min = 1000.0 + 19000.0 * u(*random);
+  s.controller.accel_time_s = 0.01 + 0.2 * u(*random);
+  s.controller.pattern.frequency_hz = 10.0 + 40.0 * u(*random);
+  s.move.distance_mm = (trial % 2 == 0 ? 1.0 : -1.0) * (1.0 + 299.0 * u(*random));
   return s;
 }
 
