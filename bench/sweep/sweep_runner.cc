@@ -130,6 +130,69 @@ void WriteAll(std::FILE* file, const std::string& text, const std::string& path,
   if (flush) *flushed = now;
 }
 
+// results.csv.partial as a sweep appends its rows, in order. A new directory's manifest and
+// header are written on another thread while the first points run (`ready`); until they
+// are, the rows wait in memory, so none reaches the disk before the manifest that says
+// whose rows they are.
+class PartialRows {
+ public:
+  PartialRows(fs::path path, std::future<ResumedRows>* ready) : path_(std::move(path)), ready_(ready) {}
+  PartialRows(const PartialRows&) = delete;
+  PartialRows& operator=(const PartialRows&) = delete;
+  ~PartialRows() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+
+  // Opens the file now when nothing is being prepared (a resumed directory): a file that
+  // cannot be written is said before any point runs.
+  void OpenIfReady() {
+    if (!ready_->valid()) Open();
+  }
+  void Add(const std::string& row) {
+    if (file_ == nullptr && ready_->valid() &&
+        ready_->wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      waiting_ += row;
+      return;
+    }
+    if (file_ == nullptr) Open();
+    WriteAll(file_, row, path_.string(), &flushed_);
+  }
+  // Every row on disk (synced), the file closed; throws what could not be written.
+  void Close() {
+    if (file_ == nullptr) Open();  // rows still waiting, or none (interrupted before the first)
+    if (std::fflush(file_) != 0 || fsync(fileno(file_)) != 0) Fail();
+    std::FILE* file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0) Fail();
+  }
+  // After a failure: the rows computed so far kept as far as they can be, nothing thrown.
+  void KeepComputed() noexcept {
+    try {
+      if (file_ == nullptr && !waiting_.empty()) Open();
+    } catch (...) {
+    }
+    if (ready_->valid()) ready_->wait();  // it reads the caller's variables
+  }
+
+ private:
+  void Open() {
+    if (ready_->valid()) ready_->get();
+    file_ = std::fopen(path_.c_str(), "ab");
+    if (file_ == nullptr) Fail();
+    if (!waiting_.empty()) WriteAll(file_, waiting_, path_.string(), &flushed_);
+    waiting_.clear();
+  }
+  [[noreturn]] void Fail() const {
+    throw std::runtime_error("cannot write " + path_.string() + ": " + std::strerror(errno));
+  }
+
+  const fs::path path_;
+  std::future<ResumedRows>* ready_;
+  std::FILE* file_ = nullptr;
+  std::string waiting_;  // rows computed before the file was ready, in order
+  std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace
 
 SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
@@ -176,54 +239,24 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
-    auto flushed = std::chrono::steady_clock::now();
-    std::FILE* file = nullptr;
-    std::string waiting;  // rows computed before the file was ready, in order
-    auto open = [&] {
-      if (preparing.valid()) preparing.get();
-      file = std::fopen(partial.c_str(), "ab");
-      if (file == nullptr) {
-        throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
-      }
-      if (!waiting.empty()) WriteAll(file, waiting, partial.string(), &flushed);
-      waiting.clear();
-    };
+    PartialRows rows(partial, &preparing);
     try {
-      if (!fresh) open();
+      rows.OpenIfReady();
       // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
       RunDistributed<Row>(
           summary.resumed, shard.Size(), options.jobs,
           [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
           [&](std::uint64_t, Row&& row) {
-            const bool ready = file != nullptr || !preparing.valid() ||
-                               preparing.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-            if (ready && file == nullptr) open();
-            if (ready) {
-              WriteAll(file, row.text, partial.string(), &flushed);
-            } else {
-              waiting += row.text;
-            }
+            rows.Add(row.text);
             if (!row.ok) ++summary.errors;
             progress.Update(++written);
           },
           EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
-      if (file == nullptr) open();  // rows still waiting for it, or none (interrupted before the first)
       progress.Finish(written);
-      if (std::fflush(file) != 0 || fsync(fileno(file)) != 0) {
-        throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
-      }
+      rows.Close();
     } catch (...) {
-      // The rows computed before the failure are kept, as those written already.
-      try {
-        if (file == nullptr && !waiting.empty()) open();
-      } catch (...) {
-      }
-      if (preparing.valid()) preparing.wait();  // it reads this frame's variables
-      if (file != nullptr) std::fclose(file);
+      rows.KeepComputed();  // the rows computed before the failure are kept, as those written
       throw;
-    }
-    if (std::fclose(file) != 0) {
-      throw std::runtime_error("cannot write " + partial.string() + ": " + std::strerror(errno));
     }
     if (written < shard.Size()) {
       // SIGINT/SIGTERM: the rows so far are complete and flushed; the same command resumes.
