@@ -239,32 +239,6 @@ model::MachinePlant IdleAxesRigid(const Scenario& scenario, const CommandSamples
   return model::BuildMachinePlant(machine, scenario.drive);
 }
 
-// The largest deflection a held commanded acceleration gives, in the view, and the
-// deflection vector under that acceleration (the first sample reaching it), oriented so that
-// its component in the view (magnitude: along the acceleration) is positive.
-double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
-                          Eigen::Vector3d* vector) {
-  double static_m = 0.0;
-  std::size_t at = 0;
-  // Once per held acceleration (the same a, the same value: the first tick reaching the
-  // largest is the first of its run).
-  for (const std::size_t k : s.accel_changes) {
-    const double here = std::abs(view.Of(static_gain * s.accel[k]));
-    if (here > static_m) {
-      static_m = here;
-      at = k;
-    }
-  }
-  *vector = Eigen::Vector3d::Zero();
-  if (at == 0) return static_m;
-  const Eigen::Vector3d deflection = static_gain * s.accel[at];
-  const double along = view.magnitude ? deflection.dot(s.accel[at]) : view.Of(deflection);
-  for (int b = 0; b < 3; ++b) {
-    const double entry = along < 0.0 ? -deflection(b) : deflection(b);
-    (*vector)(b) = entry == 0.0 ? 0.0 : entry;  // no -0 for the axes it does not deflect
-  }
-  return static_m;
-}
 
 void ReserveTrace(Trace* trace, std::size_t expected) {
   trace->time_s.reserve(expected);
@@ -892,6 +866,30 @@ void RefuseInfiniteMetrics(const Metrics& m) {
 }
 
 }  // namespace
+
+double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
+                          Eigen::Vector3d* vector) {
+  double static_m = 0.0;
+  std::size_t at = 0;
+  // Once per held acceleration (the same a, the same value: the first tick reaching the
+  // largest is the first of its run).
+  for (const std::size_t k : s.accel_changes) {
+    const double here = std::abs(view.Of(static_gain * s.accel[k]));
+    if (here > static_m) {
+      static_m = here;
+      at = k;
+    }
+  }
+  *vector = Eigen::Vector3d::Zero();
+  if (at == 0) return static_m;
+  const Eigen::Vector3d deflection = static_gain * s.accel[at];
+  const double along = view.magnitude ? deflection.dot(s.accel[at]) : view.Of(deflection);
+  for (int b = 0; b < 3; ++b) {
+    const double entry = along < 0.0 ? -deflection(b) : deflection(b);
+    (*vector)(b) = entry == 0.0 ? 0.0 : entry;  // no -0 for the axes it does not deflect
+  }
+  return static_m;
+}
 
 void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
   const controller::ShaperKind kind = controller::FindShaper(pattern.method).kind;

@@ -12,6 +12,7 @@
 
 #include "bench/sim/command_samples.h"
 #include "bench/sim/metrics.h"
+#include "bench/sim/output_view.h"
 #include "bench/sim/scenario.h"
 #include "controller/controller.h"
 #include "model/free_response.h"
@@ -83,6 +84,13 @@ struct RunOptions {
 // The command RunScenario generates for the scenario's controller and program (the CNC's
 // stroke check and the memory budget included): what a sweep generates once and shares.
 controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program);
+
+// The largest deflection a held commanded acceleration gives, in the view (the static
+// displacement the ratios divide by), and into *vector the deflection under that
+// acceleration (the first sample reaching it), oriented so that its component in the view
+// (magnitude: along the acceleration) is positive.
+double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
+                          Eigen::Vector3d* vector);
 
 // What the pattern was designed for: its lowest design frequency and that mode's damping
 // ratio (methods 1-4: undamped), into *m. NaN for a pattern that does not shape for a

@@ -60,6 +60,9 @@ int ViewAxis(const Scenario& scenario, int moving) {
   return -1;
 }
 
+// q' changed sign over the period: a stationary point lies inside it.
+bool SignChanged(double v0, double v1) { return (v0 > 0.0 && v1 < 0.0) || (v0 < 0.0 && v1 > 0.0); }
+
 // The mode's transition over tau: x(tau) = phi (x0, v0), x = q - q_eq (a held).
 struct Transition {
   double xx = 1.0, xv = 0.0, vx = 0.0, vv = 1.0;
@@ -102,11 +105,10 @@ class SingleModeKernel {
   double DeflectionBound(double accel_l1_m_s) const { return std::abs(gain_) / wd_ * accel_l1_m_s; }
 
   // Period k under the held a: the state to its end, as the floor benchmark steps it;
-  // returns |deflection| at the end and sets *inside to the largest |deflection| at a
-  // stationary point inside the period (0 when none).
-  // The extremum is computed only where it can exceed `needed` (the metrics it could
-  // raise); *within bounds |deflection| inside the period: the extremum where computed,
-  // else a bound of it (0 without a stationary point).
+  // returns |deflection| at the end. *inside: the largest |deflection| at a stationary
+  // point inside the period, computed only where it can exceed `needed` (the metrics it
+  // could raise), else 0; *within: a bound of |deflection| inside the period (the extremum
+  // where computed, else ExtremumBound; 0 without a stationary point).
   double Advance(double a, double needed, double* inside, double* within) {
     const double q1 = period_.xx * q_ + period_.xv * v_ + g_q_ * a;
     const double v1 = period_.vx * q_ + period_.vv * v_ + g_v_ * a;
@@ -117,7 +119,7 @@ class SingleModeKernel {
     v_ = v1;
     *inside = 0.0;
     *within = 0.0;
-    if ((v0_ > 0.0 && v1 < 0.0) || (v0_ < 0.0 && v1 > 0.0)) {
+    if (SignChanged(v0_, v1)) {
       *within = ExtremumBound(q0_, v0_, a);
       if (!(*within < needed)) *inside = *within = Extremum(q0_, v0_, a);
     }
@@ -167,7 +169,7 @@ class SingleModeKernel {
   // The peak after a period from (q0, v0) under a that ends at rate v1: its stationary
   // point's |deflection| where q' changed sign and it can exceed the peak.
   double Turning(double q0, double v0, double a, double v1, double peak) const {
-    if (((v0 > 0.0 && v1 < 0.0) || (v0 < 0.0 && v1 > 0.0)) && !(ExtremumBound(q0, v0, a) < peak)) {
+    if (SignChanged(v0, v1) && !(ExtremumBound(q0, v0, a) < peak)) {
       return std::max(peak, Extremum(q0, v0, a));
     }
     return peak;
@@ -200,11 +202,6 @@ class SingleModeKernel {
     const double sn = std::sin(wd_ * tau);
     return {e * (c + sigma_ / wd_ * sn), e * sn / wd_, -e * w2_ / wd_ * sn, e * (c - sigma_ / wd_ * sn)};
   }
-  // The period's stationary point (q' changed sign). About the equilibrium, x0 = q0 + a /
-  // w^2; undamped, the extremum is the free oscillation's amplitude sqrt(x0^2 + (v0 /
-  // w)^2), a maximum where v0 > 0; damped, it lies where q' = e^{-sigma t} (v0 cos(w_d t) -
-  // ((sigma v0 + w^2 x0) / w_d) sin(w_d t)) vanishes: w_d t = atan2(w_d v0, sigma v0 + w^2
-  // x0) (mod pi).
   // |deflection| within the period starting at (q0, v0) under a: the free oscillation's
   // amplitude about the equilibrium (which decays) plus the equilibrium's distance from 0,
   // with a margin for the rounding of both (1e-12: a bound, not a value).
@@ -214,7 +211,11 @@ class SingleModeKernel {
     const double b = (v0 + sigma_ * x0) / wd_;
     return std::abs(gain_) * (std::sqrt(x0 * x0 + b * b) + std::abs(q_eq)) * (1.0 + 1e-12);
   }
-  // Out of line: rare (twice a natural period), and the loops stay small.
+  // The period's stationary point (q' changed sign). About the equilibrium, x0 = q0 + a /
+  // w^2; undamped, the extremum is the free oscillation's amplitude sqrt(x0^2 + (v0 /
+  // w)^2), a maximum where v0 > 0; damped, it lies where q' = e^{-sigma t} (v0 cos(w_d t) -
+  // ((sigma v0 + w^2 x0) / w_d) sin(w_d t)) vanishes: w_d t = atan2(w_d v0, sigma v0 + w^2
+  // x0) (mod pi). Out of line: rare (twice a natural period), and the loops stay small.
   [[gnu::noinline]] double Extremum(double q0, double v0, double a) const {
     const double q_eq = -a / w2_;
     const double x0 = q0 - q_eq;
@@ -250,9 +251,6 @@ class SingleModeMaster {
     contour_floor_ = 1e-12 * static_m;
     acc_.quiet_since_tick = window.motion_ticks;
     next_probe_ = window.cruise_probe_ticks.begin();
-    // Far above the rounding OffLineBound allows for (a few ulps of the coordinates).
-    safe_margin_ = 1e-9 * (std::abs(kernel->start_) + kernel->length_) + 1e-12;
-    FindInnerTicks();
     const CommandSamples& s = kernel->s_;
     const double end = s.positions.back()(kernel->axis_);
     // OffLineBound's rounding term, at its largest over the run's positions (within the
@@ -262,6 +260,7 @@ class SingleModeMaster {
                            s.max_accel_m_s2 * kernel->dt_ * kernel->dt_;
     rounding_ = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(kernel->start_) + largest + kernel->length_) * 2.0;
     end_off_ = std::abs((end - kernel->start_) * kernel->direction_ - kernel->length_) + rounding_;
+    FindInnerTicks();
   }
 
   void Run(RunResult* result);
@@ -284,13 +283,12 @@ class SingleModeMaster {
   double cruise_m_ = NAN;
   bool first_probe_ = true;
   long deferred_ = 0;
-  double safe_margin_ = 0.0;
-  double end_off_ = 0.0;
+  double end_off_ = 0.0;   // the command's end from the line's end, and the rounding there
+  double rounding_ = 0.0;  // OffLineBound's rounding term, at most
   // Contour errors below this are rounding (1e-12 of the static displacement: femtometres):
   // not sampled for (a quiet residual window would otherwise be sampled throughout, chasing
   // distances of 1e-15 m that the samples' own arithmetic makes).
   double contour_floor_ = 0.0;
-  double rounding_ = 0.0;  // OffLineBound's rounding term, at most  // the command's end from the line's end, and the rounding there
   // Ticks [inner_from_, inner_to_]: the tool stays inside the line, whatever the mode does.
   std::size_t inner_from_ = 1;
   std::size_t inner_to_ = 0;
@@ -366,8 +364,10 @@ void SingleModeMaster::FindInnerTicks() {
   const int ax = m_.axis_;
   if (m_.start_ != 0.0 || s.n < 2 || s.monotone[ax] != (m_.direction_ > 0.0 ? 1 : -1)) return;
   const double dt = m_.dt_;
+  // A margin far above the rounding OffLineBound allows for (a few ulps of the coordinates).
+  const double margin = 1e-9 * (std::abs(m_.start_) + m_.length_) + 1e-12;
   const double keep = s.max_speed_m_s * dt + 0.5 * s.max_accel_m_s2 * dt * dt +
-                      m_.DeflectionBound(s.accel_l1_m_s[ax]) * (1.0 + 1e-9) + safe_margin_;
+                      m_.DeflectionBound(s.accel_l1_m_s[ax]) * (1.0 + 1e-9) + margin;
   const auto along = [&](std::size_t i) { return (s.positions[i](ax) - m_.start_) * m_.direction_; };
   // Tick k spans positions k - 1 to k (nondecreasing along the line).
   std::size_t lo = 0;
@@ -387,18 +387,10 @@ void SingleModeMaster::FindInnerTicks() {
 }
 
 // The largest squared contour error, from the substeps of the periods where the tool can
-// leave the line (its ends: OffLineBound, deferred_substeps.h).
+// leave the line (its ends: OffLineBound, deferred_substeps.h); called where
+// ContourCannotGrow's quick bound could not rule them out.
 void SingleModeMaster::Contour(std::size_t k, double bound) {
   const CommandSamples& s = m_.s_;
-  if (k > s.n) {
-    // The command at rest at its end: OffLineBound's value is at most this (the residual
-    // window's periods, most of them below the overshoot seen at the end of motion).
-    const double off = bound * (1.0 + 1e-15) + end_off_;
-    if (off * off < acc_.contour_sq) {
-      ++deferred_;
-      return;
-    }
-  }
   const bool commanded = k <= s.n;
   const double p0 = (commanded ? s.positions[k - 1] : s.positions.back())(m_.axis_);
   const double v0 = commanded ? s.velocity[k - 1](m_.axis_) : 0.0;
@@ -585,16 +577,15 @@ bool RunSingleMode(const Scenario& scenario, const controller::MultiAxisCommand&
                                                                : AutoSubsteps(dynamics, dt);
   const model::ModalMode& mode = *OnlyMode(scenario, axis);
   SingleModeKernel kernel(mode, line, axis, samples, dt, substeps);
-  // The static displacement: the largest held acceleration's (cosim.cc StaticDisplacement).
-  double static_m = 0.0;
-  for (const std::size_t k : samples.accel_changes) {
-    static_m = std::max(static_m, std::abs(kernel.StaticGain() * samples.accel[k](axis)));
-  }
+  Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
+  static_gain(axis, axis) = kernel.StaticGain();
+  Eigen::Vector3d static_vector;
+  const double static_m = StaticDisplacement(samples, static_gain, view, &static_vector);
   Metrics& m = result->metrics;
   m.static_displacement_m = static_m;
-  m.static_displacement_x_m = axis == 0 ? static_m : 0.0;
-  m.static_displacement_y_m = axis == 1 ? static_m : 0.0;
-  m.static_displacement_z_m = axis == 2 ? static_m : 0.0;
+  m.static_displacement_x_m = static_vector(0);
+  m.static_displacement_y_m = static_vector(1);
+  m.static_displacement_z_m = static_vector(2);
   SingleModeMaster master(&kernel, window, static_m);
   master.Run(result);
   m.peak_deflection_x_m = axis == 0 ? m.peak_deflection_m : 0.0;

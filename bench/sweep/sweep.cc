@@ -678,6 +678,13 @@ std::uint64_t SweepValues::size() const {
 
 namespace {
 
+// The --set options a scenario was loaded with, as a key: "key=value\n" each.
+std::string OverridesKey(std::vector<Override>::const_iterator first, std::vector<Override>::const_iterator last) {
+  std::string key;
+  for (; first != last; ++first) key += first->key_path + "=" + first->value_yaml + "\n";
+  return key;
+}
+
 // printf's "%.15g" (std::to_chars' general format with a precision is that, to the
 // character), without printf's cost: a sweep writes one a point.
 std::string Digits15(double value) {
@@ -839,7 +846,7 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
   sweep.note = MachineDefaultsNote(sweep, *base_scenario);
   sweep.base_scenario = base_scenario;
   sweep.base_hash = BaseScenarioHash(sweep);  // the files as this load read them
-  for (const Override& set : sets) sweep.base_sets_key += set.key_path + "=" + set.value_yaml + "\n";
+  sweep.base_sets_key = OverridesKey(sets.begin(), sets.end());
   CheckGridAgainstBase(sweep, sets);
   return sweep;
 }
@@ -892,11 +899,8 @@ struct LoadedScenario {
 };
 
 std::string SetsKey(const SweepPoint& point) {
-  std::string key;
-  for (std::size_t i = point.keys.size(); i < point.overrides.size(); ++i) {
-    key += point.overrides[i].key_path + "=" + point.overrides[i].value_yaml + "\n";
-  }
-  return key;
+  return OverridesKey(point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()),
+                      point.overrides.end());
 }
 
 // A point that ran with a warning (integrator.cross_check: warn) says so in its row's
@@ -910,20 +914,7 @@ std::string WarningText(const std::vector<std::string>& warnings) {
 }  // namespace
 
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
-  SweepPoint point;
-  try {
-    point = MakePoint(sweep, index, sets);
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& error) {
-    PointOutcome outcome;
-    outcome.index = index;
-    outcome.status = dynamic_cast<const ConfigError*>(&error) != nullptr ? PointOutcome::Status::kBadInput
-                                                                         : PointOutcome::Status::kFailed;
-    outcome.error = error.what();
-    return outcome;
-  }
-  return RunPoint(sweep, point);
+  return RunPoint(sweep, MakePoint(sweep, index, sets));  // (MakePoint reads the grid: no input error)
 }
 
 PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
