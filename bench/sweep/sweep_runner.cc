@@ -131,7 +131,8 @@ void WriteAll(std::FILE* file, const std::string& text, const std::string& path,
 }
 
 // results.csv.partial as a sweep appends its rows, in order. A new directory's manifest and
-// header are written on another thread while the first points run (`ready`); until they
+// header are written while the first points run (`ready`): on another thread (one job), or
+// by this one when the first row arrives (a deferred future: several jobs). Until they
 // are, the rows wait in memory, so none reaches the disk before the manifest that says
 // whose rows they are.
 class PartialRows {
@@ -150,7 +151,7 @@ class PartialRows {
   }
   void Add(const std::string& row) {
     if (file_ == nullptr && ready_->valid() &&
-        ready_->wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+        ready_->wait_for(std::chrono::seconds(0)) == std::future_status::timeout) {
       waiting_ += row;
       return;
     }
@@ -166,9 +167,10 @@ class PartialRows {
     if (std::fclose(file) != 0) Fail();
   }
   // After a failure: the rows computed so far kept as far as they can be, nothing thrown.
+  // None when the manifest could not be written: no row goes to disk without it.
   void KeepComputed() noexcept {
     try {
-      if (file_ == nullptr && !waiting_.empty()) Open();
+      if (file_ == nullptr && !waiting_.empty() && !unprepared_) Open();
     } catch (...) {
     }
     if (ready_->valid()) ready_->wait();  // it reads the caller's variables
@@ -176,7 +178,11 @@ class PartialRows {
 
  private:
   void Open() {
-    if (ready_->valid()) ready_->get();
+    if (ready_->valid()) {
+      unprepared_ = true;
+      ready_->get();
+      unprepared_ = false;
+    }
     file_ = std::fopen(path_.c_str(), "ab");
     if (file_ == nullptr) Fail();
     if (!waiting_.empty()) WriteAll(file_, waiting_, path_.string(), &flushed_);
@@ -190,6 +196,7 @@ class PartialRows {
   std::future<ResumedRows>* ready_;
   std::FILE* file_ = nullptr;
   std::string waiting_;  // rows computed before the file was ready, in order
+  bool unprepared_ = false;  // the manifest and header failed: nothing may be written
   std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
 };
 
@@ -230,9 +237,14 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
                         [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
     return KeepResumableRows(dir.string(), columns, shard, GridTexts::Of(sweep));
   };
+  // With several jobs on this process's threads, this thread is one of them: it prepares
+  // the directory when its first row is ready while the others compute. A thread of its
+  // own would be one more than the cores, and on a busy 2-core machine it waited for the
+  // scheduler's next tick (about 4 ms) and then took turns with the points (docs/performance.md).
+  const bool here = options.jobs > 1 && CurrentDistributor() == nullptr;
   std::future<ResumedRows> preparing;
   const ResumedRows resumed = fresh ? ResumedRows{} : prepare();
-  if (fresh) preparing = std::async(std::launch::async, prepare);
+  if (fresh) preparing = std::async(here ? std::launch::deferred : std::launch::async, prepare);
   summary.resumed = resumed.rows;
   summary.errors = resumed.errors;
   if (!resumed.finished) {
