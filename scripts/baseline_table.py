@@ -78,6 +78,23 @@ def fmt_num(x, digits=3):
     return ("%." + str(digits) + "g") % x
 
 
+def case3_10k(bench, add):
+    """Case 3 at 10,000 points: 1 -> 2 jobs with the sweep's fixed cost (directory, manifest,
+    results synced: about a millisecond) a tenth of its share at 1000 points."""
+    per = {}
+    for jobs in (1, 2):
+        b = find(bench, "BM_Case3_Exact10k/%d" % jobs)
+        if not b:
+            continue
+        s = seconds(b, real=True) / b.get("points", 10000)
+        per[jobs] = s
+        note = "wall time per point, median of 5"
+        if jobs == 2 and 1 in per:
+            note += ", %.2fx from 1 job" % (per[1] / s)
+        add("case 3 at 10,000 points, exact, %d job%s" % (jobs, "s" if jobs > 1 else ""),
+            s, None, None, None, note, per_point=True)
+
+
 def case4d(bench, sweep, cpu, add, checks, floor_s):
     """Case 4d (benchmarks/cases/case4_damped_sweep.yaml; "4d", as case4_lugre_circle.yaml
     is case 4): case 3 on a 2% damped mode, every metric, so every point runs its settling
@@ -300,6 +317,7 @@ def main(argv):
                                2.0 / c >= TARGETS[key], fmt_num(2.0 / c)))
 
     case4d(bench, sweep, cpu, add, checks, floor_s)
+    case3_10k(bench, add)
 
     # In the benchmark's order (case, then variant), not the names' alphabetical one.
     tuning = sorted(((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/")),
