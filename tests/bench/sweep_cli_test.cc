@@ -205,6 +205,36 @@ TEST(SweepCli, KillAndRestartGivesTheSameFile) {
   EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference));
 }
 
+// Tests that a sweep on one job and on two (whose calling thread writes the manifest when
+// its first row is ready, while the other computes) never shows a row without the manifest
+// beside it: watched from its start until it ends, each time a row is seen, manifest.json
+// is complete (this sweep's hash), and the run ends with the reference bytes.
+TEST(SweepCli, NoRowBeforeItsManifestOnOneJobOrTwo) {
+  ScratchDir dir;
+  const std::string reference = Reference(dir, kMethod4, "whole");
+  const std::string manifest = ReadText(dir.File("whole/manifest.json"));
+  for (const std::string jobs : {"1", "2"}) {
+    const std::string out = dir.File("watched" + jobs);
+    const std::string partial = out + "/results.csv.partial";
+    const pid_t pid = SpawnCli(Args({"sweep", kNaturalPeriod, "--jobs", jobs, "--out", out}, kMethod4), kSourceDir);
+    ASSERT_GT(pid, 0);
+    int checked = 0;
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) == 0) {
+      if (Lines(partial) > 1) {
+        EXPECT_EQ(ReadText(out + "/manifest.json"), manifest) << jobs;
+        ++checked;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << jobs;
+    EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference)) << jobs;
+    EXPECT_EQ(ReadText(out + "/manifest.json"), manifest) << jobs;
+    // Rows reach the file every 100 ms; a loaded machine may finish first (nothing seen).
+    RecordProperty("rows_seen_" + jobs, checked);
+  }
+}
+
 // Tests that a partial file cut inside the quoted error field of its last row (the way a
 // kill can leave it) is resumed from the last complete row, to the same bytes.
 TEST(SweepCli, RowTornInsideAQuotedFieldIsRunAgain) {
