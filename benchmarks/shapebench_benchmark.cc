@@ -674,13 +674,12 @@ BENCHMARK(BM_Case1_Exact_WithTrace)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Case1_CommandOnly)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Case2_Exact)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case2_Cvode)->Unit(benchmark::kMillisecond);
-// Case 3 exact: medians of five (the must-show ratios compare them).
+// Case 3 exact, the floor and case 4d: medians of five (the must-show ratios compare them).
 BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1)
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case3_Exact10k)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
-// The floor and case 4d: medians of five (the must-show ratios compare them).
 BENCHMARK(BM_Floor)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_FloorBatch)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case4Damped_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()

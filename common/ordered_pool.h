@@ -71,7 +71,8 @@ struct OrderedRun {
   bool stop = false;
   bool consumer_waiting = false;
   std::exception_ptr failure;
-  Pace consumer_pace;  // the calling thread's, across its calls of Take
+  Pace consumer_pace;                    // the calling thread's, across its calls of Take
+  std::vector<Result> consumer_computed;  // its chunk's results before they are published
 
   bool is_cancelled() const { return cancelled && cancelled(); }
   bool has(std::uint64_t k) const { return ready[k % ready.size()].has_value(); }
@@ -149,8 +150,6 @@ struct OrderedRun {
   // workers). Empty when k will not come (a failure; cancelled with k not computed).
   void Take(std::uint64_t k, std::vector<Result>* out) {
     out->clear();
-    std::vector<Result> computed;
-    Pace& pace = consumer_pace;
     std::unique_lock<std::mutex> lock(mutex);
     // Cancelled: what is ready in order is still taken; a gap no worker will fill ends it.
     auto settled = [&] {
@@ -167,11 +166,11 @@ struct OrderedRun {
       }
       if (free_item()) {
         std::uint64_t size = 0;
-        const std::uint64_t first = Claim(pace, &size);
+        const std::uint64_t first = Claim(consumer_pace, &size);
         lock.unlock();
-        Compute(first, size, &pace, &computed);  // an exception reaches RunOrdered
+        Compute(first, size, &consumer_pace, &consumer_computed);  // an exception reaches RunOrdered
         lock.lock();
-        Publish(first, &computed);
+        Publish(first, &consumer_computed);
       } else if (running == 0) {
         return;
       } else {

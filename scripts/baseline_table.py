@@ -78,23 +78,6 @@ def fmt_num(x, digits=3):
     return ("%." + str(digits) + "g") % x
 
 
-def case3_10k(bench, add):
-    """Case 3 at 10,000 points: 1 -> 2 jobs with the sweep's fixed cost (directory, manifest,
-    results synced: about a millisecond) a tenth of its share at 1000 points."""
-    per = {}
-    for jobs in (1, 2):
-        b = find(bench, "BM_Case3_Exact10k/%d" % jobs)
-        if not b:
-            continue
-        s = seconds(b, real=True) / b.get("points", 10000)
-        per[jobs] = s
-        note = "wall time per point, median of 5"
-        if jobs == 2 and 1 in per:
-            note += ", %.2fx from 1 job" % (per[1] / s)
-        add("case 3 at 10,000 points, exact, %d job%s" % (jobs, "s" if jobs > 1 else ""),
-            s, None, None, None, note, per_point=True)
-
-
 def case4d(bench, sweep, cpu, add, checks, floor_s):
     """Case 4d (benchmarks/cases/case4_damped_sweep.yaml; "4d", as case4_lugre_circle.yaml
     is case 4): case 3 on a 2% damped mode, every metric, so every point runs its settling
@@ -278,7 +261,9 @@ def main(argv):
     sweep = {}
     cpu = {}
     sweep_bench = {}
-    for method in ("Exact", "Cvode"):
+    # Exact10k: case 3 at 10,000 points, the sweep's fixed cost (directory, manifest, results
+    # synced: about a millisecond) a tenth of its share at 1000 points.
+    for method in ("Exact", "Exact10k", "Cvode"):
         for jobs in (1, 2):
             b = find(bench, "BM_Case3_%s/%d" % (method, jobs))
             if b:
@@ -286,12 +271,13 @@ def main(argv):
                 sweep[(method, jobs)] = per_run
                 cpu[(method, jobs)] = b.get("cpu_s_per_point")
                 sweep_bench[(method, jobs)] = b
-    for method, label in (("Exact", "exact"), ("Cvode", "CVODE")):
+    for method, label, points in (("Exact", "exact", "1000"), ("Exact10k", "exact", "10,000"),
+                                  ("Cvode", "CVODE", "1000")):
         for jobs in (1, 2):
             s = sweep.get((method, jobs))
             if s is None:
                 continue
-            base = sweep.get(("Exact", jobs))
+            base = sweep.get(("Exact", jobs)) if method != "Exact10k" else None
             note = "wall time per point"
             if jobs == 2 and (method, 1) in sweep:
                 note += ", %.2fx from 1 job" % (sweep[(method, 1)] / s)
@@ -302,7 +288,7 @@ def main(argv):
             e = sweep_bench.get((method, jobs), {}).get("error_vs_exact")
             if e is not None:
                 note += "; metrics within %.1e of exact" % e
-            add("case 3, 1000-point sweep, %s, %d job%s" % (label, jobs, "s" if jobs > 1 else ""),
+            add("case 3, %s-point sweep, %s, %d job%s" % (points, label, jobs, "s" if jobs > 1 else ""),
                 s, base, sweep_bench.get((method, jobs)) if method == "Cvode" else None, None, note,
                 per_point=True)
     for method, label, key, target in (("Exact", "exact", "case3_exact_runs_s", "20,000"),
@@ -317,7 +303,6 @@ def main(argv):
                                2.0 / c >= TARGETS[key], fmt_num(2.0 / c)))
 
     case4d(bench, sweep, cpu, add, checks, floor_s)
-    case3_10k(bench, add)
 
     # In the benchmark's order (case, then variant), not the names' alphabetical one.
     tuning = sorted(((name, b) for name, b in bench.items() if name.startswith("BM_CvodeTuning/")),
