@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -97,11 +98,13 @@ pid_t TempNameOwner(const std::string& name) {
   return static_cast<pid_t>(std::stol(name.substr(digits, dot - digits)));
 }
 
+std::atomic<std::uint64_t> sync_count{0};
+
 // fsync of a file or directory; false (errno set) when it fails.
 bool SyncPath(const std::string& path, int flags) {
   const int fd = open(path.c_str(), flags | O_CLOEXEC);
   if (fd < 0) return false;
-  const bool synced = fsync(fd) == 0;
+  const bool synced = SyncFile(fd);
   const int saved = errno;
   close(fd);
   errno = saved;
@@ -123,6 +126,13 @@ std::string DirectoryOf(const std::string& path) {
 }
 
 }  // namespace
+
+bool SyncFile(int fd) {
+  sync_count.fetch_add(1, std::memory_order_relaxed);
+  return fsync(fd) == 0;
+}
+
+std::uint64_t SyncCount() { return sync_count.load(std::memory_order_relaxed); }
 
 std::string TempNamePattern(const std::string& final_path) {
   const std::filesystem::path target(final_path);
@@ -172,13 +182,14 @@ TempFile::~TempFile() {
   if (!committed_) std::remove(temp_path_.c_str());
 }
 
-void TempFile::Commit() {
+void TempFile::Commit(Durability durability) {
   // On disk before the name says complete: a crash or full disk after the rename must not
   // leave a short file under the final name; the directory synced so the rename persists.
-  if (!SyncPath(temp_path_, O_RDONLY)) throw WriteError(final_path_, errno);
+  const bool synced = durability == Durability::kSynced;
+  if (synced && !SyncPath(temp_path_, O_RDONLY)) throw WriteError(final_path_, errno);
   if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) throw WriteError(final_path_, errno);
   committed_ = true;
-  if (!SyncPath(DirectoryOf(final_path_), O_RDONLY | O_DIRECTORY)) {
+  if (synced && !SyncPath(DirectoryOf(final_path_), O_RDONLY | O_DIRECTORY)) {
     throw WriteFailure(final_path_, std::string("syncing its directory: ") + std::strerror(errno));
   }
 }
@@ -233,8 +244,8 @@ void StagedDirectory::Commit() {
   }
 }
 
-void WriteFileAtomically(const std::string& path,
-                         const std::function<void(std::ostream&)>& write) {
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         Durability durability) {
   if (IsStreamTarget(path)) {
     const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) throw WriteError(path, errno);
@@ -245,7 +256,7 @@ void WriteFileAtomically(const std::string& path,
   const int fd = open(temp.path().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
   if (fd < 0) throw WriteError(path, errno);
   WriteThrough(fd, path, write);  // errors name `path`, not the temporary name
-  temp.Commit();
+  temp.Commit(durability);
 }
 
 }  // namespace shapebench

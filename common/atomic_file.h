@@ -2,11 +2,26 @@
 // the same directory (so the final rename is atomic) and renamed when complete.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <ostream>
 #include <string>
 
 namespace shapebench {
+
+// Whether a file is on the disk when it is called complete. kSynced (the default): the
+// file and then its directory are synced (fsync), so it survives a crash of the machine.
+// kUnsynced (`sweep --no-sync`): only handed to the kernel; still atomic (a killed
+// process leaves it complete or absent, and files appear in the same order), but a crash
+// of the machine or a power cut may lose or tear it. For scratch output (CI, a quick
+// look), as pg_dump's --no-sync: each sync is a flush of the disk's cache.
+enum class Durability { kSynced, kUnsynced };
+
+// fsync(2) of an open file; false (errno set) when it fails. Counted by SyncCount.
+bool SyncFile(int fd);
+// How many syncs this process has made through this header: tests tell a synced write
+// from an unsynced one by it.
+std::uint64_t SyncCount();
 
 // A temporary file next to `final_path`, removed unless Commit() renames it into place.
 // For writers that need a file name (gnuplot); others use WriteFileAtomically. Refuses a
@@ -19,7 +34,9 @@ class TempFile {
   TempFile& operator=(const TempFile&) = delete;
 
   const std::string& path() const { return temp_path_; }
-  void Commit();  // throws std::runtime_error
+  // Renames it into place, synced before and its directory after (kSynced); throws
+  // std::runtime_error.
+  void Commit(Durability durability = Durability::kSynced);
 
  private:
   std::string final_path_;
@@ -62,7 +79,7 @@ class StagedDirectory {
 // `path` (/dev/stdout, /dev/full, a pipe) is written into instead, without atomicity (a
 // stream has none). Throws std::runtime_error "cannot write PATH: CAUSE", CAUSE the errno
 // text of the call that failed ("No space left on device").
-void WriteFileAtomically(const std::string& path,
-                         const std::function<void(std::ostream&)>& write);
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         Durability durability = Durability::kSynced);
 
 }  // namespace shapebench

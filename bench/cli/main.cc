@@ -440,6 +440,7 @@ struct SweepArgs {
   std::string shard;
   std::string report;  // --report FILE.html
   bool force = false;
+  bool no_sync = false;
 };
 
 // --shard I/N: I in 0..N-1 (the points p with p % N == I).
@@ -483,6 +484,7 @@ int SweepCommand(const SweepArgs& args) {
                         : args.out_dir;
   if (array) options.out_dir = ArrayShardDir(options.out_dir, *array);
   options.jobs = JobsOrDefault(args.jobs);
+  if (args.no_sync) options.durability = Durability::kUnsynced;
   if (IsDistributedWorker()) {  // an MPI rank other than 0 (bench/sweep/sweep_mpi.h)
     ServeSweep(sweep, overrides, options);
     return kExitOk;
@@ -842,6 +844,9 @@ int main(int argc, char** argv) {
       ->type_name("I/N");
   sweep->add_option("--report", sweep_args.report, kReportHelp)->type_name("FILE.html");
   sweep->add_flag("--force", sweep_args.force, kForceHelp);
+  sweep->add_flag("--no-sync", sweep_args.no_sync,
+                  "do not sync manifest.json and results.csv to the disk (scratch output: a "
+                  "crash of the machine may lose them; a killed sweep still resumes)");
 
   MergeArgs merge_args;
   CLI::App* merge = app.add_subcommand("merge", "join the shards of a sweep into one results.csv");

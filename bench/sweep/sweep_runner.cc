@@ -137,7 +137,8 @@ void WriteAll(std::FILE* file, const std::string& text, const std::string& path,
 // whose rows they are.
 class PartialRows {
  public:
-  PartialRows(fs::path path, std::future<ResumedRows>* ready) : path_(std::move(path)), ready_(ready) {}
+  PartialRows(fs::path path, std::future<ResumedRows>* ready, Durability durability)
+      : path_(std::move(path)), ready_(ready), durability_(durability) {}
   PartialRows(const PartialRows&) = delete;
   PartialRows& operator=(const PartialRows&) = delete;
   ~PartialRows() {
@@ -158,10 +159,12 @@ class PartialRows {
     if (file_ == nullptr) Open();
     WriteAll(file_, row, path_.string(), &flushed_);
   }
-  // Every row on disk (synced), the file closed; throws what could not be written.
+  // Every row on disk (synced, unless kUnsynced), the file closed; throws what could not
+  // be written.
   void Close() {
     if (file_ == nullptr) Open();  // rows still waiting, or none (interrupted before the first)
-    if (std::fflush(file_) != 0 || fsync(fileno(file_)) != 0) Fail();
+    if (std::fflush(file_) != 0) Fail();
+    if (durability_ == Durability::kSynced && !SyncFile(fileno(file_))) Fail();
     std::FILE* file = file_;
     file_ = nullptr;
     if (std::fclose(file) != 0) Fail();
@@ -194,6 +197,7 @@ class PartialRows {
 
   const fs::path path_;
   std::future<ResumedRows>* ready_;
+  const Durability durability_;
   std::FILE* file_ = nullptr;
   std::string waiting_;  // rows computed before the file was ready, in order
   bool unprepared_ = false;  // the manifest and header failed: nothing may be written
@@ -225,7 +229,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   summary.points = shard.Size();
   summary.results = (dir / kSweepResultsFile).string();
   const fs::path partial = dir / kSweepPartialFile;
-  // The manifest (synced: two syncs of the disk) and the partial file's header, before any
+  // The manifest (synced: two syncs of the disk; none with --no-sync) and the partial file's header, before any
   // row. A new directory's are written on another thread while the first points run: the
   // first row waits for them, so no row is on disk before the manifest that says whose it
   // is. A directory with files (a resume) is prepared here: its rows decide where to start.
@@ -234,7 +238,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   CheckResumeDirectory(dir.string(), manifest);
   auto prepare = [&] {
     WriteFileAtomically((dir / kSweepManifestFile).string(),
-                        [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
+                        [&](std::ostream& out) { out << manifest.dump(2) << "\n"; }, options.durability);
     return KeepResumableRows(dir.string(), columns, shard, GridTexts::Of(sweep));
   };
   // With several jobs on this process's threads, this thread is one of them: it prepares
@@ -251,7 +255,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
     const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
     ProgressBar progress(options.progress, shard.Size(), summary.resumed);
     std::uint64_t written = summary.resumed;
-    PartialRows rows(partial, &preparing);
+    PartialRows rows(partial, &preparing, options.durability);
     try {
       rows.OpenIfReady();
       // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "bench/config/override.h"
+#include "common/atomic_file.h"
 #include "bench/sim/checks.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"  // ResultColumns, the readers of resume and merge
@@ -42,6 +43,9 @@ struct SweepRunOptions {
   std::uint64_t shard_index = 0;
   std::uint64_t shard_count = 1;
   bool progress = false;  // a progress bar on stderr (the CLI sets it when stderr is a tty)
+  // manifest.json and results.csv synced to the disk (kSynced) or not (--no-sync:
+  // common/atomic_file.h's Durability; the plots are synced either way).
+  Durability durability = Durability::kSynced;
 };
 
 struct SweepRunSummary {
