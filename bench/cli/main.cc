@@ -690,6 +690,30 @@ CLI::App* AddCompareCommand(CLI::App* app, CompareArgs* args) {
   return compare;
 }
 
+// `sweep`: a grid of scenarios into an output directory (SweepCommand).
+CLI::App* AddSweepCommand(CLI::App* app, SweepArgs* args) {
+  CLI::App* sweep = app->add_subcommand("sweep", "run a grid of scenarios: results.csv and plots");
+  sweep->add_option("sweep", args->file, "sweep file (base:, grid:, ...)")
+      ->required()
+      ->type_name("SWEEP.yaml");
+  AddSetOption(sweep, &args->sets);
+  sweep->add_option("--jobs", args->jobs, "worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096))
+      ->type_name("N");
+  sweep->add_option("--out", args->out_dir,
+                    "output directory (default: sweep_out/NAME); run again to resume")
+      ->type_name("DIR");
+  sweep->add_option("--shard", args->shard,
+                    "run the points p with p % N == I only (I in 0..N-1); join with merge")
+      ->type_name("I/N");
+  sweep->add_option("--report", args->report, kReportHelp)->type_name("FILE.html");
+  sweep->add_flag("--force", args->force, kForceHelp);
+  sweep->add_flag("--no-sync", args->no_sync,
+                  "do not sync manifest.json and results.csv to the disk (scratch output: a "
+                  "crash of the machine may lose them; a killed sweep still resumes)");
+  return sweep;
+}
+
 // Modes from measured FRFs (bench/report/identify_report.h, docs/measured-data.md).
 CLI::App* AddIdentifyCommand(CLI::App* app, IdentifyArgs* args) {
   CLI::App* identify = app->add_subcommand(
@@ -828,25 +852,7 @@ int main(int argc, char** argv) {
       ->type_name("DIR");
 
   SweepArgs sweep_args;
-  CLI::App* sweep = app.add_subcommand("sweep", "run a grid of scenarios: results.csv and plots");
-  sweep->add_option("sweep", sweep_args.file, "sweep file (base:, grid:, ...)")
-      ->required()
-      ->type_name("SWEEP.yaml");
-  AddSetOption(sweep, &sweep_args.sets);
-  sweep->add_option("--jobs", sweep_args.jobs, "worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096))
-      ->type_name("N");
-  sweep->add_option("--out", sweep_args.out_dir,
-                    "output directory (default: sweep_out/NAME); run again to resume")
-      ->type_name("DIR");
-  sweep->add_option("--shard", sweep_args.shard,
-                    "run the points p with p % N == I only (I in 0..N-1); join with merge")
-      ->type_name("I/N");
-  sweep->add_option("--report", sweep_args.report, kReportHelp)->type_name("FILE.html");
-  sweep->add_flag("--force", sweep_args.force, kForceHelp);
-  sweep->add_flag("--no-sync", sweep_args.no_sync,
-                  "do not sync manifest.json and results.csv to the disk (scratch output: a "
-                  "crash of the machine may lose them; a killed sweep still resumes)");
+  CLI::App* sweep = AddSweepCommand(&app, &sweep_args);
 
   MergeArgs merge_args;
   CLI::App* merge = app.add_subcommand("merge", "join the shards of a sweep into one results.csv");
