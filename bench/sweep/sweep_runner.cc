@@ -229,10 +229,11 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   summary.points = shard.Size();
   summary.results = (dir / kSweepResultsFile).string();
   const fs::path partial = dir / kSweepPartialFile;
-  // The manifest (synced: two syncs of the disk; none with --no-sync) and the partial file's header, before any
-  // row. A new directory's are written on another thread while the first points run: the
-  // first row waits for them, so no row is on disk before the manifest that says whose it
-  // is. A directory with files (a resume) is prepared here: its rows decide where to start.
+  // The manifest (synced: two syncs of the disk; none with --no-sync) and the partial
+  // file's header, before any row. A new directory's are written while the first points
+  // run: the first row waits for them, so no row is on disk before the manifest that says
+  // whose it is. A directory with files (a resume) is prepared here: its rows decide where
+  // to start.
   const bool fresh = !fs::exists(dir / kSweepManifestFile) && !fs::exists(partial) &&
                      !fs::exists(dir / kSweepResultsFile);
   CheckResumeDirectory(dir.string(), manifest);

@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "bench/config/override.h"
-#include "common/atomic_file.h"
 #include "bench/sim/checks.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"  // ResultColumns, the readers of resume and merge
+#include "common/atomic_file.h"       // Durability
 
 namespace shapebench::bench {
 
