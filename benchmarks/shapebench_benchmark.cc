@@ -496,9 +496,10 @@ const std::vector<Case3Point>& Case3Points() {
 }
 
 // Case 3's accuracy for the tuning: the ratio metrics of every point within this of the
-// exact path's (its peak sampled as CVODE's is), what CVODE's own settings (fixed-step bound 1.5) reach at rtol 1e-8. A
-// sweep's error is its worst point's, and grows with the steps an undamped mode takes, so
-// the ladder is finer than case 1's: the choices differ by tens of percent here.
+// exact path's (its peak sampled as CVODE's is), what CVODE's own settings (fixed-step
+// bound 1.5) reach at rtol 1e-8. A sweep's error is its worst point's, and grows with the
+// steps an undamped mode takes, so the ladder is finer than case 1's: the choices differ
+// by tens of percent here.
 constexpr double kCase3TargetError = 2e-5;
 
 // One job, each point run as the sweep runs it (RunScenario on the loaded point); the
