@@ -32,7 +32,7 @@ struct CommandSamples {
   std::array<bool, controller::kNumAxes> axis_moves{};
   // Per axis: sum over k of |a_k| times the period (m/s): a mode starting at rest never
   // deflects by more than its gain / w_d times this (|impulse response| <= 1 / w_d), which
-  // tells a run where the tool cannot reach a line's ends (single_mode_run.cc).
+  // tells a run where the tool cannot reach a line's ends (closed_form_sampler.cc).
   std::array<double, controller::kNumAxes> accel_l1_m_s{};
   // Per axis: the positions never decrease (+1) or never increase (-1) from tick to tick;
   // 0 when they do both.

@@ -1,5 +1,5 @@
 // RunOptions of the general exact path (bench/sim/cosim.cc), not the single-mode closed
-// forms (bench/sim/single_mode_run.h) a run of one mode along one line takes its metrics
+// forms (bench/sim/closed_form_sampler.h) a run of one mode along one line takes its metrics
 // from: for the tests of the general path's own mechanisms (its fast samples, deferred
 // substeps, the closed-form tail) and the tests that compare the two.
 #pragma once
@@ -11,7 +11,7 @@ namespace shapebench::bench::testing {
 inline RunOptions GeneralPath(bool record_trace) {
   RunOptions options;
   options.record_trace = record_trace;
-  options.single_mode = false;
+  options.fastest_sampler = SamplerKind::kDeferredSubsteps;
   return options;
 }
 

@@ -1,4 +1,4 @@
-// The single-mode closed forms (bench/sim/single_mode_run.h): a run of one mode along one
+// The single-mode closed forms (bench/sim/closed_form_sampler.h): a run of one mode along one
 // line without a trace. Checked against two independent answers:
 // - an oracle written here in extended precision (long double: 64-bit mantissa) from the
 //   model's closed form, the same ticks of the same command: the peak, the residual

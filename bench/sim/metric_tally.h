@@ -1,13 +1,14 @@
-// The deflection metrics of a run, accumulated sample by sample. The per-sample kernel
-// (TickAccumulator::Add) is written once and specialised per phase of the run; a tick's
-// samples go into a TickAccumulator first and then into the run's with one merge, which
-// keeps the samples independent of each other (no chain of a dependent max per sample)
-// and gives the same values: max is exact, and a non-finite sample ends the run anyway.
+// The metric tally: what every sampler accumulates sample by sample and hands to the one
+// FinishMetrics (finish_metrics.h). A tick's samples go into a TickTally first and then into
+// the run's MetricTally with one merge, which keeps the samples independent of each other
+// (no chain of a dependent max per sample) and gives the same values: max is exact.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+
+#include <Eigen/Core>
 
 namespace shapebench::bench {
 
@@ -17,7 +18,7 @@ namespace shapebench::bench {
 enum class RunPhase { kMotion, kWindow, kTail };
 
 // One tick's samples.
-struct TickAccumulator {
+struct TickTally {
   double peak = 0.0;        // largest |deflection| (the view's scalar)
   double contour_sq = 0.0;  // largest squared contour error
   double residual = 0.0;    // largest |deflection| in the residual window (residual_peak_m)
@@ -39,24 +40,51 @@ struct TickAccumulator {
   }
 };
 
-// The run's.
-struct RunAccumulator {
+// The run's: the per-sample maxima, then what the sampler concludes at the end. Every
+// field FinishMetrics reads is here, so a sampler cannot leave a metric out.
+struct MetricTally {
+  // The static reference of the ratios: the deflection under the largest held commanded
+  // acceleration, and that deflection per axis (StaticDisplacement, finish_metrics.h).
+  double static_m = 0.0;
+  Eigen::Vector3d static_vector = Eigen::Vector3d::Zero();
+  double band = 0.0;  // RunWindow::kSettlingBand x static_m
+
   double peak = 0.0;
   double contour_sq = 0.0;
   double residual = 0.0;
   long last_outside_band = -1;   // the last sample (count from t = 0) outside the band
   std::size_t quiet_since_tick = 0;
-  double band = 0.0;             // kSettlingBand x static displacement
 
-  TickAccumulator StartTick(RunPhase phase, std::size_t k, std::size_t motion_ticks, int substeps) const {
-    TickAccumulator tick;
+  double residual_m = 0.0;  // the free vibration at motion end (at rest, rigid: none)
+  double cruise_m = NAN;    // the largest at the cruise probes; NaN without one
+  Eigen::Vector3d peak_axes = Eigen::Vector3d::Zero();  // per axis, |deflection|
+  double overshoot_m = 0.0;                              // beyond the stroke
+  double radial_error_m = NAN;                           // arcs only
+  // A plant with nonlinear elements: its free response's half peak-to-peak (NaN: none
+  // sampled), where it came to rest, its largest quadrant glitch.
+  bool nonlinear = false;
+  double free_half_range_m = NAN;
+  double dead_band_m = NAN;
+  double quadrant_glitch_m = NAN;
+
+  std::size_t last_tick = 0;  // the run's end
+  bool settled = false;
+
+  void SetStatic(double static_displacement_m, const Eigen::Vector3d& vector, double settling_band) {
+    static_m = static_displacement_m;
+    static_vector = vector;
+    band = settling_band * static_displacement_m;
+  }
+
+  TickTally StartTick(RunPhase phase, std::size_t k, std::size_t motion_ticks, int substeps) const {
+    TickTally tick;
     tick.band = band;
     tick.first_after_motion = phase == RunPhase::kWindow && k == motion_ticks ? substeps - 1 : 0;
     return tick;
   }
 
   // Tick k's samples into the run's.
-  void Merge(const TickAccumulator& tick, std::size_t k, int substeps) {
+  void Merge(const TickTally& tick, std::size_t k, int substeps) {
     peak = std::max(peak, tick.peak);
     contour_sq = std::max(contour_sq, tick.contour_sq);
     residual = std::max(residual, tick.residual);

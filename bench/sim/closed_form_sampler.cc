@@ -1,4 +1,4 @@
-#include "bench/sim/single_mode_run.h"
+#include "bench/sim/closed_form_sampler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,57 +8,19 @@
 #include <vector>
 
 #include "bench/sim/deferred_substeps.h"
-#include "bench/sim/metric_accumulator.h"
-#include "bench/sim/output_view.h"
-#include "bench/sim/run_window.h"
+#include "bench/sim/finish_metrics.h"
+#include "common/math_constants.h"
 #include "model/band_crossing.h"
 #include "model/machine.h"
 
 namespace shapebench::bench {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // What a substep's deflection can exceed the period's bound by: its rounding (a few
 // operations on values of the run's scale, ~1e-15 of it) with a thousandfold margin. (The
 // general path's 1e-9, deferred_substeps.h, would keep a quiet residual window sampled:
 // a contour error of rounding size, 1e-15 m, stays below a margin of 1e-13 m.)
 constexpr double kSampleMargin = 1e-12;
-
-// The mode of the run's one modelled axis, or null.
-const model::ModalMode* OnlyMode(const Scenario& scenario, int axis) {
-  const model::MultiAxisMachineConfig& machine = scenario.machine;
-  for (int a = 0; a < model::kNumAxes; ++a) {
-    if (a != axis && machine.axes[a].has_value()) return nullptr;
-  }
-  if (!machine.axes[axis].has_value()) return nullptr;
-  const auto* modal = std::get_if<model::ModalMachineConfig>(&machine.axes[axis]->form);
-  if (modal == nullptr || modal->modes.size() != 1 || modal->coupled()) return nullptr;
-  return &modal->modes.front();
-}
-
-// The one straight element of the path along `axis`, or null.
-const controller::PathElement* OnlyLine(const controller::PathGeometry& path, int axis) {
-  if (path.elements().size() != 1) return nullptr;
-  const controller::PathElement& e = path.elements().front();
-  if (e.is_arc() || std::abs(e.direction(axis)) != 1.0) return nullptr;
-  for (int a = 0; a < model::kNumAxes; ++a) {
-    if (a != axis && e.direction(a) != 0.0) return nullptr;
-  }
-  return &e;
-}
-
-// The view's axis when the output is one axis' and the scenario names it, or -1 (auto is
-// resolved by the caller from the command).
-int ViewAxis(const Scenario& scenario, int moving) {
-  switch (scenario.output.direction) {
-    case OutputDirection::kX: return 0;
-    case OutputDirection::kY: return 1;
-    case OutputDirection::kZ: return 2;
-    case OutputDirection::kMagnitude: return -1;
-    case OutputDirection::kAuto: return moving;
-  }
-  return -1;
-}
 
 // q' changed sign over the period: a stationary point lies inside it.
 bool SignChanged(double v0, double v1) { return (v0 > 0.0 && v1 < 0.0) || (v0 < 0.0 && v1 > 0.0); }
@@ -241,46 +203,54 @@ class SingleModeKernel {
   double q0_ = 0.0, v0_ = 0.0, a_ = 0.0;  // the last period's start and input
 };
 
-// The master's loop over the run's ticks, its accumulators as the general path keeps them
-// (cosim.cc: SampleTick, DeferredTick, SettleTail).
-class SingleModeMaster {
+// The sampler: the kernel through the run's ticks, its tally as the plant samplers keep it
+// (plant_sampler.cc: SampleTick, DeferredTick, SettleTail).
+class ClosedFormSampler final : public Sampler {
  public:
-  SingleModeMaster(SingleModeKernel* kernel, const RunWindow& window, double static_m)
-      : m_(*kernel), window_(window), static_m_(static_m) {
-    acc_.band = RunWindow::kSettlingBand * static_m;
-    contour_floor_ = 1e-12 * static_m;
-    acc_.quiet_since_tick = window.motion_ticks;
-    next_probe_ = window.cruise_probe_ticks.begin();
-    const CommandSamples& s = kernel->s_;
-    const double end = s.positions.back()(kernel->axis_);
+  ClosedFormSampler(const RunPlan& plan, RunResult* result)
+      : plan_(plan),
+        result_(*result),
+        kernel_(*plan.single_mode.mode, *plan.single_mode.line, plan.single_mode.axis, plan.samples, plan.dt_s,
+                plan.substeps),
+        m_(kernel_),
+        window_(plan.window) {
+    Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
+    static_gain(m_.axis_, m_.axis_) = m_.StaticGain();
+    SetStaticReference(plan, static_gain, &tally_);
+    static_m_ = tally_.static_m;
+    contour_floor_ = 1e-12 * static_m_;
+    next_probe_ = window_.cruise_probe_ticks.begin();
+    const CommandSamples& s = m_.s_;
+    const double end = s.positions.back()(m_.axis_);
     // OffLineBound's rounding term, at its largest over the run's positions (within the
     // line's ends and the largest deflection, which the reach bounds).
-    const double largest = std::abs(kernel->start_) + kernel->length_ +
-                           kernel->DeflectionBound(s.accel_l1_m_s[kernel->axis_]) + s.max_speed_m_s * kernel->dt_ +
-                           s.max_accel_m_s2 * kernel->dt_ * kernel->dt_;
-    rounding_ = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(kernel->start_) + largest + kernel->length_) * 2.0;
-    end_off_ = std::abs((end - kernel->start_) * kernel->direction_ - kernel->length_) + rounding_;
+    const double largest = std::abs(m_.start_) + m_.length_ + m_.DeflectionBound(s.accel_l1_m_s[m_.axis_]) +
+                           s.max_speed_m_s * m_.dt_ + s.max_accel_m_s2 * m_.dt_ * m_.dt_;
+    rounding_ = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(m_.start_) + largest + m_.length_) * 2.0;
+    end_off_ = std::abs((end - m_.start_) * m_.direction_ - m_.length_) + rounding_;
     FindInnerTicks();
   }
 
-  void Run(RunResult* result);
+  MetricTally Run() override;
+  std::size_t Tick(std::size_t k);
+  bool SettleTail(std::size_t k);
 
  private:
-  template <RunPhase P> void Tick(std::size_t k);
+  template <RunPhase P> void TickIn(std::size_t k);
   void FindInnerTicks();
   [[gnu::always_inline]] bool ContourCannotGrow(std::size_t k, double bound) const;
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
-  bool SettleTail(std::size_t k);
   long LastSampleOutside(const model::FreeTerms& free) const;
 
-  SingleModeKernel& m_;
+  const RunPlan& plan_;
+  RunResult& result_;
+  SingleModeKernel kernel_;
+  SingleModeKernel& m_;  // the kernel, by the short name the formulas read best with
   const RunWindow& window_;
-  const double static_m_;
-  RunAccumulator acc_;
+  double static_m_ = 0.0;
+  MetricTally tally_;
   std::vector<std::size_t>::const_iterator next_probe_;
   double start_abs_ = 0.0;  // |deflection| at the period's start
-  double residual_m_ = 0.0;
-  double cruise_m_ = NAN;
   bool first_probe_ = true;
   long deferred_ = 0;
   double end_off_ = 0.0;   // the command's end from the line's end, and the rounding there
@@ -292,37 +262,35 @@ class SingleModeMaster {
   // Ticks [inner_from_, inner_to_]: the tool stays inside the line, whatever the mode does.
   std::size_t inner_from_ = 1;
   std::size_t inner_to_ = 0;
-  std::size_t last_tick_ = 0;
-  bool settled_ = false;
   bool tail_closed_ = false;
 };
 
 template <RunPhase P>
-void SingleModeMaster::Tick(std::size_t k) {
+void ClosedFormSampler::TickIn(std::size_t k) {
   const bool motion_end = k == window_.motion_ticks;
-  const double needed = P == RunPhase::kWindow && !motion_end ? std::min(acc_.peak, acc_.residual) : acc_.peak;
+  const double needed = P == RunPhase::kWindow && !motion_end ? std::min(tally_.peak, tally_.residual) : tally_.peak;
   double inside = 0.0;
   double within = 0.0;
   const double end = m_.Advance(m_.s_.AccelAt(k)(m_.axis_), needed, &inside, &within);
   const double largest = std::max(std::max(start_abs_, end), within);
-  acc_.peak = std::max(acc_.peak, std::max(end, inside));
+  tally_.peak = std::max(tally_.peak, std::max(end, inside));
   if constexpr (P == RunPhase::kWindow) {
-    acc_.residual = std::max(acc_.residual, motion_end ? end : std::max(end, inside));
+    tally_.residual = std::max(tally_.residual, motion_end ? end : std::max(end, inside));
   }
   if constexpr (P != RunPhase::kMotion) {
     // The last sample outside the settling band: the end's, else an inner one's.
-    int last = end >= acc_.band ? m_.substeps_ - 1 : -1;
-    if (last < 0 && largest >= acc_.band && !motion_end) {
+    int last = end >= tally_.band ? m_.substeps_ - 1 : -1;
+    if (last < 0 && largest >= tally_.band && !motion_end) {
       for (int j = m_.substeps_ - 2; j >= 0; --j) {
-        if (std::abs(m_.Substep(j)) >= acc_.band) {
+        if (std::abs(m_.Substep(j)) >= tally_.band) {
           last = j;
           break;
         }
       }
     }
     if (last >= 0) {
-      acc_.last_outside_band = static_cast<long>((k - 1) * static_cast<std::size_t>(m_.substeps_)) + last + 1;
-      acc_.quiet_since_tick = k;
+      tally_.last_outside_band = static_cast<long>((k - 1) * static_cast<std::size_t>(m_.substeps_)) + last + 1;
+      tally_.quiet_since_tick = k;
     }
   }
   const double bound = largest + kSampleMargin * (largest + static_m_);
@@ -338,7 +306,7 @@ void SingleModeMaster::Tick(std::size_t k) {
 // command within |v0| h + |a| h^2 / 2 of p0 (at rest at its end after the command), the
 // tool within `bound` of it: its distance from the line is at most this; Contour's bound
 // (OffLineBound on the exact range) is never larger.
-inline bool SingleModeMaster::ContourCannotGrow(std::size_t k, double bound) const {
+inline bool ClosedFormSampler::ContourCannotGrow(std::size_t k, double bound) const {
   const CommandSamples& s = m_.s_;
   double off = 0.0;
   if (k > s.n) {
@@ -352,14 +320,14 @@ inline bool SingleModeMaster::ContourCannotGrow(std::size_t k, double bound) con
     if (m_.start_ == 0.0 && along - reach > rounding_ && along + reach < m_.length_ - rounding_) return true;
     off = std::max(0.0, std::max(reach - along, along + reach - m_.length_)) * (1.0 + 1e-15) + rounding_;
   }
-  return off < contour_floor_ || off * off < acc_.contour_sq;
+  return off < contour_floor_ || off * off < tally_.contour_sq;
 }
 
 // The ticks in which no sample can leave the line, found once a run (two binary searches)
 // instead of bounding every tick: the command's positions move one way along the line
 // from its start at 0, within max speed dt + max |a| dt^2 / 2 of the tick's first one,
 // and the deflection stays within DeflectionBound of the whole command's |a|.
-void SingleModeMaster::FindInnerTicks() {
+void ClosedFormSampler::FindInnerTicks() {
   const CommandSamples& s = m_.s_;
   const int ax = m_.axis_;
   if (m_.start_ != 0.0 || s.n < 2 || s.monotone[ax] != (m_.direction_ > 0.0 ? 1 : -1)) return;
@@ -389,7 +357,7 @@ void SingleModeMaster::FindInnerTicks() {
 // The largest squared contour error, from the substeps of the periods where the tool can
 // leave the line (its ends: OffLineBound, deferred_substeps.h); called where
 // ContourCannotGrow's quick bound could not rule them out.
-void SingleModeMaster::Contour(std::size_t k, double bound) {
+void ClosedFormSampler::Contour(std::size_t k, double bound) {
   const CommandSamples& s = m_.s_;
   const bool commanded = k <= s.n;
   const double p0 = (commanded ? s.positions[k - 1] : s.positions.back())(m_.axis_);
@@ -399,7 +367,7 @@ void SingleModeMaster::Contour(std::size_t k, double bound) {
   double hi = 0.0;
   QuadraticRange(p0, v0, half_a, m_.dt_, &lo, &hi);
   const double off_bound = OffLineBound(m_.start_, m_.direction_, m_.length_, lo - bound, hi + bound);
-  if (off_bound == 0.0 || off_bound * off_bound < acc_.contour_sq) {
+  if (off_bound == 0.0 || off_bound * off_bound < tally_.contour_sq) {
     ++deferred_;
     return;
   }
@@ -408,31 +376,31 @@ void SingleModeMaster::Contour(std::size_t k, double bound) {
     const double actual = p0 + v0 * tau + half_a * tau * tau + m_.Substep(j);
     const double along = std::clamp((actual - m_.start_) * m_.direction_, 0.0, m_.length_);
     const double off = actual - (m_.start_ + along * m_.direction_);
-    acc_.contour_sq = std::max(acc_.contour_sq, off * off);
+    tally_.contour_sq = std::max(tally_.contour_sq, off * off);
   }
 }
 
 // At the residual window's end: the settling tail in closed form (cosim.cc's SettleTail
 // with the one pole pair); false when the simulated tail must decide.
-bool SingleModeMaster::SettleTail(std::size_t k) {
+bool ClosedFormSampler::SettleTail(std::size_t k) {
   if (window_.never_settles_late || k != window_.window_end()) return false;
   const model::FreeTerms free = m_.Free();
   constexpr double kMargin = 1.0 + 1e-9;
   const double envelope = free.Envelope(0.0);
-  if (!(envelope * kMargin <= acc_.peak) || !(envelope * envelope * kMargin <= acc_.contour_sq)) return false;
+  if (!(envelope * kMargin <= tally_.peak) || !(envelope * envelope * kMargin <= tally_.contour_sq)) return false;
   const long last = LastSampleOutside(free);
   if (last == -2) return false;
-  long last_outside = acc_.last_outside_band;
-  std::size_t quiet = acc_.quiet_since_tick;
+  long last_outside = tally_.last_outside_band;
+  std::size_t quiet = tally_.quiet_since_tick;
   if (last >= 1) {
     last_outside = static_cast<long>(k) * m_.substeps_ + last;
     quiet = static_cast<std::size_t>((last_outside - 1) / m_.substeps_ + 1);
   }
   const std::size_t stop = quiet + window_.period_ticks;
-  acc_.last_outside_band = last_outside;
-  acc_.quiet_since_tick = quiet;
-  settled_ = stop <= window_.max_ticks;
-  last_tick_ = std::min(stop, window_.max_ticks);
+  tally_.last_outside_band = last_outside;
+  tally_.quiet_since_tick = quiet;
+  tally_.settled = stop <= window_.max_ticks;
+  tally_.last_tick = std::min(stop, window_.max_ticks);
   tail_closed_ = true;
   return true;
 }
@@ -444,8 +412,8 @@ bool SingleModeMaster::SettleTail(std::size_t k) {
 // is below about 1e-4 (the grid can miss the last crests, each only pi zeta higher than
 // the next): beyond four periods back, model/band_crossing.h's search decides, as the
 // general path's tail does.
-long SingleModeMaster::LastSampleOutside(const model::FreeTerms& free) const {
-  const double band = acc_.band;
+long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
+  const double band = tally_.band;
   const std::complex<double> q = free.q.front();
   const std::complex<double> lambda = free.lambda.front();
   const double envelope = std::abs(q);
@@ -470,133 +438,54 @@ long SingleModeMaster::LastSampleOutside(const model::FreeTerms& free) const {
   return 0;
 }
 
-void SingleModeMaster::Run(RunResult* result) {
+std::size_t ClosedFormSampler::Tick(std::size_t k) {
   const std::size_t motion = window_.motion_ticks;
-  for (std::size_t k = 1; k <= window_.max_ticks; ++k) {
-    last_tick_ = k;
-    if (k < motion) {
-      if (k >= inner_from_ && k <= inner_to_) {
-        std::size_t end = std::min(inner_to_ + 1, motion);
-        if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
-        if (end > k) {
-          acc_.peak = m_.AdvancePeaks(k, end, acc_.peak, &start_abs_);
-          deferred_ += static_cast<long>(end - k);
-          k = end - 1;
-          last_tick_ = k;
-          continue;
-        }
+  if (k < motion) {
+    if (k >= inner_from_ && k <= inner_to_) {
+      std::size_t end = std::min(inner_to_ + 1, motion);
+      if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
+      if (end > k) {
+        tally_.peak = m_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
+        deferred_ += static_cast<long>(end - k);
+        return end - 1;
       }
-      Tick<RunPhase::kMotion>(k);
-      if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
-        ++next_probe_;
-        const double amplitude = m_.ModalAmplitude();
-        if (first_probe_ || amplitude > cruise_m_) cruise_m_ = amplitude;
-        first_probe_ = false;
-      }
-      continue;
     }
-    if (k <= window_.window_end()) {
-      Tick<RunPhase::kWindow>(k);
-      if (k == motion) residual_m_ = m_.ModalAmplitude();
-      if (k < window_.window_end()) continue;  // the run can stop only from the window's end on
-    } else {
-      Tick<RunPhase::kTail>(k);
+    TickIn<RunPhase::kMotion>(k);
+    if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
+      ++next_probe_;
+      const double amplitude = m_.ModalAmplitude();
+      if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
+      first_probe_ = false;
     }
-    bool settled = false;
-    if (window_.Done(k, acc_.quiet_since_tick, &settled)) {
-      settled_ = settled;
-      break;
-    }
-    if (SettleTail(k)) break;
+    return k;
   }
-  const double dt = m_.dt_;
-  const int substeps = m_.substeps_;
-  Metrics& m = result->metrics;
-  m.motion_time_s = static_cast<double>(motion) * dt;
-  if (settled_) {
-    m.settling_time_s = acc_.last_outside_band < 0 ? 0.0
-                                                   : dt * static_cast<double>(acc_.last_outside_band) / substeps +
-                                                         dt / substeps - m.motion_time_s;
+  if (k <= window_.window_end()) {
+    TickIn<RunPhase::kWindow>(k);
+    if (k == motion) tally_.residual_m = m_.ModalAmplitude();
+  } else {
+    TickIn<RunPhase::kTail>(k);
   }
-  m.peak_deflection_m = acc_.peak;
-  m.peak_ratio = acc_.peak / static_m_;
-  m.residual_amplitude_m = residual_m_;
-  m.residual_ratio = residual_m_ / static_m_;
-  m.residual_peak_m = acc_.residual;
-  m.residual_peak_ratio = acc_.residual / static_m_;
-  m.cruise_residual_ratio = cruise_m_ / static_m_;
-  m.max_contour_error_m = std::sqrt(acc_.contour_sq);
-  result->simulated_s = static_cast<double>(last_tick_) * dt;
-  result->tail_in_closed_form = tail_closed_;
-  result->deferred_periods = deferred_;
-  result->stats.steps = static_cast<long>(last_tick_) * substeps;
-  result->substeps = substeps;
+  return k;
+}
+
+MetricTally ClosedFormSampler::Run() {
+  RunTicks(*this, window_, &tally_);
+  tally_.peak_axes(m_.axis_) = tally_.peak;
+  result_.sampler = SamplerKind::kClosedForm;
+  result_.single_mode = true;
+  result_.tail_in_closed_form = tail_closed_;
+  result_.deferred_periods = deferred_;
+  result_.stats.steps = static_cast<long>(tally_.last_tick) * m_.substeps_;
+  result_.substeps = m_.substeps_;
+  const model::ModalMode& mode = *plan_.single_mode.mode;
+  result_.residual_modes = {{mode.frequency_hz, mode.damping_ratio, tally_.residual_m}};
+  return tally_;
 }
 
 }  // namespace
 
-bool SingleModeQualifies(const Scenario& scenario, const controller::PathGeometry& path) {
-  if (scenario.drive.type != model::DriveType::kKinematic ||
-      scenario.integrator.method == model::IntegratorMethod::kCvode) {
-    return false;
-  }
-  for (const auto& limits : scenario.machine.stroke_m) {
-    if (limits.has_value()) return false;
-  }
-  int axis = -1;
-  for (int a = 0; a < model::kNumAxes && path.elements().size() == 1; ++a) {
-    if (path.elements().front().direction(a) != 0.0) axis = a;
-  }
-  if (axis < 0 || ViewAxis(scenario, axis) != axis || OnlyLine(path, axis) == nullptr) return false;
-  const model::ModalMode* mode = OnlyMode(scenario, axis);
-  if (mode == nullptr || !(mode->gain != 0.0) || !(mode->damping_ratio < 1.0) || !(mode->frequency_hz > 0.0)) {
-    return false;
-  }
-  // At most one stationary point a period (model/tick_extremum.h's grid of one).
-  const double wd = 2.0 * kPi * mode->frequency_hz * std::sqrt(1.0 - mode->damping_ratio * mode->damping_ratio);
-  return wd * scenario.controller.period_s <= 0.5 * kPi;
-}
-
-bool RunSingleMode(const Scenario& scenario, const controller::MultiAxisCommand& command,
-                   const CommandSamples& samples, const controller::PathGeometry& path, RunResult* result) {
-  // The general path validates them building the plant: the same errors here.
-  scenario.machine.validate();
-  scenario.drive.validate();
-  if (!SingleModeQualifies(scenario, path)) return false;
-  const OutputView view = MakeOutputView(scenario.output, samples.axis_moves);
-  const controller::PathElement& line = path.elements().front();
-  const int axis = view.axis;
-  if (axis < 0 || OnlyLine(path, axis) != &line) return false;
-  for (int a = 0; a < model::kNumAxes; ++a) {
-    if (a != axis && (samples.axis_moves[a] || samples.positions.front()(a) != line.start_m(a))) return false;
-  }
-  const double dt = command.period_s;
-  const model::MachineDynamics dynamics = model::AnalyzeMachine(scenario.machine);
-  const RunWindow window = PlanRunWindow(scenario, samples, dynamics, dt);
-  const int substeps = scenario.integrator.output_substeps > 0 ? scenario.integrator.output_substeps
-                                                               : AutoSubsteps(dynamics, dt);
-  const model::ModalMode& mode = *OnlyMode(scenario, axis);
-  SingleModeKernel kernel(mode, line, axis, samples, dt, substeps);
-  Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
-  static_gain(axis, axis) = kernel.StaticGain();
-  Eigen::Vector3d static_vector;
-  const double static_m = StaticDisplacement(samples, static_gain, view, &static_vector);
-  Metrics& m = result->metrics;
-  m.static_displacement_m = static_m;
-  m.static_displacement_x_m = static_vector(0);
-  m.static_displacement_y_m = static_vector(1);
-  m.static_displacement_z_m = static_vector(2);
-  SingleModeMaster master(&kernel, window, static_m);
-  master.Run(result);
-  m.peak_deflection_x_m = axis == 0 ? m.peak_deflection_m : 0.0;
-  m.peak_deflection_y_m = axis == 1 ? m.peak_deflection_m : 0.0;
-  m.peak_deflection_z_m = axis == 2 ? m.peak_deflection_m : 0.0;
-  m.short_block_clamps = command.short_block_clamps;
-  m.stroke_overshoot_m = 0.0;
-  m.stroke_alarm = command.stroke_alarm ? 1.0 : 0.0;
-  SetPatternMetrics(scenario.controller.pattern, &m);
-  result->residual_modes = {{mode.frequency_hz, mode.damping_ratio, m.residual_amplitude_m}};
-  return true;
+std::unique_ptr<Sampler> MakeClosedFormSampler(const RunPlan& plan, RunResult* result) {
+  return std::make_unique<ClosedFormSampler>(plan, result);
 }
 
 }  // namespace shapebench::bench
