@@ -85,7 +85,7 @@ MetricChange CompareMetric(const MetricInfo& info, double baseline, double candi
 
 std::vector<MetricChange> CompareMetrics(const Metrics& baseline, const Metrics& candidate) {
   std::vector<MetricChange> changes;
-  changes.reserve(kNumMetrics);
+  changes.reserve(MetricTable().size());
   for (const MetricInfo& info : MetricTable()) {
     changes.push_back(CompareMetric(info, baseline.*info.field, candidate.*info.field));
   }

@@ -2,9 +2,9 @@
 
 namespace shapebench::bench {
 
-const std::array<MetricInfo, kNumMetrics>& MetricTable() {
+const std::vector<MetricInfo>& MetricTable() {
   using M = Metrics;
-  static const std::array<MetricInfo, kNumMetrics> table = {{
+  static const std::vector<MetricInfo> table = {
       {"static_displacement_m", "m", Better::kLower,
        "the deflection under the run's largest commanded acceleration held constant (a static "
        "solve of the model): the reference of every ratio",
@@ -84,13 +84,13 @@ const std::array<MetricInfo, kNumMetrics>& MetricTable() {
        "the damping ratio that design frequency's shaper was designed for (methods 1-4: 0); n/a "
        "as pattern_frequency_hz",
        &M::pattern_damping_ratio},
-  }};
+  };
   return table;
 }
 
-const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable() {
+const std::vector<MetricInfo>& NonlinearMetricTable() {
   using M = Metrics;
-  static const std::array<MetricInfo, kNumNonlinearMetrics> table = {{
+  static const std::vector<MetricInfo> table = {
       {"dead_band_m", "m", Better::kLower,
        "the final resting deflection: the absolute deflection in the view at the run's last "
        "sample, where friction left the structure stuck (n/a for a linear plant, which comes "
@@ -102,7 +102,7 @@ const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable() {
        "least 5 degrees inside the arc), from the median radial deviation over the arc's "
        "middle half; n/a without such a reversal or for a linear plant",
        &M::quadrant_glitch_m},
-  }};
+  };
   return table;
 }
 
@@ -132,7 +132,7 @@ std::string_view BetterName(Better better) { return better == Better::kLower ? "
 
 std::vector<std::pair<std::string, double>> Metrics::Named() const {
   std::vector<std::pair<std::string, double>> named;
-  named.reserve(kNumMetrics);
+  named.reserve(MetricTable().size());
   for (const MetricInfo& info : MetricTable()) named.emplace_back(std::string(info.name), this->*info.field);
   return named;
 }

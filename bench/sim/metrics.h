@@ -4,7 +4,6 @@
 // docs/metrics.md all read MetricTable(): a metric is defined in exactly one place.
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -62,16 +61,14 @@ struct MetricInfo {
   std::string_view shown_unit() const { return unit == "m" || unit == "s" || unit == "Hz" ? unit : ""; }
 };
 
-inline constexpr std::size_t kNumMetrics = 23;
-
-// Every metric, in the order JSON, tables and results.csv list them.
-const std::array<MetricInfo, kNumMetrics>& MetricTable();
+// Every metric, in the order JSON, tables and results.csv list them (their number is the
+// table's size: a row is all a new metric adds here).
+const std::vector<MetricInfo>& MetricTable();
 
 // The metrics of a plant with nonlinear elements (docs/nonlinear.md): NaN for every other
 // run, and then left out of JSON and the metrics table (a linear run's output stays as it
 // was); checks and a sweep's `metrics:` may name them (a linear run's value is n/a).
-inline constexpr std::size_t kNumNonlinearMetrics = 2;
-const std::array<MetricInfo, kNumNonlinearMetrics>& NonlinearMetricTable();
+const std::vector<MetricInfo>& NonlinearMetricTable();
 
 // The row of `name` in either table; nullptr when there is none.
 const MetricInfo* FindMetric(std::string_view name);
