@@ -7,7 +7,7 @@
 # why in its commit:
 #   scripts/golden.sh build/shapebench tests/golden
 set -euo pipefail
-bin=$1
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 out=$2
 top=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
