@@ -40,7 +40,7 @@
 
 #include "bench/sim/command_samples.h"
 #include "bench/sim/cosim.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
 #include "model/cvode_cross_check.h"

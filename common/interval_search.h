@@ -1,6 +1,6 @@
 // Searches of a scalar function of one number over an interval, shared by the band checks
 // of `check` (bench/sweep/band_check.h: the worst value of a metric over a range of one
-// key) and `sensitivity` (bench/sweep/sensitivity.h: the edges of the band where a
+// key) and `sensitivity` (bench/sensitivity/sensitivity.h: the edges of the band where a
 // shaper's residual stays below a level). The function is costly (a whole run) and may be
 // neither smooth nor unimodal: a dense scan finds where to look, a local refinement
 // (golden-section on the bracket around a scan point, bisection for a crossing) then

@@ -39,7 +39,7 @@ struct PatternConfig {
   // What the scenario leaves to the machine (frequency_hz not given or `machine`,
   // `frequencies_hz: machine`, `design_damping_ratio: machine`). The controller designs
   // for the numbers above as they stand; the scenario loader first replaces them with
-  // the machine's participating modes (bench/config/pattern_defaults.h).
+  // the machine's participating modes (bench/scenario/pattern_defaults.h).
   bool frequency_from_machine = false;
   bool frequencies_from_machine = false;
   bool damping_from_machine = false;

@@ -1,7 +1,7 @@
 // Applies blocks of address words (letter + number) with the modal state of a Fanuc-style
 // control and collects the resulting ProgramBlocks. Both part-program readers use it: the
 // G-code parser (controller/gcode_parser.h) and the YAML `program:` list
-// (bench/config/program_reader.h). Units at this boundary are the programmer's: coordinates,
+// (bench/scenario/program_reader.h). Units at this boundary are the programmer's: coordinates,
 // I/J/K and R in mm, F in mm/min, P in ms, G4's X in s; the Program is SI.
 //
 // Words and modal groups:

@@ -20,16 +20,16 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/config/config_error.h"
-#include "bench/config/modal_file_reader.h"
+#include "bench/measured/modal_file_reader.h"
 #include "bench/config/override.h"
 #include "bench/sim/scenario.h"
-#include "bench/config/scenario_loader.h"
-#include "bench/config/structure_numbers.h"
-#include "bench/config/uff58_reader.h"
-#include "bench/measure/accel_log.h"
-#include "bench/measure/accel_spectrum.h"
-#include "bench/measure/log_modes.h"
-#include "bench/measure/shaper_fit.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/scenario/structure_numbers.h"
+#include "bench/measured/uff58_reader.h"
+#include "bench/measured/accel_log.h"
+#include "bench/measured/accel_spectrum.h"
+#include "bench/measured/log_modes.h"
+#include "bench/measured/shaper_fit.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"
 #include "bench/sweep/sweep_plot.h"
@@ -93,7 +93,7 @@ inline void GcodeTarget(const std::string& text) {
   }
 }
 
-// Scenario loader (bench/config/scenario_loader.h): any bytes as a scenario file are a Scenario
+// Scenario loader (bench/scenario/scenario_loader.h): any bytes as a scenario file are a Scenario
 // or a ConfigError at FILE:LINE:COL; a loaded scenario's command is generated, or refused
 // with a ValidationError naming a scenario key.
 inline void ScenarioTarget(const std::string& bytes) {
@@ -115,7 +115,7 @@ inline void ScenarioTarget(const std::string& bytes) {
   }
 }
 
-// Sweep points' structure numbers (bench/config/structure_numbers.h), differentially: the
+// Sweep points' structure numbers (bench/scenario/structure_numbers.h), differentially: the
 // overrides that are structure numbers, set on the loaded base, must give what the loader
 // reads with them, bit for bit (or not be set at all: the loader then decides).
 inline void StructureNumbersAgree(const std::string& path, const std::vector<bench::Override>& overrides) {
@@ -442,7 +442,7 @@ inline void RowsTarget(const std::string& bytes) {
   }
 }
 
-// UFF dataset 58 reader (bench/config/uff58_reader.h): any bytes are FRF records or a
+// UFF dataset 58 reader (bench/measured/uff58_reader.h): any bytes are FRF records or a
 // ConfigError at a line of the file; the records read are finite, ascending in frequency,
 // as long as their values; a short one goes through the identification (low orders), which
 // returns modes inside the band or refuses the band with a ValidationError naming it.
@@ -484,7 +484,7 @@ inline void Uff58Target(const std::string& bytes) {
   }
 }
 
-// Accelerometer log reader (bench/measure/accel_log.h) and what `recommend` does with a
+// Accelerometer log reader (bench/measured/accel_log.h) and what `recommend` does with a
 // log it takes: any bytes are a log or a ConfigError at FILE:LINE:COL naming the column;
 // a log has finite, strictly increasing times and finite values; its spectrum is finite
 // and non-negative or refused at a line; every method fitted (on a coarse 5 Hz scan, to
@@ -547,7 +547,7 @@ inline void AccelLogTarget(const std::string& bytes) {
   if (std::abs(shares - 1.0) > 1e-9) throw Violation{"mode shares that do not sum to 1"};
 }
 
-// FE modal export reader (bench/config/modal_file_reader.h): any bytes are coupled modes
+// FE modal export reader (bench/measured/modal_file_reader.h): any bytes are coupled modes
 // or a ConfigError at the file, a line and a column >= 1, naming a column or row; accepted
 // modes number 1 to kMaxModelEntries, each with participation and shape, and pass the
 // modal form's validate() (finite numbers, frequency > 0, damping in [0, 1)).

@@ -60,7 +60,7 @@ struct ModalMode {
 constexpr std::size_t kMaxModelEntries = 100;
 
 struct ModalMachineConfig {
-  // The YAML key of an FE modal export (bench/config/modal_file_reader.h), beside no `modes`.
+  // The YAML key of an FE modal export (bench/measured/modal_file_reader.h), beside no `modes`.
   static constexpr const char* kModalFileKey = "modal_file";
 
   std::vector<ModalMode> modes = std::vector<ModalMode>(1);  // one default mode

@@ -33,7 +33,7 @@ struct MultiAxisMachineConfig {
   std::array<std::optional<std::array<double, 2>>, kNumAxes> stroke_m;
   // The axes the machine says are rigid (machine.rigid): a program may move them although
   // they have no model. An axis neither modelled nor listed here may not be moved by a
-  // machine that models any axis (bench/config/scenario_loader.cc).
+  // machine that models any axis (bench/scenario/scenario_loader.cc).
   std::array<bool, kNumAxes> rigid{};
   // Read from the single form (`modes:` or `bodies:` with an optional `axis:`): the one
   // axis' fields are then named as in that form ("modes[0].gain", not "axes.y.modes[0].gain").

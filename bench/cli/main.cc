@@ -32,15 +32,15 @@
 #include "bench/sim/cosim.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
-#include "bench/report/html_report.h"
-#include "bench/report/identify_report.h"
-#include "bench/report/modes_report.h"
-#include "bench/report/pattern_report.h"
-#include "bench/report/recommend_report.h"
-#include "bench/report/output_path.h"
-#include "bench/report/report.h"
-#include "bench/config/located_run.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/output/html_report.h"
+#include "bench/output/identify_report.h"
+#include "bench/output/modes_report.h"
+#include "bench/output/pattern_report.h"
+#include "bench/output/recommend_report.h"
+#include "bench/output/output_path.h"
+#include "bench/output/report.h"
+#include "bench/sim/located_run.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_html.h"
 #include "bench/sweep/sweep_files.h"
@@ -48,7 +48,7 @@
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/slurm_array.h"
 #include "bench/sweep/sweep_mpi.h"
-#include "bench/sweep/sensitivity.h"
+#include "bench/sensitivity/sensitivity.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/machine.h"
@@ -154,7 +154,7 @@ RunResult RunLocated(const Scenario& scenario, const std::vector<Override>& over
   return RunScenarioLocated(scenario, overrides);
 }
 
-// --report FILE.html (bench/report/html_report.h), written complete or not at all.
+// --report FILE.html (bench/output/html_report.h), written complete or not at all.
 void WriteReport(const std::string& path, const std::function<HtmlReport()>& build) {
   Doing("writing the report " + path);
   const HtmlReport report = build();  // gnuplot runs here: before the deferral, so ^C stops it
@@ -406,7 +406,7 @@ struct SensitivityArgs {
   std::string out_dir;
 };
 
-// Residual vibration vs plant frequency / design frequency per shaper (bench/sweep/sensitivity.h).
+// Residual vibration vs plant frequency / design frequency per shaper (bench/sensitivity/sensitivity.h).
 int SensitivityCommand(const SensitivityArgs& args) {
   Doing("computing the sensitivity curves of " + args.file);
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);
@@ -714,7 +714,7 @@ CLI::App* AddSweepCommand(CLI::App* app, SweepArgs* args) {
   return sweep;
 }
 
-// Modes from measured FRFs (bench/report/identify_report.h, docs/measured-data.md).
+// Modes from measured FRFs (bench/output/identify_report.h, docs/measured-data.md).
 CLI::App* AddIdentifyCommand(CLI::App* app, IdentifyArgs* args) {
   CLI::App* identify = app->add_subcommand(
       "identify", "modal parameters from measured FRFs (UFF 58): table or JSON, stabilisation diagram");
@@ -741,7 +741,7 @@ int IdentifyCommand(const IdentifyArgs& args) {
   return RunIdentify(args, std::cout, args.json ? std::cerr : std::cout);
 }
 
-// A shaper recommended from an accelerometer log (bench/report/recommend_report.h).
+// A shaper recommended from an accelerometer log (bench/output/recommend_report.h).
 int RecommendCommand(const RecommendArgs& args) {
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the fit
   Doing("fitting the shapers to " + args.file);

@@ -1,8 +1,8 @@
-// `compare --report FILE.html` of two scenarios (bench/report/html_report.h's page).
+// `compare --report FILE.html` of two scenarios (bench/output/html_report.h's page).
 #pragma once
 
 #include "bench/compare/compare_runs.h"
-#include "bench/report/html_report.h"
+#include "bench/output/html_report.h"
 
 namespace shapebench::bench {
 

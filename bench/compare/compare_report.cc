@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <typeinfo>
 
-#include "bench/report/report.h"
+#include "bench/output/report.h"
 #include "common/atomic_file.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 
 namespace shapebench::bench {
 namespace {

@@ -49,7 +49,7 @@ class FieldReader {
 };
 
 // A section reads through its field list unless an overload says otherwise (the pattern:
-// bench/config/controller_reader.h).
+// bench/scenario/controller_reader.h).
 template <typename Config>
 void ReadSection(const NodeReader& node, Config* config);
 // An optional section (a mode's `participation:`): set when its key is given.

@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "bench/config/config_document.h"
-#include "bench/config/scenario_loader.h"
-#include "bench/config/structure_numbers.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/scenario/structure_numbers.h"
 #include "bench/sim/metrics.h"
 #include "common/validation_error.h"
 

@@ -45,7 +45,7 @@
 #include "bench/config/config_error.h"
 #include "bench/sim/metrics.h"
 #include "bench/config/override.h"
-#include "bench/config/pattern_defaults.h"
+#include "bench/scenario/pattern_defaults.h"
 #include "bench/sim/scenario.h"
 #include "bench/sweep/sampling.h"
 

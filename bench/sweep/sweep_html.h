@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/report/html_report.h"
+#include "bench/output/html_report.h"
 #include "bench/sweep/sweep.h"
 
 namespace shapebench::bench {

@@ -11,8 +11,8 @@
 
 #include "common/csv.h"
 #include "common/fd_stream.h"
-#include "bench/report/gnuplot.h"
-#include "bench/report/report.h"
+#include "bench/output/gnuplot.h"
+#include "bench/output/report.h"
 
 namespace shapebench::bench {
 namespace {

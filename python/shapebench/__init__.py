@@ -343,7 +343,7 @@ def modes(machine: Source | Scenario, set: Sets = None, *, base_dir: PathLike | 
 @dataclass(frozen=True)
 class Band:
     """The interval of plant frequency / design frequency around 1 where the residual stays
-    at or below a level (bench/sweep/sensitivity.h); low and high NaN when none."""
+    at or below a level (bench/sensitivity/sensitivity.h); low and high NaN when none."""
 
     found: bool
     low: float

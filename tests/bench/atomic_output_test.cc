@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/report/gnuplot.h"
+#include "bench/output/gnuplot.h"
 #include "bench_test_support.h"
 #include "common/atomic_file.h"
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/report/gnuplot.h"
+#include "bench/output/gnuplot.h"
 #include "bench/sim/metrics.h"
 #include "bench_test_support.h"
 #include "common/csv.h"

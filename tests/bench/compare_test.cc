@@ -10,7 +10,7 @@
 #include "bench/compare/compare.h"
 #include "bench/compare/compare_runs.h"
 #include "bench/compare/compare_sweep.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 #include "bench_test_support.h"
 #include "common/csv.h"

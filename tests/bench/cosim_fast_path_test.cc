@@ -9,7 +9,7 @@
 
 #include "bench/sim/cosim.h"
 #include "tests/bench/general_path.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "tests/bench/same_metric_bits.h"
 #include "tests/bench/sdof_fixture.h"
 

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 #include "tests/bench/general_path.h"
 

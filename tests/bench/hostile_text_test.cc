@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/report/report.h"
+#include "bench/output/report.h"
 #include "bench_test_support.h"
 #include "common/atomic_file.h"
 #include "common/format.h"

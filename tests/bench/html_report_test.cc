@@ -1,11 +1,11 @@
-// --report FILE.html (bench/report/html_report.h) through the CLI and its pieces.
+// --report FILE.html (bench/output/html_report.h) through the CLI and its pieces.
 #include <filesystem>
 #include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "bench/report/html_report.h"
+#include "bench/output/html_report.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/config/scenario_loader.h"
-#include "bench/config/uff58_reader.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/measured/uff58_reader.h"
 #include "bench_test_support.h"
 #include "uff58_writer.h"
 

@@ -1,12 +1,12 @@
 // The interval searches shared by band checks and sensitivity (common/interval_search.h),
-// and the sensitivity band's treatment of humps (bench/sweep/sensitivity.h).
+// and the sensitivity band's treatment of humps (bench/sensitivity/sensitivity.h).
 #include "common/interval_search.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "bench/sweep/sensitivity.h"
+#include "bench/sensitivity/sensitivity.h"
 
 namespace shapebench {
 namespace {

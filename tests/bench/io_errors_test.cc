@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/report/gnuplot.h"
+#include "bench/output/gnuplot.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_plot.h"
 #include "bench_test_support.h"

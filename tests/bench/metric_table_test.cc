@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/report/html_report.h"
-#include "bench/report/report.h"
+#include "bench/output/html_report.h"
+#include "bench/output/report.h"
 
 namespace shapebench::bench {
 namespace {

@@ -1,4 +1,4 @@
-// The FE modal export reader (bench/config/modal_file_reader.h) through the built CLI: every
+// The FE modal export reader (bench/measured/modal_file_reader.h) through the built CLI: every
 // bad file exits 2 with `error: FILE.csv:LINE:COLUMN: COLUMN: ...` naming what is allowed;
 // and what a good file may vary (column order, CR line ends, spaces, comments, an empty
 // mode unit).
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/modal_file_reader.h"
+#include "bench/measured/modal_file_reader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 #include "bench/sim/scenario.h"
 #include "bench_test_support.h"

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/report/report.h"
+#include "bench/output/report.h"
 #include "bench/sim/checks.h"
 #include "bench/sim/engineering_units.h"
 #include "bench/sim/metrics.h"

@@ -1,4 +1,4 @@
-// A pattern left to the machine (bench/config/pattern_defaults.h): frequency_hz not given
+// A pattern left to the machine (bench/scenario/pattern_defaults.h): frequency_hz not given
 // is the lowest participating mode of the moved axes; `design_damping_ratio: machine`
 // and `frequencies_hz: machine` take the modes' own damping; a sweep keeps the base
 // scenario's design; the run reports pattern_frequency_hz and pattern_damping_ratio.
@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/pattern_defaults.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/pattern_defaults.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"

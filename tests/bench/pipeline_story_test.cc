@@ -9,7 +9,7 @@
 
 #include "bench/sim/cosim.h"
 #include "bench/config/override.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 
 namespace shapebench::bench {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
-#include "bench/report/gnuplot.h"
-#include "bench/report/report.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/output/gnuplot.h"
+#include "bench/output/report.h"
 #include "bench/sweep/sweep_plot.h"
 #include "bench_test_support.h"
 

@@ -2,7 +2,7 @@
 // and every error a ConfigError "FILE:LINE:COL: key.path: message" at the offending
 // YAML value or G-code word. Positions are compared within 1e-12 m (the mm -> m
 // conversion rounds at 1e-16 m).
-#include "bench/config/program_reader.h"
+#include "bench/scenario/program_reader.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

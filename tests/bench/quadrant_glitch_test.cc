@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 #include "model/cvode_cross_check.h"
 

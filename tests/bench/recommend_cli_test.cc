@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/report/gnuplot.h"
+#include "bench/output/gnuplot.h"
 #include "bench_test_support.h"
 #include "tests/bench/accel_log_oracle.h"
 

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/measure/accel_log.h"
-#include "bench/measure/accel_spectrum.h"
-#include "bench/measure/log_modes.h"
-#include "bench/measure/shaper_fit.h"
+#include "bench/measured/accel_log.h"
+#include "bench/measured/accel_spectrum.h"
+#include "bench/measured/log_modes.h"
+#include "bench/measured/shaper_fit.h"
 #include "controller/shaper_registry.h"
 #include "controller/vibration_suppression_pattern.h"
 #include "tests/bench/accel_log_oracle.h"

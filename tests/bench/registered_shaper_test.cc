@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
-#include "bench/report/pattern_report.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/output/pattern_report.h"
 #include "bench/sim/cosim.h"
 #include "bench_test_support.h"
 #include "controller/shaper_registry.h"

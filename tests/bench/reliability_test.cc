@@ -10,10 +10,10 @@
 
 #include "common/ordered_pool.h"
 #include "common/csv.h"
-#include "bench/report/gnuplot.h"
+#include "bench/output/gnuplot.h"
 #include "common/interrupt.h"
-#include "bench/report/report.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/output/report.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
 #include "bench_test_support.h"

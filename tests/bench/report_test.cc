@@ -1,5 +1,5 @@
 // The metrics table and JSON, the trace CSV, JUnit XML and atomic file writing.
-#include "bench/report/report.h"
+#include "bench/output/report.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

@@ -1,5 +1,5 @@
 // Reading valid scenarios: values, defaults, forms of the machine, --set overrides.
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 
 #include <variant>
 

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "bench/sim/cosim.h"
-#include "bench/config/scenario_loader.h"
-#include "bench/sweep/sensitivity.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/sensitivity/sensitivity.h"
 #include "bench_test_support.h"
 #include "controller/shaper_registry.h"
 #include "sdof_fixture.h"

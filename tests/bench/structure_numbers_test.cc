@@ -1,7 +1,7 @@
-// bench/config/structure_numbers.h: a sweep point that changes only numbers of the structure is
+// bench/scenario/structure_numbers.h: a sweep point that changes only numbers of the structure is
 // set on a scenario loaded once. The oracle is the loader itself, reading the point from
 // its sources: the two must agree field for field and run for run, bit for bit.
-#include "bench/config/structure_numbers.h"
+#include "bench/scenario/structure_numbers.h"
 
 #include <cstring>
 #include <ostream>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/sim/cosim.h"
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 #include "model/multi_axis_machine.h"

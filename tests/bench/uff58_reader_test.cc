@@ -1,15 +1,15 @@
-// The UFF 58 reader (bench/config/uff58_reader.h) and the identification of its records
-// (bench/config/frf_identification.h), on files the test writes (tests/bench/uff58_writer.h)
+// The UFF 58 reader (bench/measured/uff58_reader.h) and the identification of its records
+// (bench/measured/frf_identification.h), on files the test writes (tests/bench/uff58_writer.h)
 // and on pyuff's real dataset 58 record (tests/data/uff/).
-#include "bench/config/uff58_reader.h"
+#include "bench/measured/uff58_reader.h"
 
 #include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "bench/config/frf_identification.h"
-#include "bench/config/uff58_units.h"
+#include "bench/measured/frf_identification.h"
+#include "bench/measured/uff58_units.h"
 #include "bench_test_support.h"
 #include "uff58_writer.h"
 

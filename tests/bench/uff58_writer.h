@@ -1,6 +1,6 @@
 // A UFF dataset 58 writer for the tests (ASCII in each case's Fortran widths, and binary
 // 58b in either byte order), written from the dataset's description, independently of the
-// reader (bench/config/uff58_reader.h); and the synthetic FRFs the tests identify.
+// reader (bench/measured/uff58_reader.h); and the synthetic FRFs the tests identify.
 #pragma once
 
 #include <cmath>

@@ -1,0 +1,112 @@
+// IdentifyFrfFile (bench/measured/frf_identification.h).
+#include "bench/measured/frf_identification.h"
+
+#include <sstream>
+
+#include "bench/config/config_error.h"
+#include "common/validation_error.h"
+
+namespace shapebench::bench {
+namespace {
+
+std::string Hz(double f) {
+  std::ostringstream text;
+  text << f;
+  return text.str();
+}
+
+std::string RecordName(const Uff58Record& record) {
+  return "the record at line " + std::to_string(record.line) + " (response " + std::to_string(record.response_node) +
+         " " + DirectionName(record.response_direction) + ")";
+}
+
+// The records along the axis; an error listing the directions found when none is.
+std::vector<std::size_t> SelectRecords(const Uff58File& file, int axis) {
+  std::vector<std::size_t> selected;
+  std::string found;
+  for (std::size_t i = 0; i < file.records.size(); ++i) {
+    if (axis < 0 || file.records[i].ResponseAxis() == axis) selected.push_back(i);
+    found += (found.empty() ? "" : ", ") + DirectionName(file.records[i].response_direction) + " (line " +
+             std::to_string(file.records[i].line) + ")";
+  }
+  if (selected.empty()) {
+    const Uff58Record& first = file.records.front();
+    throw ConfigError(file.file, first.record6_line, 52, "record 6",
+                      std::string("no FRF record has its response along ") + "xyz"[axis] +
+                          " (response directions 1, 2, 3 are x, y, z); the file's records respond along " + found);
+  }
+  return selected;
+}
+
+// Records identified together share lines and units: checked against the first.
+void CheckAlike(const Uff58File& file, const std::vector<std::size_t>& selected) {
+  const Uff58Record& first = file.records[selected.front()];
+  for (std::size_t i : selected) {
+    const Uff58Record& record = file.records[i];
+    if (record.frequency_hz != first.frequency_hz) {
+      throw ConfigError(file.file, record.record7_line, 1, "record 7",
+                        "its frequency lines differ from those of " + RecordName(first) +
+                            "; records identified together must share them (select one axis with --axis or axis:)");
+    }
+    if (record.response != first.response || record.excitation != first.excitation) {
+      throw ConfigError(file.file, record.record9_line, 1, "record 9",
+                        "its units (" + record.units + ") differ from those of " + RecordName(first) + " (" +
+                            first.units + "); records identified together must share them");
+    }
+  }
+}
+
+// Enough lines above 0 Hz inside the band: located at the first record's record 7.
+void CheckBand(const Uff58File& file, const Uff58Record& first, const FrfSelection& selection) {
+  int lines = 0;
+  for (double f : first.frequency_hz) {
+    if (f > 0.0 && f >= selection.min_frequency_hz && f <= selection.max_frequency_hz) ++lines;
+  }
+  if (lines >= 4) return;
+  const std::string band = "[" + Hz(selection.min_frequency_hz) + ", " + Hz(selection.max_frequency_hz) + "] Hz";
+  throw ConfigError(file.file, first.record7_line, 1, "record 7",
+                    (selection.band_source.empty() ? std::string("the records") : selection.band_source + ":") +
+                        " " + std::to_string(lines) + " spectral line" + (lines == 1 ? "" : "s") +
+                        " above 0 Hz in the band " + band + ", at least 4 are needed; the records' lines span " +
+                        Hz(first.frequency_hz.front()) + " to " + Hz(first.frequency_hz.back()) + " Hz");
+}
+
+}  // namespace
+
+std::string DirectionName(int direction) {
+  const int axis = direction < 0 ? -direction : direction;
+  const std::string sense = direction < 0 ? "-" : "+";
+  if (axis >= 1 && axis <= 3) return sense + "xyz"[axis - 1];
+  if (axis >= 4 && axis <= 6) return sense + "r" + "xyz"[axis - 4];
+  return "scalar";
+}
+
+IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& selection) {
+  IdentifiedFrfs result;
+  result.file = ReadUff58(path);
+  result.records = SelectRecords(result.file, selection.axis);
+  CheckAlike(result.file, result.records);
+  const Uff58Record& first = result.file.records[result.records.front()];
+  CheckBand(result.file, first, selection);
+  result.response = first.response;
+  result.excitation = first.excitation;
+  result.frequency_hz = first.frequency_hz;
+  for (std::size_t i : result.records) {
+    const Uff58Record& record = result.file.records[i];
+    std::vector<std::complex<double>> frf = record.values;
+    for (auto& value : frf) value *= record.DirectionSign();
+    result.frfs.push_back(std::move(frf));
+  }
+  model::IdentificationOptions options;
+  options.min_frequency_hz = selection.min_frequency_hz;
+  options.max_frequency_hz = selection.max_frequency_hz;
+  options.max_order = selection.max_order;
+  try {
+    result.identification = model::IdentifyModes(result.frequency_hz, result.frfs, first.DerivativeOrder(), options);
+  } catch (const ValidationError& error) {
+    throw ConfigError(path, first.record12_line, 1, "record 12", error.message());
+  }
+  return result;
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,172 @@
+// The identify command's table, JSON, stabilisation diagram (bench/output/identify_report.h).
+#include "bench/output/identify_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <typeinfo>
+
+#include "bench/config/config_error.h"
+#include "bench/output/gnuplot.h"
+#include "bench/output/output_path.h"
+#include "common/atomic_file.h"
+#include "common/interrupt.h"
+#include "common/shown_text.h"
+
+namespace shapebench::bench {
+namespace {
+
+std::string Number(double value, int digits = 6) {
+  std::ostringstream text;
+  text << std::setprecision(digits) << value;
+  return text.str();
+}
+
+// The modal constant's unit: receptance x (rad/s)^2.
+const char* ConstantUnit(const IdentifiedFrfs& frfs) {
+  return frfs.excitation == FrfExcitation::kForce ? "1/kg" : "1 (per m/s2 of base acceleration)";
+}
+
+std::string Axes(const IdentifiedFrfs& frfs) {
+  std::string axes;
+  for (std::size_t i : frfs.records) {
+    std::string name = DirectionName(frfs.file.records[i].response_direction);
+    if (name[0] == '+' || name[0] == '-') name.erase(0, 1);  // the axis, either sense
+    if (axes.find(name) == std::string::npos) axes += (axes.empty() ? "" : ", ") + name;
+  }
+  return axes;
+}
+
+// --band MIN:MAX in Hz.
+void ParseBand(const std::string& text, FrfSelection* selection) {
+  const std::size_t colon = text.find(':');
+  char* end = nullptr;
+  bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
+  if (ok) {
+    const std::string low = text.substr(0, colon), high = text.substr(colon + 1);
+    selection->min_frequency_hz = std::strtod(low.c_str(), &end);
+    ok = end == low.c_str() + low.size();
+    selection->max_frequency_hz = std::strtod(high.c_str(), &end);
+    ok = ok && end == high.c_str() + high.size();
+  }
+  if (!ok || !(selection->min_frequency_hz >= 0.0) || !(selection->max_frequency_hz > selection->min_frequency_hz) ||
+      !std::isfinite(selection->max_frequency_hz)) {
+    throw std::runtime_error("--band: expected MIN:MAX in Hz with 0 <= MIN < MAX (e.g. 5:200), got '" +
+                             TerminalSafe(text, false) + "'");
+  }
+  selection->band_source = "--band " + text;
+}
+
+}  // namespace
+
+void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
+  const model::ModalIdentification& id = frfs.identification;
+  out << "identify " << TerminalSafe(frfs.file.file, false) << ": " << frfs.records.size() << " FRF record"
+      << (frfs.records.size() == 1 ? "" : "s") << " (" << Axes(frfs) << "), "
+      << frfs.file.records[frfs.records.front()].units << ", " << Number(id.frequency_hz.front()) << " to "
+      << Number(id.frequency_hz.back()) << " Hz (" << id.frequency_hz.size() << " lines), orders 1 to "
+      << id.max_order << "\n";
+  out << "record  line  response  reference  fit_error_percent\n";
+  for (std::size_t k = 0; k < frfs.records.size(); ++k) {
+    const Uff58Record& record = frfs.file.records[frfs.records[k]];
+    out << std::left << std::setw(8) << k + 1 << std::setw(6) << record.line << std::setw(10)
+        << (std::to_string(record.response_node) + " " + DirectionName(record.response_direction)) << std::setw(11)
+        << (std::to_string(record.reference_node) + " " + DirectionName(record.reference_direction))
+        << Number(id.fits[k].error_percent, 4) << "\n";
+  }
+  out << "\nmode  frequency_hz  damping_ratio  stable_orders  record  modal_constant_re  modal_constant_im\n";
+  for (std::size_t r = 0; r < id.modes.size(); ++r) {
+    const model::IdentifiedMode& mode = id.modes[r];
+    for (std::size_t k = 0; k < mode.modal_constants.size(); ++k) {
+      out << std::left << std::setw(6) << r + 1 << std::setw(14) << Number(mode.frequency_hz) << std::setw(15)
+          << Number(mode.damping_ratio, 4) << std::setw(15) << mode.stable_orders << std::setw(8) << k + 1
+          << std::setw(19) << Number(mode.modal_constants[k].real(), 5) << Number(mode.modal_constants[k].imag(), 5)
+          << "\n";
+    }
+  }
+  if (id.modes.empty()) out << "(no cluster of stable physical poles in the band)\n";
+  out << "\nmodal constants R_r of the receptance, " << ConstantUnit(frfs) << "; gain (machine frf_file): "
+      << (frfs.excitation == FrfExcitation::kForce ? "moving_mass_kg x Re R_r" : "-Re R_r") << "\n";
+  out << "fit error " << Number(id.fit_error_percent, 4)
+      << " % (||H_fit - H|| / ||H|| over the band, every record)\n";
+  out.flush();
+}
+
+nlohmann::ordered_json IdentifyJson(const IdentifiedFrfs& frfs) {
+  const model::ModalIdentification& id = frfs.identification;
+  nlohmann::ordered_json json;
+  json["file"] = frfs.file.file;
+  json["units"] = frfs.file.records[frfs.records.front()].units;
+  json["band_hz"] = {id.frequency_hz.front(), id.frequency_hz.back()};
+  json["lines"] = id.frequency_hz.size();
+  json["max_order"] = id.max_order;
+  json["records"] = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < frfs.records.size(); ++k) {
+    const Uff58Record& record = frfs.file.records[frfs.records[k]];
+    json["records"].push_back({{"line", record.line},
+                               {"response_node", record.response_node},
+                               {"response_direction", DirectionName(record.response_direction)},
+                               {"reference_node", record.reference_node},
+                               {"reference_direction", DirectionName(record.reference_direction)},
+                               {"fit_error_percent", id.fits[k].error_percent},
+                               {"lower_residual", id.fits[k].lower_residual},
+                               {"upper_residual", id.fits[k].upper_residual}});
+  }
+  json["modes"] = nlohmann::ordered_json::array();
+  for (const model::IdentifiedMode& mode : id.modes) {
+    nlohmann::ordered_json constants = nlohmann::ordered_json::array();
+    for (const auto& c : mode.modal_constants) constants.push_back({{"re", c.real()}, {"im", c.imag()}});
+    json["modes"].push_back({{"frequency_hz", mode.frequency_hz},
+                             {"damping_ratio", mode.damping_ratio},
+                             {"stable_orders", mode.stable_orders},
+                             {"modal_constants", constants}});
+  }
+  json["modal_constant_unit"] = ConstantUnit(frfs);
+  json["fit_error_percent"] = id.fit_error_percent;
+  return json;
+}
+
+int RunIdentify(const IdentifyArgs& args, std::ostream& out, std::ostream& wrote) {
+  FrfSelection selection;
+  if (!args.axis.empty()) selection.axis = static_cast<int>(std::string("xyz").find(args.axis));
+  if (!args.band.empty()) ParseBand(args.band, &selection);
+  selection.max_order = args.max_order;
+  const std::string out_dir =
+      args.out_dir.empty() ? (std::filesystem::path("identify_out") / std::filesystem::path(args.file).stem()).string()
+                           : args.out_dir;
+  RequireWritableOutputDir("--out", out_dir);  // before the identification
+  const IdentifiedFrfs frfs = IdentifyFrfFile(args.file, selection);
+  {
+    const DeferInterrupts defer;
+    StagedDirectory staged(out_dir);
+    const std::filesystem::path dir(staged.path());
+    try {
+      WriteFileAtomically((dir / "modes.json").string(),
+                          [&](std::ostream& file) { file << IdentifyJson(frfs).dump(2) << "\n"; });
+      WriteStabilisationPlot((dir / "stabilisation.png").string(), frfs,
+                             "stabilisation diagram: " + std::filesystem::path(args.file).filename().string() +
+                                 " (" + Axes(frfs) + ")");
+    } catch (const std::runtime_error& error) {
+      if (typeid(error) != typeid(std::runtime_error)) throw;
+      throw std::runtime_error(staged.Shown(error.what()));
+    }
+    staged.Commit();
+    ThrowIfInterrupted("the output in " + out_dir + " is complete");
+  }
+  if (args.json) {
+    out << IdentifyJson(frfs).dump(2) << std::endl;
+  } else {
+    PrintIdentifyTable(out, frfs);
+  }
+  for (const char* file : {"modes.json", "stabilisation.png"}) {
+    wrote << "wrote " << TerminalSafe((std::filesystem::path(out_dir) / file).string(), false) << "\n";
+  }
+  wrote.flush();
+  return 0;
+}
+
+}  // namespace shapebench::bench

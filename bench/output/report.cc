@@ -1,0 +1,128 @@
+#include "bench/output/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+
+#include "bench/sim/engineering_units.h"
+#include "common/atomic_file.h"
+#include "common/csv.h"
+
+namespace shapebench::bench {
+std::string MetricUnit(const std::string& name) {
+  const MetricInfo* info = FindMetric(name);
+  return info != nullptr ? std::string(info->shown_unit()) : "";
+}
+
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
+  std::size_t width = 0;
+  for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+  auto print = [&](const MetricInfo& info) {
+    const double value = metrics.*info.field;
+    out << std::left << std::setw(static_cast<int>(width) + 2) << info.name;
+    if (std::isnan(value)) {
+      out << "n/a\n";
+    } else if (info.is_bool()) {
+      out << (value != 0.0 ? "true" : "false") << "\n";
+    } else {
+      out << EngineeringText(value, info.unit) << "\n";  // um, mm, ms: JSON keeps SI
+    }
+  };
+  for (const MetricInfo& info : MetricTable()) print(info);
+  // A nonlinear plant's own metrics, where defined (a linear run's table is as it was).
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    if (!std::isnan(metrics.*info.field)) print(info);
+  }
+}
+
+nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  for (const MetricInfo& info : MetricTable()) {
+    const std::string name(info.name);
+    const double value = metrics.*info.field;
+    if (info.is_bool() && std::isfinite(value)) {
+      json[name] = value != 0.0;
+    } else if (std::isfinite(value)) {
+      json[name] = value;
+    } else {
+      json[name] = nullptr;
+    }
+  }
+  for (const MetricInfo& info : NonlinearMetricTable()) {
+    const double value = metrics.*info.field;
+    if (std::isfinite(value)) json[std::string(info.name)] = value;  // absent where n/a
+  }
+  return json;
+}
+
+nlohmann::ordered_json RunJson(const RunResult& result) {
+  nlohmann::ordered_json json = MetricsJson(result.metrics);
+  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
+  for (const model::PoleAmplitude& mode : result.residual_modes) {
+    nlohmann::ordered_json entry;
+    entry["frequency_hz"] = mode.frequency_hz;
+    entry["damping_ratio"] = mode.damping_ratio;
+    entry["amplitude_m"] = std::isfinite(mode.amplitude) ? nlohmann::ordered_json(mode.amplitude) : nullptr;
+    modes.push_back(entry);
+  }
+  json["residual_modes"] = modes;
+  return json;
+}
+
+const std::vector<std::string>& TraceColumns() {
+  static const std::vector<std::string> columns = {
+      "t_s",         "command_position_m", "command_velocity_m_s", "command_accel_m_s2",
+      "deflection_m", "command_x_m",       "command_y_m",          "command_z_m",
+      "actual_x_m",  "actual_y_m",         "actual_z_m",           "deflection_x_m",
+      "deflection_y_m", "deflection_z_m",  "block",                "planned_feed_mm_min"};
+  return columns;
+}
+
+std::size_t TraceStride(std::size_t samples, long max_rows) {
+  const auto limit = static_cast<std::size_t>(std::max(max_rows, 2L));
+  if (samples <= limit) return 1;
+  return (samples - 1 + (limit - 1) - 1) / (limit - 1);
+}
+
+std::size_t WriteTraceCsv(const std::string& path, const Trace& trace, long max_rows) {
+  const std::size_t samples = trace.time_s.size();
+  const std::size_t stride = TraceStride(samples, max_rows);
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    if (stride > 1) {
+      out << "# decimated: 1 in " << stride << " of " << samples
+          << " samples kept (limits.max_trace_rows " << max_rows
+          << "); the metrics use every sample\n";
+    }
+    const std::vector<std::string>& columns = TraceColumns();
+    for (std::size_t c = 0; c < columns.size(); ++c) out << (c == 0 ? "" : ",") << columns[c];
+    out << "\n";
+    char line[1024];  // 15 numbers of at most 40 characters, a block number
+    const std::size_t rows = std::min({trace.time_s.size(), trace.command_position_m.size(),
+                                       trace.command_velocity_m_s.size(),
+                                       trace.command_accel_m_s2.size(), trace.deflection_m.size(),
+                                       trace.command_m.size(), trace.actual_m.size(),
+                                       trace.deflection_axes_m.size(), trace.block.size(),
+                                       trace.planned_feed_mm_min.size()});
+    for (std::size_t i = 0; i < rows; i += stride) {
+      const Eigen::Vector3d& c = trace.command_m[i];
+      const Eigen::Vector3d& a = trace.actual_m[i];
+      const Eigen::Vector3d& d = trace.deflection_axes_m[i];
+      char* end = line;
+      for (const double value : {trace.time_s[i], trace.command_position_m[i],
+                                 trace.command_velocity_m_s[i], trace.command_accel_m_s2[i],
+                                 trace.deflection_m[i], c.x(), c.y(), c.z(), a.x(), a.y(), a.z(),
+                                 d.x(), d.y(), d.z()}) {
+        end = AppendExactDouble(end, line + sizeof line, value);
+        *end++ = ',';
+      }
+      end += std::snprintf(end, static_cast<std::size_t>(line + sizeof line - end), "%d,", trace.block[i]);
+      end = AppendExactDouble(end, line + sizeof line, trace.planned_feed_mm_min[i]);
+      *end++ = '\n';
+      out.write(line, end - line);
+    }
+  });
+  return stride;
+}
+
+}  // namespace shapebench::bench

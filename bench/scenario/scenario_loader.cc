@@ -1,0 +1,700 @@
+#include "bench/scenario/scenario_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <variant>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <optional>
+
+#include "common/format.h"
+#include "common/shown_text.h"
+#include "bench/config/config_document.h"
+#include "bench/scenario/controller_reader.h"
+#include "bench/config/field_reader.h"
+#include "bench/config/key_path.h"
+#include "bench/scenario/machine_reader.h"
+#include "bench/scenario/pattern_defaults.h"
+#include "bench/sim/metrics.h"
+#include "bench/sim/run_memory.h"
+#include "bench/config/node_reader.h"
+#include "bench/scenario/program_reader.h"
+#include "controller/controller.h"
+#include "controller/path_geometry.h"
+#include "controller/shaper_registry.h"
+#include "controller/vibration_suppression_pattern.h"
+#include "model/nonlinear_integrator.h"
+
+namespace shapebench::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kScenarioKeys = {
+    "name", "machine", "drive", "controller", "move", "program", "program_file", "program_strict", "output",
+    "integrator", "checks", "limits"};
+
+bool HasKey(const YAML::Node& map, const std::string& key) {
+  if (!map.IsMap()) return false;
+  for (const auto& entry : map) {
+    if (entry.first.IsScalar() && entry.first.Scalar() == key) return true;
+  }
+  return false;
+}
+
+// Struct field names that are spelled differently in YAML.
+std::string YamlKeyPath(const std::string& field) {
+  static const std::vector<std::pair<std::string, std::string>> kRenamed = {
+      {"output_body", "output.body"}, {"output_relative_to", "output.relative_to"}};
+  for (const auto& [from, to] : kRenamed) {
+    const std::size_t at = field.rfind(from);
+    if (at != std::string::npos && at + from.size() == field.size() &&
+        (at == 0 || field[at - 1] == '.')) {
+      return field.substr(0, at) + to;
+    }
+  }
+  return field;
+}
+
+ConfigError Located(const ConfigDocument& document, const ValidationError& error) {
+  const std::string path = YamlKeyPath(error.field());
+  return document.ErrorAtPath(path, error.message());
+}
+
+// Runs a validate()-style check; its ValidationError is prefixed and located.
+template <typename Check>
+void Validated(const ConfigDocument& document, const std::string& prefix, Check&& check) {
+  try {
+    check();
+  } catch (const ValidationError& error) {
+    throw Located(document, error.Prefixed(prefix));
+  }
+}
+
+// `machine: path/to/machine.yaml` -> the file's content in place, its origin recorded.
+void ResolveMachineFile(ConfigDocument& document, const fs::path& base_dir) {
+  NodeReader top(document, document.root(), "");
+  const auto machine = top.Child("machine");
+  if (!machine || !machine->IsScalar()) return;
+  const std::string reference = machine->AsString();
+  const fs::path resolved =
+      fs::path(reference).is_absolute() ? fs::path(reference) : base_dir / reference;
+  const std::string file = resolved.lexically_normal().string();
+  YAML::Node content;
+  try {
+    content = ConfigDocument::ParseFile(file);
+  } catch (const ConfigError& error) {
+    if (error.line() > 0) throw;  // malformed YAML: located in the machine file itself
+    const std::string shown = file == reference ? "'" + reference + "'"
+                                                : "'" + reference + "' (" + file + ")";
+    throw machine->Error("machine file " + shown + ": " + error.message());
+  }
+  document.SpliceTopLevel("machine", content, file);
+}
+
+// The scenario file with its machine file spliced in and the overrides applied.
+ConfigDocument BuildScenarioDocument(const std::string& path,
+                                     const std::vector<Override>& overrides) {
+  ConfigDocument document(ConfigDocument::ParseFile(path), path);
+  if (!document.root().IsMap()) {
+    throw NodeReader(document, document.root(), "")
+        .Error("expected a mapping of scenario keys (" + JoinNames(kScenarioKeys, ", ") +
+               ")");
+  }
+  const fs::path base_dir = fs::path(path).parent_path();
+  ResolveMachineFile(document, base_dir);
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
+    ResolveMachineFile(document, base_dir);  // --set machine=other.yaml
+  }
+  return document;
+}
+
+model::DriveConfig ReadDrive(const NodeReader& drive) {
+  const std::vector<std::string> servo_keys = FieldNames<model::ServoConfig>();
+  drive.ExpectMap([&] {
+    std::vector<std::string> allowed = {"type"};
+    allowed.insert(allowed.end(), servo_keys.begin(), servo_keys.end());
+    return allowed;
+  }());
+  model::DriveConfig config;
+  drive.Read<model::DriveType>("type", model::DriveConfig::TypeChoices(), &config.type);
+  if (config.type != model::DriveType::kServo) {
+    for (const auto& key : servo_keys) {
+      if (auto child = drive.Child(key)) {
+        throw child->Error("'" + key +
+                           "' is a servo setting; it needs type: servo (the kinematic drive "
+                           "follows the command exactly)");
+      }
+    }
+    return config;
+  }
+  FieldReader servo(drive);
+  config.servo.Serialize(&servo);
+  try {
+    config.validate();
+  } catch (const ValidationError& error) {
+    // Its field is the YAML key path (a default is always valid, so the key is there; a
+    // nested one, friction.coulomb_n, as deep as it is given).
+    NodeReader at = drive;
+    std::string field = error.field();
+    for (std::size_t dot; !field.empty(); field = dot == std::string::npos ? "" : field.substr(dot + 1)) {
+      dot = field.find('.');
+      const auto child = at.Child(field.substr(0, dot));
+      if (!child) break;
+      at = *child;
+    }
+    throw at.Error(error.message());
+  }
+  return config;
+}
+
+model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
+  model::IntegratorConfig config;
+  ReadFields(integrator, &config);
+  return config;
+}
+
+// The node at a dotted key path of `root`, or an undefined node when absent.
+// Handles alias the tree: reset() moves one, operator= would overwrite the data.
+YAML::Node NodeAtPath(const YAML::Node& root, const std::vector<PathElement>& path) {
+  YAML::Node node;
+  node.reset(root);
+  for (const PathElement& step : path) {
+    const YAML::Node& parent = node;
+    YAML::Node child;
+    if (step.index) {
+      if (!parent.IsSequence() || *step.index >= parent.size()) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[static_cast<int>(*step.index)]);
+    } else {
+      if (!parent.IsMap() || !HasKey(parent, step.key)) return YAML::Node(YAML::NodeType::Undefined);
+      child.reset(parent[step.key]);
+    }
+    node.reset(child);
+  }
+  return node;
+}
+
+// band: {key, from, to} of a check. The key must be a key path whose value, where the
+// scenario writes one, is a plain number; whether the scenario takes the band's values
+// is tried when `check` loads it (bench/sweep/band_check.h).
+CheckBand ReadCheckBand(const NodeReader& band, const YAML::Node& root) {
+  band.ExpectMap({"key", "from", "to"});
+  CheckBand result;
+  const auto key = band.Child("key");
+  if (!key) throw band.Error("missing 'key': the dotted key path of a number, e.g. machine.modes[0].frequency_hz");
+  result.key = key->AsString();
+  const ConfigError where = key->Error("");
+  result.file = where.file();
+  result.line = where.line();
+  result.column = where.column();
+  result.path = key->path();
+  const auto path = ParseKeyPath(result.key);
+  if (!path || path->empty()) throw key->Error("not a key path like machine.modes[0].frequency_hz");
+  const YAML::Node value = NodeAtPath(root, *path);
+  if (value.IsDefined() && !(value.IsScalar() && IsNumberText(value.Scalar()))) {
+    throw key->Error(result.key + " is not a number in this scenario, so it cannot span a band");
+  }
+  for (const char* end : {"from", "to"}) {
+    const auto node = band.Child(end);
+    if (!node) throw band.Error(std::string("missing '") + end + "'");
+    (std::string(end) == "from" ? result.from : result.to) = node->AsNumber();
+  }
+  if (!(result.from < result.to)) {
+    throw band.Child("to")->Error("must be above from (" + FormatNumber(result.from) + "; got " +
+                                  FormatNumber(result.to) + ")");
+  }
+  return result;
+}
+
+// `root` is the scenario's whole tree (a band's key is looked up there); null for a
+// sweep's checks, which take no band.
+std::vector<Check> ReadChecksEntry(const NodeReader& checks, const YAML::Node* root) {
+  checks.ExpectMap(AllMetricNames());
+  std::vector<Check> result;
+  for (const auto& [metric, bounds] : checks.Entries()) {
+    if (root == nullptr) {
+      bounds.ExpectMap({"min", "max"});
+    } else {
+      bounds.ExpectMap({"min", "max", "band"});
+    }
+    Check check;
+    check.metric = metric;
+    if (auto min = bounds.Child("min")) check.min = min->AsNumber();
+    if (auto max = bounds.Child("max")) check.max = max->AsNumber();
+    if (auto band = bounds.Child("band")) check.band = ReadCheckBand(*band, *root);
+    if (!check.min && !check.max) throw bounds.Error("expected min and/or max");
+    if (check.min && check.max && *check.min > *check.max) {
+      throw bounds.Error("min " + std::to_string(*check.min) + " is above max " +
+                         std::to_string(*check.max));
+    }
+    result.push_back(check);
+  }
+  return result;
+}
+
+RunLimits ReadLimits(const NodeReader& limits) {
+  RunLimits config;
+  ReadFields(limits, &config);
+  if (!(config.max_simulated_s > 0.0)) {
+    throw limits.Child("max_simulated_s")->Error("must be > 0 s");
+  }
+  if (config.max_ticks < 1) throw limits.Child("max_ticks")->Error("must be >= 1");
+  if (config.max_trace_rows < 2) throw limits.Child("max_trace_rows")->Error("must be >= 2");
+  if (config.max_memory_mb < 1) throw limits.Child("max_memory_mb")->Error("must be >= 1");
+  return config;
+}
+
+std::string Seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g s", seconds);
+  return text;
+}
+
+model::MachinePlant BuildMachineAt(const Scenario& scenario) {
+  try {
+    return model::BuildMachinePlant(scenario.machine, scenario.drive);
+  } catch (const ValidationError& error) {
+    // The drive is validated already: what is left is the structure's (machine.elements[i]).
+    throw error.Prefixed("machine");
+  }
+}
+
+// Uncoupled modal forms under the kinematic drive: the plant's entries are w^2, 2 zeta w,
+// 1 and the gains, its static gains gain / w^2 (model/machine.cc BuildFormPlant); finite
+// when those are, with no plant to build (a sweep checks every point's numbers). False:
+// another machine, or a number that is not finite (the plant's check then says so).
+bool FiniteModalForms(const Scenario& scenario) {
+  if (scenario.drive.type != model::DriveType::kKinematic) return false;
+  for (const auto& axis : scenario.machine.axes) {
+    if (!axis) continue;
+    const auto* modal = std::get_if<model::ModalMachineConfig>(&axis->form);
+    if (modal == nullptr || modal->coupled()) return false;
+    for (const model::ModalMode& mode : modal->modes) {
+      const double w = 2.0 * 3.14159265358979323846 * mode.frequency_hz;
+      if (!std::isfinite(w * w) || !std::isfinite(2.0 * mode.damping_ratio * w) ||
+          !std::isfinite(mode.gain / (w * w))) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void CheckPlantFinite(const Scenario& scenario) {
+  if (FiniteModalForms(scenario)) return;
+  const model::MachinePlant plant = BuildMachineAt(scenario);
+  if (!plant.plant.A.allFinite() || !plant.plant.B_accel.allFinite() ||
+      !plant.plant.B_vel.allFinite() || !plant.plant.C.allFinite() ||
+      !plant.static_gain.allFinite()) {
+    throw ValidationError("machine",
+                          "degenerate model: its state-space matrices or static gain are not "
+                          "finite (a frequency, stiffness, damping or gain too large, or a "
+                          "mass too small, for double precision)");
+  }
+  // integrator.method: exact cannot take a nonlinear element (docs/nonlinear.md).
+  try {
+    model::CheckMethodFitsPlant(scenario.integrator.method, plant.nonlinear);
+  } catch (const ValidationError& error) {
+    throw error.Prefixed("integrator");
+  }
+}
+
+bool RunLengthWithinLimits(const Scenario& scenario, double seconds) {
+  const double ticks = seconds / scenario.controller.period_s;
+  return !(seconds > scenario.limits.max_simulated_s) &&
+         !(ticks > static_cast<double>(scenario.limits.max_ticks)) &&
+         !(ticks > MemoryTickLimit(scenario.limits));
+}
+
+// Guard rail: a run whose command, samples and trace would need more than
+// limits.max_memory_mb (a tiny period within max_ticks) is refused before allocating.
+void CheckRunMemory(const ConfigDocument& document, const Scenario& scenario, double seconds,
+                    const std::string& breakdown) {
+  const double ticks = seconds / scenario.controller.period_s;
+  if (!(ticks > MemoryTickLimit(scenario.limits))) return;
+  char text[96];
+  std::snprintf(text, sizeof text, "%.4g MB (%.4g interpolation periods of %.4g s, %.0f bytes each",
+                RunBytes(ticks) / MegabytesToBytes(1.0), ticks, scenario.controller.period_s,
+                kRunBytesPerTick);
+  throw document.ErrorAtPath(
+      "limits.max_memory_mb",
+      "scenario '" + ClippedForMessage(scenario.name) + "' would need at least " + text +
+          " for its command, samples and trace; " + breakdown + "), more than limits.max_memory_mb (" +
+          std::to_string(scenario.limits.max_memory_mb) +
+          " MB a run; a sweep needs about --jobs times it); raise it or lengthen controller.period_s");
+}
+
+// Guard rail: a run known to be longer than limits: allow is refused before any command
+// is generated (a giant move, a low design frequency, a long filter would otherwise take
+// the machine's memory and time).
+void CheckRunLength(const ConfigDocument& document, const Scenario& scenario) {
+  std::string breakdown;
+  const double seconds = MinimumRunSeconds(scenario, &breakdown);
+  if (RunLengthWithinLimits(scenario, seconds)) return;
+  const double ticks = seconds / scenario.controller.period_s;
+  const RunLimits& limits = scenario.limits;
+  // Both exceeded: the message names the limit that binds (the fewer ticks).
+  const bool ticks_bind = ticks > static_cast<double>(limits.max_ticks) &&
+                          static_cast<double>(limits.max_ticks) * scenario.controller.period_s <
+                              limits.max_simulated_s;
+  if (seconds > limits.max_simulated_s && !ticks_bind) {
+    // The suggested limit as text (a double: the bound may exceed any integer type).
+    char suggested[32];
+    std::snprintf(suggested, sizeof suggested, "%.3g", std::ceil(seconds * 2.0));
+    throw document.ErrorAtPath(
+        "limits.max_simulated_s",
+        "scenario '" + ClippedForMessage(scenario.name) + "' would simulate at least " + Seconds(seconds) + " (" +
+            breakdown + "), more than limits.max_simulated_s (" + Seconds(limits.max_simulated_s) +
+            (std::isfinite(seconds) ? "); raise it (e.g. --set limits.max_simulated_s=" +
+                                          std::string(suggested) + ") to run it anyway"
+                                    : "); its path is too long to simulate"));
+  }
+  if (ticks > static_cast<double>(limits.max_ticks)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.4g", ticks);
+    throw document.ErrorAtPath(
+        "limits.max_ticks",
+        "scenario '" + ClippedForMessage(scenario.name) + "' would take at least " + count +
+            " interpolation periods of " + Seconds(scenario.controller.period_s) + " (" +
+            breakdown + "), more than limits.max_ticks (" + std::to_string(limits.max_ticks) +
+            "); raise it or lengthen controller.period_s");
+  }
+  CheckRunMemory(document, scenario, seconds, breakdown);
+}
+
+// The limits a G-code file is parsed under: its path's time within the run's (the binding
+// one of max_simulated_s, max_ticks and max_memory_mb), its blocks within the memory budget
+// and the ticks (every block takes at least one interpolation period).
+controller::GcodeLimits ParseLimits(const Scenario& scenario) {
+  const RunLimits& limits = scenario.limits;
+  const double period_s = scenario.controller.period_s;
+  double ticks = limits.max_simulated_s / period_s;
+  std::string key = "limits.max_simulated_s";
+  if (static_cast<double>(limits.max_ticks) < ticks) {
+    ticks = static_cast<double>(limits.max_ticks);
+    key = "limits.max_ticks";
+  }
+  if (MemoryTickLimit(limits) < ticks) {
+    ticks = MemoryTickLimit(limits);
+    key = "limits.max_memory_mb";
+  }
+  controller::GcodeLimits parse;
+  parse.max_path_s = ticks * period_s;
+  parse.max_path_key = key;
+  parse.default_feed_m_s = scenario.controller.feed_m_s();
+  parse.rapid_feed_m_s = scenario.controller.rapid_feed_mm_min / 60000.0;
+  const double memory_blocks = MegabytesToBytes(static_cast<double>(limits.max_memory_mb)) / kBytesPerBlock;
+  const double blocks = std::min(ticks, memory_blocks);
+  parse.max_blocks = static_cast<std::size_t>(std::max(1.0, std::floor(blocks)));
+  parse.max_blocks_key = memory_blocks < ticks ? "limits.max_memory_mb (about " +
+                                                     std::to_string(static_cast<long>(kBytesPerBlock)) +
+                                                     " bytes a block)"
+                                               : key + " (every block takes an interpolation period at least)";
+  return parse;
+}
+
+// The pattern's values left to the machine (pattern_defaults.h), before it is validated.
+void ResolveDesignDefaults(const ConfigDocument& document, const LoadOptions& options,
+                           Scenario* scenario) {
+  controller::PatternConfig& pattern = scenario->controller.pattern;
+  if (!pattern.frequency_from_machine && !pattern.frequencies_from_machine && !pattern.damping_from_machine) {
+    return;
+  }
+  DesignModes modes;
+  if (options.design_modes) {
+    modes = *options.design_modes;
+  } else {
+    try {
+      modes = FindDesignModes(scenario->machine, scenario->RunProgram());
+    } catch (const ValidationError&) {
+      return;  // a move that makes no program: its own validation below says why
+    }
+    for (const model::ModeInfo& mode : modes.modes) {
+      // A degenerate model (CheckPlantFinite below says so) designs for nothing.
+      if (!std::isfinite(mode.frequency_hz) || !std::isfinite(mode.damping_ratio)) return;
+    }
+  }
+  Validated(document, "controller.pattern", [&] { ResolvePatternDefaults(modes, &pattern); });
+}
+
+// The axes the program moves: a line's changed coordinates, an arc's plane (a full
+// circle ends where it starts) and its changed normal coordinate.
+std::array<bool, model::kNumAxes> MovedAxes(const controller::Program& program) {
+  std::array<bool, model::kNumAxes> moved{};
+  Eigen::Vector3d at = program.start_m;
+  for (const controller::ProgramBlock& block : program.blocks) {
+    using controller::MotionKind;
+    if (block.kind == MotionKind::kDwell) continue;
+    for (int a = 0; a < model::kNumAxes; ++a) moved[a] = moved[a] || block.end_m(a) != at(a);
+    if (block.kind == MotionKind::kArcCw || block.kind == MotionKind::kArcCcw) {
+      const int normal = block.plane == controller::Plane::kXY ? 2 : block.plane == controller::Plane::kZX ? 1 : 0;
+      for (int a = 0; a < model::kNumAxes; ++a) moved[a] = moved[a] || a != normal;
+    }
+    at = block.end_m;
+  }
+  return moved;
+}
+
+// A machine that models some axes and not one the program moves would run that axis as
+// rigid without a word (every ratio n/a): an error unless the machine lists it in
+// `rigid:`. A machine with no model at all (`axes: {}`) is rigid throughout, as it says.
+void CheckMovedAxesModelled(const NodeReader& machine, const Scenario& scenario) {
+  const model::MultiAxisMachineConfig& config = scenario.machine;
+  bool any_model = false;
+  std::string modelled;
+  for (int a = 0; a < model::kNumAxes; ++a) {
+    if (!config.Models(a)) continue;
+    any_model = true;
+    modelled += std::string(modelled.empty() ? "" : ", ") + model::AxisName(a);
+  }
+  if (!any_model) return;
+  const std::array<bool, model::kNumAxes> moved = MovedAxes(scenario.RunProgram());
+  for (int a = 0; a < model::kNumAxes; ++a) {
+    if (!moved[a] || config.Models(a) || config.rigid[a]) continue;
+    const std::string name = model::AxisName(a);
+    const ConfigError at = machine.Error("");
+    throw machine.Error("the program moves axis " + name + ", which the machine (" + at.file() +
+                        ") does not model (it models " + modelled + "): model it, or say it is rigid with " +
+                        "rigid: [" + name + "]");
+  }
+}
+
+Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
+                      const LoadOptions& options) {
+  NodeReader top(document, document.root(), "");
+  top.ExpectMap(kScenarioKeys);
+
+  Scenario scenario;
+  scenario.source_file = path;
+  scenario.name = fs::path(path).stem().string();
+  top.Read("name", &scenario.name);
+  if (auto machine = top.Child("machine")) scenario.machine = ReadMachineAxesEntry(*machine);
+  if (auto drive = top.Child("drive")) scenario.drive = ReadDrive(*drive);
+  if (auto controller = top.Child("controller")) scenario.controller = ReadController(*controller);
+  // Before the program: a G-code file is read under them.
+  if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
+  // One of move (the one-block shorthand), program and program_file says what runs.
+  std::optional<NodeReader> what_runs;
+  for (const char* key : {"move", "program", "program_file"}) {
+    auto child = top.Child(key);
+    if (!child) continue;
+    if (what_runs) {
+      throw child->Error("give only one of move, program and program_file (" + what_runs->path() +
+                         " is given already)");
+    }
+    what_runs = child;
+  }
+  if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
+  if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
+  controller::GcodeOptions gcode_options;
+  gcode_options.strict_key = "program_strict";
+  if (auto strict = top.Child("program_strict")) {
+    if (!top.Has("program_file")) {
+      throw strict->Error("program_strict applies to a G-code file; give program_file, or remove "
+                          "program_strict");
+    }
+    top.Read<bool>("program_strict", {{"true", true}, {"false", false}}, &gcode_options.strict);
+  }
+  if (auto program_file = top.Child("program_file")) {
+    // Limits from a validated period only (an invalid one is reported below, as before).
+    const bool period_ok = scenario.controller.period_s > 0.0 && std::isfinite(scenario.controller.period_s);
+    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string(),
+                                       Eigen::Vector3d::Zero(),
+                                       period_ok ? ParseLimits(scenario) : controller::GcodeLimits{},
+                                       gcode_options);
+  }
+  if (auto output = top.Child("output")) {
+    output->ExpectMap({"direction"});
+    output->Read<OutputDirection>("direction",
+                                  {{"auto", OutputDirection::kAuto},
+                                   {"magnitude", OutputDirection::kMagnitude},
+                                   {"x", OutputDirection::kX},
+                                   {"y", OutputDirection::kY},
+                                   {"z", OutputDirection::kZ}},
+                                  &scenario.output.direction);
+  }
+  if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
+  if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks, &document.root());
+
+  Validated(document, "machine", [&] { scenario.machine.validate(); });
+  ResolveDesignDefaults(document, options, &scenario);
+  Validated(document, "controller", [&] { scenario.controller.validate(); });
+  Validated(document, "move", [&] { scenario.move.validate(); });
+  Validated(document, "integrator", [&] { scenario.integrator.validate(); });
+  // A degenerate model (a frequency or stiffness so large that its matrices overflow)
+  // would make the integrators loop or return NaN: refused here, at the machine.
+  Validated(document, "", [&] { CheckPlantFinite(scenario); });
+  if (options.plan_move && !scenario.program) {
+    // Its fields are scenario-root paths already ("move.distance_mm").
+    Validated(document, "", [&] {
+      controller::CheckShapedMove(scenario.controller, std::abs(scenario.move.distance_mm) * 1e-3);
+    });
+  }
+  if (auto machine = top.Child("machine")) CheckMovedAxesModelled(*machine, scenario);
+  CheckRunLength(document, scenario);
+  return scenario;
+}
+
+}  // namespace
+
+double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
+  const double motion_s = MinimumMotionSeconds(scenario, breakdown);
+  const double tail_s = ResidualWindowSeconds(scenario);
+  if (breakdown != nullptr) *breakdown += "; residual window " + Seconds(tail_s);
+  return motion_s + tail_s;
+}
+
+double ResidualWindowSeconds(const Scenario& scenario) {
+  // Three periods of the lowest mode (0.1 s for a rigid machine).
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
+    for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  return 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
+}
+
+double MinimumMotionSeconds(const Scenario& scenario, std::string* breakdown) {
+  const controller::ControllerConfig& c = scenario.controller;
+  const controller::Program program = scenario.RunProgram();
+  const controller::PathGeometry path(program);
+  // The path at its programmed feeds (nothing runs faster; clamps only slow it down).
+  double feed_s = 0.0;
+  double length_m = 0.0;
+  for (const controller::PathElement& e : path.elements()) {
+    const auto block = static_cast<std::size_t>(e.block);
+    double feed = c.feed_m_s();
+    if (block < program.blocks.size()) {
+      const controller::ProgramBlock& b = program.blocks[block];
+      feed = b.kind == controller::MotionKind::kRapid ? c.rapid_feed_mm_min / 60000.0
+             : std::isnan(b.feed_m_s)                 ? c.feed_m_s()
+                                                      : b.feed_m_s;
+    }
+    if (feed > 0.0 && std::isfinite(e.length_m)) feed_s += e.length_m / feed;
+    if (std::isfinite(e.length_m)) length_m += e.length_m;
+  }
+  // From rest to rest with an acceleration of at most a (twice the acc/dec's, for a
+  // grid correction or a table's overshoot): 2 sqrt(L / a) at least.
+  const double accel = 2.0 * c.accel_m_s2();
+  const double accel_s = accel > 0.0 ? 2.0 * std::sqrt(length_m / accel) : 0.0;
+  double dwell_s = 0.0;
+  for (const controller::ProgramBlock& b : program.blocks) dwell_s += b.dwell_s;
+  // A shaped speed change lasts the shaper's duration at least.
+  double pattern_s = 0.0;
+  if (controller::MakeStepPattern(c.pattern).shapes()) {
+    const std::vector<controller::Impulse> impulses = controller::ShaperImpulses(c.pattern);
+    if (!impulses.empty()) pattern_s = impulses.back().time_s - impulses.front().time_s;
+  }
+  // Post-interpolation filters add their length (the exponential runs until 1e-12 m is
+  // left of the path).
+  double filter_s = 0.0;
+  const controller::PostInterpConfig& post = c.post_interp;
+  if (post.type == controller::PostInterpType::kExponential && length_m > 1e-12) {
+    filter_s = post.time_constant_s * std::log(length_m / 1e-12);
+  } else if (post.type == controller::PostInterpType::kProfileTable) {
+    filter_s = post.table.empty() ? post.moving_average_s
+                                  : static_cast<double>(post.table.size()) * c.period_s;
+  }
+  const double motion_s = std::max(feed_s, accel_s) + dwell_s + pattern_s + filter_s;
+  if (breakdown != nullptr) {
+    *breakdown = "motion " + Seconds(motion_s) + ": the path at its feeds " + Seconds(feed_s) +
+                 " or acc/dec " + Seconds(accel_s) + ", dwells " + Seconds(dwell_s) +
+                 ", pattern " + Seconds(pattern_s) + ", post-interpolation " + Seconds(filter_s);
+  }
+  return motion_s;
+}
+
+std::vector<Check> ReadChecks(const NodeReader& checks) { return ReadChecksEntry(checks, nullptr); }
+
+YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides) {
+  return BuildScenarioDocument(path, overrides).root();
+}
+
+model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine) {
+  if (!machine.IsMap()) {
+    throw machine.Error(
+        "expected a mapping (modes:, bodies: or axes:) or the path of a machine file");
+  }
+  return ReadMachineAxes(machine);
+}
+
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
+                      const LoadOptions& options) {
+  const ConfigDocument document = BuildScenarioDocument(path, overrides);
+  return ReadScenario(document, path, options);
+}
+
+model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
+                                              const std::vector<Override>& overrides) {
+  YAML::Node root = ConfigDocument::ParseFile(path);
+  const bool machine_file =
+      HasKey(root, "modes") || HasKey(root, "bodies") || HasKey(root, "axes") || HasKey(root, "frf_file") ||
+      HasKey(root, model::ModalMachineConfig::kModalFileKey);
+  if (!machine_file) {
+    const ConfigDocument document = BuildScenarioDocument(path, overrides);
+    NodeReader top(document, document.root(), "");
+    top.ExpectMap(kScenarioKeys);
+    model::MultiAxisMachineConfig machine;  // without `machine:`: the default machine
+    if (auto entry = top.Child("machine")) machine = ReadMachineAxesEntry(*entry);
+    Validated(document, "machine", [&] { machine.validate(); });
+    return machine;
+  }
+  // A machine file is read as the `machine:` of a scenario, so paths match scenarios'.
+  YAML::Node top(YAML::NodeType::Map);
+  top["machine"] = root;
+  ConfigDocument document(top, path);
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    Override scoped = overrides[i];
+    if (!IsPathPrefix("machine", scoped.key_path)) {
+      scoped.key_path = ChildPath("machine", scoped.key_path);
+    }
+    document.ApplyOverride(scoped, static_cast<int>(i) + 1);
+  }
+  NodeReader machine_node(document, document.root(), "");
+  machine_node.ExpectMap({"machine"});
+  model::MultiAxisMachineConfig machine = ReadMachineAxesEntry(*machine_node.Child("machine"));
+  Validated(document, "machine", [&] { machine.validate(); });
+  return machine;
+}
+
+model::MachineConfig LoadMachine(const std::string& path,
+                                 const std::vector<Override>& overrides) {
+  const model::MultiAxisMachineConfig machine = LoadMachineAxes(path, overrides);
+  if (machine.CoupledModes() != nullptr) {
+    throw ConfigError(path, 0, 0, "machine",
+                      "the machine's coupled modes span three axes; the single-axis view drops their "
+                      "cross terms (load it with LoadMachineAxes)");
+  }
+  const auto& driven = machine.axes[machine.driven_axis];
+  if (!driven) {
+    throw ConfigError(path, 0, 0, "machine",
+                      std::string("the driven axis ") + model::AxisName(machine.driven_axis) +
+                          " is rigid (no model); the single-axis view needs its model");
+  }
+  return *driven;
+}
+
+bool MachineChecksPass(const Scenario& scenario, std::optional<double> motion_s) {
+  try {
+    scenario.machine.validate();
+    CheckPlantFinite(scenario);
+    const double motion = motion_s ? *motion_s : MinimumMotionSeconds(scenario);
+    return RunLengthWithinLimits(scenario, motion + ResidualWindowSeconds(scenario));
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+ConfigError LocateValidationError(const std::string& path,
+                                  const std::vector<Override>& overrides,
+                                  const ValidationError& error) {
+  try {
+    return Located(BuildScenarioDocument(path, overrides), error);
+  } catch (const ConfigError& config_error) {
+    return config_error;
+  }
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,91 @@
+// YAML -> Scenario with exact error reporting: every error is a
+// ConfigError located at FILE:LINE:COL (or --set:N:1 for a --set value) with the key
+// path, e.g. "scen.yaml:7:19: controller.pattern.k1: must be in [0.5, 1]".
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "bench/config/config_error.h"
+#include "bench/config/node_reader.h"
+#include "bench/config/override.h"
+#include "bench/scenario/pattern_defaults.h"
+#include "bench/sim/scenario.h"
+#include "common/validation_error.h"
+#include "model/machine.h"
+#include "model/multi_axis_machine.h"
+
+namespace shapebench::bench {
+
+struct LoadOptions {
+  // Plan the move (controller::GenerateCommand) so that a move too short for its pattern
+  // is a load error. `pattern` turns it off: it shows the pattern whatever the move.
+  bool plan_move = true;
+  // What the pattern's values left to the machine (pattern_defaults.h) are taken from;
+  // nullopt: the scenario's own machine and program. A sweep's points take its base
+  // scenario's, so the pattern stays fixed while a swept key moves the plant.
+  std::optional<DesignModes> design_modes;
+};
+
+// Reads, overrides (in order) and validates a scenario. `machine:` may be a mapping or a
+// path to a machine file relative to the scenario's directory; --set machine.KEY applies
+// to the loaded machine.
+Scenario LoadScenario(const std::string& path, const std::vector<Override>& overrides,
+                      const LoadOptions& options = {});
+
+// The scenario's YAML tree as a run reads it: the file, its machine file spliced in, the
+// overrides applied in order. Throws ConfigError for a file that cannot be read or
+// parsed and for an override that does not fit the tree (index out of range, a path
+// through a scalar); the keys and values themselves are not validated.
+YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override>& overrides);
+
+// `checks: {METRIC: {min: .., max: ..}, ...}` (MetricTable() names), in order: a sweep's,
+// which take no `band:` (a scenario's may; its grid is the sweep's way to span a key).
+std::vector<Check> ReadChecks(const NodeReader& checks);
+
+// The `machine:` entry of a scenario (a mapping; a machine file has been spliced in
+// already): either form of machine_reader.h. Validation is the caller's.
+model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine);
+
+// The machine of a machine file (top level has `modes`, `bodies` or `axes`) or of a
+// scenario, validated. Key paths are scenario paths either way ("machine.modes[0].gain",
+// "machine.axes.x.bodies[1].mass_kg"); for a machine file a --set path without the
+// leading "machine." is accepted too.
+model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
+                                              const std::vector<Override>& overrides);
+
+// The same, reduced to the driven axis' model (the single-axis view); a ConfigError when
+// the driven axis is rigid.
+model::MachineConfig LoadMachine(const std::string& path, const std::vector<Override>& overrides);
+
+// A lower bound of the simulated time of a run (seconds), computed without generating the
+// command: the path at its programmed feeds (or, if longer, from rest to rest at twice the
+// acc/dec's acceleration), dwells, the pattern's duration, the post-interpolation filter's
+// length, and the residual window (three periods of the lowest mode). `breakdown`, when
+// given, receives the parts in words. The loader refuses a scenario whose bound exceeds
+// limits.max_simulated_s or limits.max_ticks periods (a ConfigError naming the scenario).
+double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
+// Its two parts: the motion (program and controller: the structure does not change it) and
+// the residual window (three periods of the lowest mode).
+double MinimumMotionSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
+double ResidualWindowSeconds(const Scenario& scenario);
+
+// What LoadScenario checks of a scenario's machine once it is read, without its sources:
+// the machine's validate(), a finite state-space model, the run length within limits:.
+// True when all hold. A sweep point that changes only numbers of the structure on a loaded
+// scenario (structure_numbers.h) asks this; on false the point is loaded from its sources,
+// which locates the error.
+// `motion_s`: MinimumMotionSeconds of the scenario when known (a sweep's points that
+// change only the structure share it).
+bool MachineChecksPass(const Scenario& scenario, std::optional<double> motion_s = std::nullopt);
+
+// Locates a ValidationError raised later about a loaded scenario (its field a scenario
+// key path, e.g. from RunScenario) in the scenario's sources.
+ConfigError LocateValidationError(const std::string& path,
+                                  const std::vector<Override>& overrides,
+                                  const ValidationError& error);
+
+}  // namespace shapebench::bench
