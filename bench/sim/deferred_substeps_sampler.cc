@@ -74,4 +74,8 @@ bool PlantSampler::InnerSamplesMatter(std::size_t k, double y_end, double inside
   return off != 0.0 && !(off * off < tally_.contour_sq);
 }
 
+template void PlantSampler::DeferredTick<RunPhase::kMotion>(std::size_t);
+template void PlantSampler::DeferredTick<RunPhase::kWindow>(std::size_t);
+template void PlantSampler::DeferredTick<RunPhase::kTail>(std::size_t);
+
 }  // namespace shapebench::bench
