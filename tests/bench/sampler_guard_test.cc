@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/config/scenario_loader.h"
+#include "bench/scenario/scenario_loader.h"
 #include "bench/sim/cosim.h"
 
 namespace shapebench::bench {
