@@ -109,7 +109,7 @@ ScenarioCheckReport CheckScenario(const Scenario& scenario, const std::vector<Ov
 }
 
 int CheckCommand(const CheckArgs& args) {
-  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.report.empty()) RequireWritableOutputFile("--report", args.report);  // before anything runs
   if (!args.junit.empty()) RequireWritableOutputFile("--junit", args.junit);  // before the runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   const CheckFiles files = LoadCheckFiles(args, overrides);

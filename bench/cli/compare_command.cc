@@ -81,7 +81,7 @@ int CompareCommand(const CompareArgs& args) {
   const bool sweep = IsSweepFile(args.baseline);
   if (!args.report.empty()) {
     if (sweep) throw std::runtime_error("compare --report: two scenarios only (a sweep's: sweep --report)");
-    ValidateReportPath(args.report);  // before anything runs
+    RequireWritableOutputFile("--report", args.report);  // before anything runs
   }
   if (!args.candidate.empty() && IsSweepFile(args.candidate) != sweep) {
     throw std::runtime_error("compare: " + (sweep ? args.baseline : args.candidate) +

@@ -84,7 +84,7 @@ std::vector<std::string> WriteRunOutputs(const std::string& out_dir, const Scena
 }
 
 int RunCommand(const RunArgs& args) {
-  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.report.empty()) RequireWritableOutputFile("--report", args.report);  // before anything runs
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the run
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   Doing("loading " + args.scenario);

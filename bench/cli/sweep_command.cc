@@ -63,7 +63,7 @@ void PrintSweepSummary(const Sweep& sweep, const SweepRunOptions& options, const
 }
 
 int SweepCommand(const SweepArgs& args) {
-  if (!args.report.empty()) ValidateReportPath(args.report);  // before anything runs
+  if (!args.report.empty()) RequireWritableOutputFile("--report", args.report);  // before anything runs
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the points
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   SweepRunOptions options;
