@@ -6,7 +6,6 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <sys/stat.h>
 
 #include "bench/output/gnuplot.h"
 #include "common/atomic_file.h"
@@ -132,15 +131,6 @@ std::string RenderHtml(const HtmlReport& report) {
 void WriteHtmlReport(const std::string& path, const HtmlReport& report) {
   const std::string page = RenderHtml(report);
   WriteFileAtomically(path, [&](std::ostream& out) { out << page; });
-}
-
-void ValidateReportPath(const std::string& path) {
-  struct stat info {};
-  if (path.empty()) throw std::runtime_error("cannot write the report: --report is empty");
-  if (stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-    throw std::runtime_error("cannot write " + path + ": a directory");
-  }
-  TempFile probe(path);  // creates (and, uncommitted, removes) a file next to it
 }
 
 std::pair<std::string, std::string> EngineeringValue(double value, std::string_view unit) {

@@ -56,11 +56,6 @@ std::string RenderHtml(const HtmlReport& report);
 // Writes the page atomically (WriteFileAtomically).
 void WriteHtmlReport(const std::string& path, const HtmlReport& report);
 
-// Throws std::runtime_error "cannot write PATH: CAUSE" when no file can be created at
-// `path` (its directory missing or read-only, `path` a directory): checked before a
-// command runs anything, so a bad --report costs no simulation (exit 2).
-void ValidateReportPath(const std::string& path);
-
 // A metric in engineering units: lengths in µm below 1 mm, else mm; times in ms below
 // 1 s, else s; ratios plain; bools yes/no; NaN "n/a". Returns (number, unit).
 std::pair<std::string, std::string> EngineeringValue(double value, std::string_view unit);

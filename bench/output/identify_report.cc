@@ -10,11 +10,8 @@
 #include <stdexcept>
 #include <typeinfo>
 
-#include "bench/config/config_error.h"
 #include "bench/output/gnuplot.h"
-#include "bench/output/output_path.h"
 #include "common/atomic_file.h"
-#include "common/interrupt.h"
 #include "common/shown_text.h"
 
 namespace shapebench::bench {
@@ -39,26 +36,6 @@ std::string Axes(const IdentifiedFrfs& frfs) {
     if (axes.find(name) == std::string::npos) axes += (axes.empty() ? "" : ", ") + name;
   }
   return axes;
-}
-
-// --band MIN:MAX in Hz.
-void ParseBand(const std::string& text, FrfSelection* selection) {
-  const std::size_t colon = text.find(':');
-  char* end = nullptr;
-  bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
-  if (ok) {
-    const std::string low = text.substr(0, colon), high = text.substr(colon + 1);
-    selection->min_frequency_hz = std::strtod(low.c_str(), &end);
-    ok = end == low.c_str() + low.size();
-    selection->max_frequency_hz = std::strtod(high.c_str(), &end);
-    ok = ok && end == high.c_str() + high.size();
-  }
-  if (!ok || !(selection->min_frequency_hz >= 0.0) || !(selection->max_frequency_hz > selection->min_frequency_hz) ||
-      !std::isfinite(selection->max_frequency_hz)) {
-    throw std::runtime_error("--band: expected MIN:MAX in Hz with 0 <= MIN < MAX (e.g. 5:200), got '" +
-                             TerminalSafe(text, false) + "'");
-  }
-  selection->band_source = "--band " + text;
 }
 
 }  // namespace
@@ -130,43 +107,22 @@ nlohmann::ordered_json IdentifyJson(const IdentifiedFrfs& frfs) {
   return json;
 }
 
-int RunIdentify(const IdentifyArgs& args, std::ostream& out, std::ostream& wrote) {
-  FrfSelection selection;
-  if (!args.axis.empty()) selection.axis = static_cast<int>(std::string("xyz").find(args.axis));
-  if (!args.band.empty()) ParseBand(args.band, &selection);
-  selection.max_order = args.max_order;
-  const std::string out_dir =
-      args.out_dir.empty() ? (std::filesystem::path("identify_out") / std::filesystem::path(args.file).stem()).string()
-                           : args.out_dir;
-  RequireWritableOutputDir("--out", out_dir);  // before the identification
-  const IdentifiedFrfs frfs = IdentifyFrfFile(args.file, selection);
-  {
-    const DeferInterrupts defer;
-    StagedDirectory staged(out_dir);
-    const std::filesystem::path dir(staged.path());
-    try {
-      WriteFileAtomically((dir / "modes.json").string(),
-                          [&](std::ostream& file) { file << IdentifyJson(frfs).dump(2) << "\n"; });
-      WriteStabilisationPlot((dir / "stabilisation.png").string(), frfs,
-                             "stabilisation diagram: " + std::filesystem::path(args.file).filename().string() +
-                                 " (" + Axes(frfs) + ")");
-    } catch (const std::runtime_error& error) {
-      if (typeid(error) != typeid(std::runtime_error)) throw;
-      throw std::runtime_error(staged.Shown(error.what()));
-    }
-    staged.Commit();
-    ThrowIfInterrupted("the output in " + out_dir + " is complete");
+std::vector<std::string> WriteIdentifyOutputs(const std::string& out_dir, const IdentifiedFrfs& frfs,
+                                              const std::string& file) {
+  StagedDirectory staged(out_dir);
+  const std::filesystem::path dir(staged.path());
+  try {
+    WriteFileAtomically((dir / "modes.json").string(),
+                        [&](std::ostream& out) { out << IdentifyJson(frfs).dump(2) << "\n"; });
+    WriteStabilisationPlot((dir / "stabilisation.png").string(), frfs,
+                           "stabilisation diagram: " + std::filesystem::path(file).filename().string() + " (" +
+                               Axes(frfs) + ")");
+  } catch (const std::runtime_error& error) {
+    if (typeid(error) != typeid(std::runtime_error)) throw;
+    throw std::runtime_error(staged.Shown(error.what()));  // DIR/FILE, not the temporary name
   }
-  if (args.json) {
-    out << IdentifyJson(frfs).dump(2) << std::endl;
-  } else {
-    PrintIdentifyTable(out, frfs);
-  }
-  for (const char* file : {"modes.json", "stabilisation.png"}) {
-    wrote << "wrote " << TerminalSafe((std::filesystem::path(out_dir) / file).string(), false) << "\n";
-  }
-  wrote.flush();
-  return 0;
+  staged.Commit();
+  return {"modes.json", "stabilisation.png"};
 }
 
 }  // namespace shapebench::bench

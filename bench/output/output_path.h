@@ -1,5 +1,5 @@
-// Output paths checked before anything is loaded or run: a bad --out or --junit would
-// otherwise be found only after the simulation (or after every point of a sweep).
+// Output paths checked before anything is loaded or run: a bad --out, --junit or --report
+// would otherwise be found only after the simulation (or after every point of a sweep).
 #pragma once
 
 #include <string>
@@ -12,8 +12,8 @@ namespace shapebench::bench {
 // directory, so the check leaves nothing behind and sees what the OS would do.
 void RequireWritableOutputDir(const std::string& option, const std::string& path);
 
-// The same for an output file: not an existing directory, and its parent directory
-// exists and is writable (probed with a temporary file, removed).
+// The same for an output file (--junit, --report): not an existing directory, and its
+// parent directory exists and is writable (probed the same way).
 void RequireWritableOutputFile(const std::string& option, const std::string& path);
 
 }  // namespace shapebench::bench

@@ -14,20 +14,12 @@
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/format.h"
-#include "common/validation_error.h"
 #include "controller/shaper_registry.h"
 
 namespace shapebench::bench {
 namespace {
 
 std::string Num(double value) { return FormatNumber(value); }
-
-AccelAxis ParseAxis(const std::string& text) {
-  for (const AccelAxis axis : {AccelAxis::kX, AccelAxis::kY, AccelAxis::kZ, AccelAxis::kAll}) {
-    if (text == AccelAxisName(axis)) return axis;
-  }
-  throw ValidationError("--axis", "expected x, y, z or all (the sum of the three PSDs), got '" + text + "'");
-}
 
 std::string Percent(double fraction) {
   char text[32];
@@ -111,24 +103,6 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
 }
 
 }  // namespace
-
-RecommendReport ComputeRecommendation(const RecommendArgs& args) {
-  RecommendReport report;
-  report.file = args.file;
-  report.options.design_damping_ratio = args.damping_ratio;
-  report.options.feed_mm_min = args.feed_mm_min;
-  report.options.accel_mm_s2 = args.accel_mm_s2;
-  report.options.validate();  // before the file is read
-  const AccelAxis axis = ParseAxis(args.axis);
-  const AccelLog log = ReadAccelLog(args.file);
-  report.spectrum = ComputeAccelSpectrum(log, axis);
-  report.recommendation = RecommendShapers(report.spectrum.frequency_hz, report.spectrum.psd, report.options);
-  if (!args.validate.empty()) {
-    report.modes = IdentifyModes(report.spectrum.frequency_hz, report.spectrum.psd);
-    report.validation = RunValidation(args.validate, report.modes, report.recommended().pattern);
-  }
-  return report;
-}
 
 void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
   const AccelSpectrum& s = report.spectrum;

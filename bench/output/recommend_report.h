@@ -1,6 +1,7 @@
-// `shapebench recommend FILE.csv`: a shaper recommended from an accelerometer log
-// (bench/measured/shaper_fit.h), its table, JSON, PSD CSV and plot, and the optional
-// --validate runs (bench/sim/recommend_validation.h). docs/measured-data.md#accelerometer-logs.
+// What `shapebench recommend FILE.csv` writes (bench/cli/recommend_command.cc): a shaper
+// recommended from an accelerometer log (bench/measured/shaper_fit.h), its table, JSON,
+// PSD CSV and plot, and the optional --validate runs (bench/sim/recommend_validation.h).
+// docs/measured-data.md#accelerometer-logs.
 #pragma once
 
 #include <optional>
@@ -17,17 +18,6 @@
 
 namespace shapebench::bench {
 
-struct RecommendArgs {
-  std::string file;
-  std::string axis = "all";  // x, y, z or all
-  double damping_ratio = 0.1;
-  double feed_mm_min = ShaperFitOptions{}.feed_mm_min;
-  double accel_mm_s2 = ShaperFitOptions{}.accel_mm_s2;
-  bool json = false;
-  std::string out_dir;
-  std::string validate;  // a scenario file; empty: no validation runs
-};
-
 struct RecommendReport {
   std::string file;
   AccelSpectrum spectrum;
@@ -37,10 +27,6 @@ struct RecommendReport {
   std::optional<ValidationRuns> validation;
   const ShaperFit& recommended() const { return recommendation.fits[recommendation.recommended]; }
 };
-
-// Reads the log, fits every method, runs --validate. Throws ConfigError (the log, the
-// scenario), ValidationError (an option, named), model::SolverError.
-RecommendReport ComputeRecommendation(const RecommendArgs& args);
 
 // The table: the log, the PSD, one row per method, the recommendation and why, skipped
 // methods; then the validation's modes and both runs' metrics side by side.

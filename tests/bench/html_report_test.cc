@@ -123,7 +123,9 @@ TEST(HtmlReport, UnwritablePathFailsFirst) {
   const CliResult missing =
       RunCli({"run", "configs/demo.yaml", "--report", dir.File("no/such/dir/r.html")}, kSourceDir);
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.err.find("cannot write " + dir.File("no/such/dir/r.html")), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("error: --report " + dir.File("no/such/dir/r.html") + ": cannot write there: "),
+            std::string::npos)
+      << missing.err;
   EXPECT_EQ(missing.out, "");  // no metrics table: nothing ran
   const CliResult directory = RunCli({"check", "configs/scenarios/method1.yaml", "--report", dir.path().string()},
                                      kSourceDir);

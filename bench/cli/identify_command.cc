@@ -1,0 +1,107 @@
+// `shapebench identify FILE.uff`: modes from measured FRFs (bench/measured/frf_identification.h)
+// as a table or JSON, modes.json and the stabilisation diagram in the output directory
+// (docs/measured-data.md).
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "bench/cli/cli_support.h"
+#include "bench/cli/commands.h"
+#include "bench/measured/frf_identification.h"
+#include "bench/output/identify_report.h"
+#include "bench/output/output_path.h"
+#include "common/interrupt.h"
+#include "common/shown_text.h"
+
+namespace shapebench::bench::cli {
+namespace {
+
+struct IdentifyArgs {
+  std::string file;
+  std::string axis;   // "", "x", "y", "z"
+  std::string band;   // "", "MIN:MAX" in Hz
+  int max_order = 30;
+  bool json = false;
+  std::string out_dir;  // "": identify_out/STEM
+};
+
+// --band MIN:MAX in Hz.
+void ParseBand(const std::string& text, FrfSelection* selection) {
+  const std::size_t colon = text.find(':');
+  char* end = nullptr;
+  bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
+  if (ok) {
+    const std::string low = text.substr(0, colon), high = text.substr(colon + 1);
+    selection->min_frequency_hz = std::strtod(low.c_str(), &end);
+    ok = end == low.c_str() + low.size();
+    selection->max_frequency_hz = std::strtod(high.c_str(), &end);
+    ok = ok && end == high.c_str() + high.size();
+  }
+  if (!ok || !(selection->min_frequency_hz >= 0.0) || !(selection->max_frequency_hz > selection->min_frequency_hz) ||
+      !std::isfinite(selection->max_frequency_hz)) {
+    throw std::runtime_error("--band: expected MIN:MAX in Hz with 0 <= MIN < MAX (e.g. 5:200), got '" +
+                             TerminalSafe(text, false) + "'");
+  }
+  selection->band_source = "--band " + text;
+}
+
+// The table (or JSON) on stdout, then a "wrote" line for modes.json and
+// stabilisation.png (on stderr with --json). Throws ConfigError (exit 2) for bad input.
+int IdentifyCommand(const IdentifyArgs& args) {
+  Doing("identifying the modes of " + args.file);
+  FrfSelection selection;
+  if (!args.axis.empty()) selection.axis = static_cast<int>(std::string("xyz").find(args.axis));
+  if (!args.band.empty()) ParseBand(args.band, &selection);
+  selection.max_order = args.max_order;
+  const std::string out_dir =
+      args.out_dir.empty() ? (std::filesystem::path("identify_out") / std::filesystem::path(args.file).stem()).string()
+                           : args.out_dir;
+  RequireWritableOutputDir("--out", out_dir);  // before the identification
+  const IdentifiedFrfs frfs = IdentifyFrfFile(args.file, selection);
+  {
+    const DeferInterrupts defer;
+    WriteIdentifyOutputs(out_dir, frfs, args.file);
+    ThrowIfInterrupted("the output in " + out_dir + " is complete");
+  }
+  if (args.json) {
+    std::cout << IdentifyJson(frfs).dump(2) << std::endl;
+  } else {
+    PrintIdentifyTable(std::cout, frfs);
+  }
+  std::ostream& wrote = args.json ? std::cerr : std::cout;
+  for (const char* file : {"modes.json", "stabilisation.png"}) {
+    wrote << "wrote " << TerminalSafe((std::filesystem::path(out_dir) / file).string(), false) << "\n";
+  }
+  wrote.flush();
+  return kExitOk;
+}
+
+}  // namespace
+
+Command AddIdentifyCommand(CLI::App* app) {
+  auto args = std::make_shared<IdentifyArgs>();
+  CLI::App* identify = app->add_subcommand(
+      "identify", "modal parameters from measured FRFs (UFF 58): table or JSON, stabilisation diagram");
+  identify->add_option("file", args->file, "UFF file of dataset 58 FRF records (ASCII or 58b)")
+      ->required()
+      ->type_name("FILE.uff");
+  identify->add_option("--axis", args->axis, "only the records whose response is along this axis")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->type_name("x|y|z");
+  identify->add_option("--band", args->band, "the band in Hz the modes are identified in (default: all lines)")
+      ->type_name("MIN:MAX");
+  identify->add_option("--max-order", args->max_order, "highest model order in pole pairs (default 30)")
+      ->check(CLI::Range(1, 200))
+      ->type_name("N");
+  identify->add_flag("--json", args->json, "print one JSON object");
+  identify
+      ->add_option("--out", args->out_dir,
+                   "write modes.json and stabilisation.png into DIR (default: identify_out/STEM)")
+      ->type_name("DIR");
+  return {identify, [args] { return IdentifyCommand(*args); }};
+}
+
+}  // namespace shapebench::bench::cli
