@@ -38,8 +38,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/sim/command_samples.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/command_samples.h"
+#include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
@@ -621,7 +621,7 @@ int ExportCase1(const std::string& path) {
 }
 
 // Case 4 for scripts/baseline.py: the plant the run integrates (its Z axis, which the
-// circle never moves, left out: it stays at rest, cosim.cc's IdleAxesRigid), its LuGre
+// circle never moves, left out: it stays at rest, plant_sampler.cc's IdleAxesRigid), its LuGre
 // elements, CVODE's tolerances, the command's acceleration per tick and axis, and
 // shapebench's X and Y deflection at every tick's end.
 void WriteMatrix(std::ostream& out, const char* name, const Eigen::MatrixXd& m) {

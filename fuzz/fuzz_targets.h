@@ -22,7 +22,7 @@
 #include "bench/config/config_error.h"
 #include "bench/measured/modal_file_reader.h"
 #include "bench/config/override.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/scenario/structure_numbers.h"
 #include "bench/measured/uff58_reader.h"

@@ -396,7 +396,7 @@ inline void ExactIntegrator::WriteBlockOutputs(const double* z_start, int from, 
     }
     forced += rows;
     double* __restrict out = outputs + static_cast<std::ptrdiff_t>(j) * width;
-    if (width == 2) {  // a single axis' deflection and tool error (cosim.cc)
+    if (width == 2) {  // a single axis' deflection and tool error (single_axis_sampler.cc)
       out[0] = values[row_of[0]];
       out[1] = values[row_of[1]];
     } else if (width == 6) {  // a machine's rows (multi_axis_machine.h), unrolled

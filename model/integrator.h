@@ -163,7 +163,7 @@ class PlantIntegrator {
   virtual double PeriodExtremum() const { return 0.0; }
 
   // Advances `periods` whole periods under a zero input at once, outputs unread (the
-  // master has the tail's metrics in closed form: bench/sim/damped_tail.h). False when the
+  // master has the tail's metrics in closed form: bench/run/damped_tail.h). False when the
   // integrator cannot; it is then unchanged.
   virtual bool AdvanceAtRest(long /*periods*/) { return false; }
 

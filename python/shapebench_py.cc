@@ -27,15 +27,15 @@
 
 #include "bench/cli/shapebench_version.h"  // generated in the build tree: cmake/git_version.cmake
 #include "bench/config/config_error.h"
-#include "bench/sim/located_run.h"
+#include "bench/run/located_run.h"
 #include "bench/config/override.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/output/html_report.h"
 #include "bench/output/modes_report.h"
 #include "bench/output/pattern_report.h"
 #include "bench/output/report.h"
-#include "bench/sim/checks.h"
-#include "bench/sim/cosim.h"
+#include "bench/scenario/checks.h"
+#include "bench/run/run_scenario.h"
 #include "bench/sweep/band_check.h"
 #include "bench/sensitivity/sensitivity.h"
 #include "bench/sweep/sweep.h"

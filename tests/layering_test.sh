@@ -1,13 +1,10 @@
 #!/usr/bin/env bash
 # Tests that every include goes downwards in the house: a room may include itself and the
 # rooms listed before it, never one after it (controller/ and model/ never each other).
-#   common < model, controller < bench/config < bench/measured < bench/scenario < bench/sim
+#   common < model, controller < bench/config < bench/measured < bench/scenario < bench/run
 #     < bench/output < bench/sensitivity < bench/sweep < bench/compare < bench/cli
-# Interim, until bench/sim becomes bench/run: bench/scenario may include the four files of
-# bench/sim that belong to it (the Scenario, metric table, checks, run limits).
 set -u
 cd "$(dirname "$0")/.."
-SCENARIO_OF_SIM="bench/sim/scenario.h bench/sim/metrics.h bench/sim/checks.h bench/sim/run_memory.h"
 allowed() {  # the include prefixes a file in room $1 may use
   local below="common/ model/ controller/"
   case $1 in
@@ -16,18 +13,18 @@ allowed() {  # the include prefixes a file in room $1 may use
     controller|controller/shapers) echo "common/ controller/" ;;
     bench/config) echo "$below bench/config/" ;;
     bench/measured) echo "$below bench/config/ bench/measured/" ;;
-    bench/scenario) echo "$below bench/config/ bench/measured/ bench/scenario/ $SCENARIO_OF_SIM" ;;
-    bench/sim) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/sim/" ;;
-    bench/output) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/sim/ bench/output/" ;;
-    bench/sensitivity) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/sim/ bench/output/ bench/sensitivity/" ;;
-    bench/sweep) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/sim/ bench/output/ bench/sensitivity/ bench/sweep/" ;;
-    bench/compare) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/sim/ bench/output/ bench/sensitivity/ bench/sweep/ bench/compare/" ;;
+    bench/scenario) echo "$below bench/config/ bench/measured/ bench/scenario/" ;;
+    bench/run) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/" ;;
+    bench/output) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/" ;;
+    bench/sensitivity) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/" ;;
+    bench/sweep) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/" ;;
+    bench/compare) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/ bench/compare/" ;;
     bench/cli) echo "$below bench/" ;;
   esac
 }
 bad=0
 checked=0
-for room in common model controller controller/shapers bench/config bench/measured bench/scenario bench/sim bench/output bench/sensitivity bench/sweep bench/compare bench/cli; do
+for room in common model controller controller/shapers bench/config bench/measured bench/scenario bench/run bench/output bench/sensitivity bench/sweep bench/compare bench/cli; do
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
     while IFS= read -r inc; do

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "bench/config/config_error.h"
-#include "bench/sim/located_run.h"
+#include "bench/run/located_run.h"
 #include "bench/sweep/distribute.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
@@ -43,7 +43,7 @@ void Doing(std::string doing, std::string memory) {
   activity.memory = std::move(memory);
 }
 
-// A run's bound: the estimate stayed under limits.max_memory_mb (bench/sim/run_memory.h),
+// A run's bound: the estimate stayed under limits.max_memory_mb (bench/scenario/run_memory.h),
 // so the machine, or a limit on the process (ulimit -v), gave less than the scenario allows.
 std::string RunMemory(const Scenario& scenario) {
   return "limits.max_memory_mb is " + std::to_string(scenario.limits.max_memory_mb) +

@@ -12,8 +12,8 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/output/html_report.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/scenario.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/scenario.h"
 #include "common/fd_stream.h"
 
 namespace shapebench::bench::cli {

@@ -1,6 +1,6 @@
 // `shapebench recommend FILE.csv`: a shaper recommended from an accelerometer log
 // (bench/measured/shaper_fit.h); the table or JSON, --out DIR with recommend.json, psd.csv
-// and recommend.png, --validate SCENARIO (bench/sim/recommend_validation.h).
+// and recommend.png, --validate SCENARIO (bench/run/recommend_validation.h).
 #include <iostream>
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@
 #include "bench/measured/shaper_fit.h"
 #include "bench/output/output_path.h"
 #include "bench/output/recommend_report.h"
-#include "bench/sim/recommend_validation.h"
+#include "bench/run/recommend_validation.h"
 #include "common/interrupt.h"
 #include "common/validation_error.h"
 

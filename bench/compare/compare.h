@@ -1,5 +1,5 @@
 // Two runs side by side, metric by metric (`shapebench compare`, docs/compare.md): the
-// change of every metric of MetricTable() (bench/sim/metrics.h), which run is better by
+// change of every metric of MetricTable() (bench/scenario/metrics.h), which run is better by
 // the table's better-direction, and gates that fail when the candidate is worse than the
 // baseline by more than a relative amount.
 //
@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 
 namespace shapebench::bench {
 
@@ -71,7 +71,7 @@ std::vector<Gate> ParseGates(const std::vector<std::string>& texts);
 std::vector<std::string> ClosestNames(const std::string& name, const std::vector<std::string>& names);
 
 // A gate passes when both runs define the metric and worsening <= max_worsening. A metric
-// undefined (n/a) on either side fails it, as a check fails on n/a (bench/sim/checks.h):
+// undefined (n/a) on either side fails it, as a check fails on n/a (bench/scenario/checks.h):
 // a gate that cannot be evaluated does not pass.
 bool GatePasses(const Gate& gate, const MetricChange& change);
 

@@ -15,8 +15,8 @@
 #include "bench/compare/compare.h"
 #include "bench/config/config_error.h"
 #include "bench/config/override.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/scenario.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench {
 

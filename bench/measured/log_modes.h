@@ -1,5 +1,5 @@
 // The modes an accelerometer log shows (`recommend --validate` puts them in place of a
-// scenario's machine: bench/sim/recommend_validation.h).
+// scenario's machine: bench/run/recommend_validation.h).
 //
 // Modes: every local maximum of the PSD in the fit band (5-200 Hz) at or above P_max / 20
 // (the fit's threshold) that stands apart: walking away from it on each side, the PSD

@@ -11,10 +11,10 @@
 
 #include "bench/config/override.h"
 #include "bench/output/report.h"
-#include "bench/sim/checks.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/metrics.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/checks.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/metrics.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench {
 

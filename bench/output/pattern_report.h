@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 #include "controller/controller.h"
 
 namespace shapebench::bench {

@@ -10,7 +10,7 @@
 
 #include "bench/output/gnuplot.h"
 #include "bench/output/report.h"
-#include "bench/sim/engineering_units.h"
+#include "common/engineering_units.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/format.h"

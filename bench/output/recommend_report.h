@@ -1,6 +1,6 @@
 // What `shapebench recommend FILE.csv` writes (bench/cli/recommend_command.cc): a shaper
 // recommended from an accelerometer log (bench/measured/shaper_fit.h), its table, JSON,
-// PSD CSV and plot, and the optional --validate runs (bench/sim/recommend_validation.h).
+// PSD CSV and plot, and the optional --validate runs (bench/run/recommend_validation.h).
 // docs/measured-data.md#accelerometer-logs.
 #pragma once
 
@@ -14,7 +14,7 @@
 #include "bench/measured/accel_spectrum.h"
 #include "bench/measured/log_modes.h"
 #include "bench/measured/shaper_fit.h"
-#include "bench/sim/recommend_validation.h"
+#include "bench/run/recommend_validation.h"
 
 namespace shapebench::bench {
 

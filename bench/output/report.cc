@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <iomanip>
 
-#include "bench/sim/engineering_units.h"
+#include "common/engineering_units.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
 

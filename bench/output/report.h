@@ -10,14 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/config/override.h"
-#include "bench/sim/checks.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/metrics.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/checks.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/metrics.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench {
 
-// One aligned line per metric: name, value in engineering units (bench/sim/engineering_units.h:
+// One aligned line per metric: name, value in engineering units (common/engineering_units.h:
 // "7.99855 um", "12.5 ms"), "n/a" for NaN.
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
 

@@ -13,7 +13,7 @@
 #include "bench/config/node_reader.h"
 #include "bench/config/override.h"
 #include "bench/scenario/pattern_defaults.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
 #include "model/multi_axis_machine.h"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bench/config/override.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench {
 

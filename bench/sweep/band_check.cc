@@ -8,7 +8,7 @@
 #include "bench/config/config_document.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/scenario/structure_numbers.h"
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 #include "common/validation_error.h"
 
 namespace shapebench::bench {

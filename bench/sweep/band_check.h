@@ -18,9 +18,9 @@
 
 #include "bench/config/config_error.h"
 #include "bench/config/override.h"
-#include "bench/sim/checks.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/checks.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/scenario.h"
 #include "common/interval_search.h"
 
 namespace shapebench::bench {

@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "bench/sim/command_samples.h"
+#include "bench/run/command_samples.h"
 #include "controller/controller.h"
 
 namespace shapebench::bench {

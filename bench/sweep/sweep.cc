@@ -18,10 +18,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include "bench/config/config_document.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "common/csv.h"
 #include "bench/config/key_path.h"
-#include "bench/sim/located_run.h"
+#include "bench/run/located_run.h"
 #include "bench/config/node_reader.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/scenario/structure_numbers.h"

@@ -43,10 +43,10 @@
 #include <vector>
 
 #include "bench/config/config_error.h"
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 #include "bench/config/override.h"
 #include "bench/scenario/pattern_defaults.h"
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 #include "bench/sweep/sampling.h"
 
 namespace shapebench::bench {

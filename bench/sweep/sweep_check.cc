@@ -12,7 +12,7 @@
 #include "common/csv.h"
 #include "common/ordered_pool.h"
 #include "common/shown_text.h"
-#include "bench/sim/checks.h"
+#include "bench/scenario/checks.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/sweep_runner.h"
 #include "common/sample_math.h"

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "bench/config/override.h"
-#include "bench/sim/checks.h"
+#include "bench/scenario/checks.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"  // ResultColumns, the readers of resume and merge
 #include "common/atomic_file.h"       // Durability

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 

@@ -1,5 +1,5 @@
 // Evaluating checks against metrics, and the console line of each.
-#include "bench/sim/checks.h"
+#include "bench/scenario/checks.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 #include "bench_test_support.h"
 
 namespace shapebench::bench {

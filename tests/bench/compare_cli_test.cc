@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/output/gnuplot.h"
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 #include "bench_test_support.h"
 #include "common/csv.h"
 

@@ -11,7 +11,7 @@
 #include "bench/compare/compare_runs.h"
 #include "bench/compare/compare_sweep.h"
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench_test_support.h"
 #include "common/csv.h"
 

@@ -1,6 +1,6 @@
 // The run's max_contour_error_m against a brute-force search of the recorded trace: every
 // sample's actual tool position measured against the whole path (PathGeometry::DistanceTo),
-// the largest kept. bench/sim/cosim.cc skips the search where the distance to the last
+// the largest kept. bench/run/run_scenario.cc skips the search where the distance to the last
 // nearest point found already bounds a sample below the largest so far; the largest must
 // come out the same, bit for bit.
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "controller/path_geometry.h"
 
 namespace shapebench::bench {

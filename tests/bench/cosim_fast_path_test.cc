@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "tests/bench/general_path.h"
 #include "bench/scenario/scenario_loader.h"
 #include "tests/bench/same_metric_bits.h"

@@ -1,4 +1,4 @@
-// The tail after the motion (bench/sim/cosim.cc): the residual window of three lowest-mode
+// The tail after the motion (bench/run/run_scenario.cc): the residual window of three lowest-mode
 // periods, then on until a whole period stays inside the 5% band (at most 30 periods); an
 // undamped structure under the kinematic drive stops at the window's end.
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench_test_support.h"
 

@@ -13,8 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
-#include "bench/sim/scenario.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench {
 namespace {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench_test_support.h"
 #include "model/multi_axis_machine.h"
 

@@ -1,4 +1,4 @@
-// The settling tail in closed form (bench/sim/damped_tail.h, run without a trace: sweeps,
+// The settling tail in closed form (bench/run/damped_tail.h, run without a trace: sweeps,
 // checks) against the simulated tail (the run that records its trace simulates it, sample
 // by sample): settling_time_s within the old sampling resolution dt / substeps (both read
 // the same grid of samples, so they agree exactly but where a sample lies within rounding
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "tests/bench/general_path.h"
 
 namespace shapebench::bench {

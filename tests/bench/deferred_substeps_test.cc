@@ -1,4 +1,4 @@
-// Deferred substeps (bench/sim/deferred_substeps.h): a single-axis run on the exact path
+// Deferred substeps (bench/run/deferred_substeps.h): a single-axis run on the exact path
 // without a trace steps a period's inner output substeps only where they can change a
 // metric. The metrics must be those of the run that samples every substep (the traced
 // run, cosim_fast_path_test.cc: the general samples), bit for bit, over the natural
@@ -14,8 +14,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
-#include "bench/sim/deferred_substeps.h"
+#include "bench/run/run_scenario.h"
+#include "bench/run/deferred_substeps.h"
 #include "tests/bench/general_path.h"
 #include "tests/bench/same_metric_bits.h"
 #include "tests/bench/sdof_fixture.h"
@@ -120,7 +120,7 @@ TEST(DeferredSubsteps, QuadraticRangeHoldsEverySample) {
   }
 }
 
-// Tests OffLineBound against the single-axis samples' own arithmetic (cosim.cc: the tool
+// Tests OffLineBound against the single-axis samples' own arithmetic (single_axis_sampler.cc: the tool
 // clamped onto the line), for tool positions all over [lo, hi]: every distance within the
 // bound, and exactly 0 where the bound says 0.
 TEST(DeferredSubsteps, OffLineBoundHoldsTheSamplesArithmetic) {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench_test_support.h"
 #include "common/validation_error.h"
 

@@ -1,6 +1,6 @@
-// The metric table (bench/sim/metrics.h): one row per metric, read by JSON, tables, CSV
+// The metric table (bench/scenario/metrics.h): one row per metric, read by JSON, tables, CSV
 // columns, checks, and the glossary in docs/metrics.md.
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 
 #include <algorithm>
 #include <fstream>

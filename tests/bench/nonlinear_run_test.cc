@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
-#include "bench/sim/scenario.h"
+#include "bench/run/run_scenario.h"
+#include "bench/scenario/scenario.h"
 #include "bench_test_support.h"
 #include "model/cvode_cross_check.h"
 #include "model/integrator.h"

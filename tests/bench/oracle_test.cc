@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "tests/bench/sdof_fixture.h"
 
 namespace shapebench::bench {

@@ -15,9 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/output/report.h"
-#include "bench/sim/checks.h"
-#include "bench/sim/engineering_units.h"
-#include "bench/sim/metrics.h"
+#include "bench/scenario/checks.h"
+#include "common/engineering_units.h"
+#include "bench/scenario/metrics.h"
 #include "bench_test_support.h"
 #include "common/csv.h"
 

@@ -1,13 +1,13 @@
 // The `pattern` report's numbers (bench/output/pattern_report.h), which the report prints
 // and the Python module returns, and the run helpers the CLI shares with the module
-// (bench/sim/located_run.h): against closed forms of the shapers.
+// (bench/run/located_run.h): against closed forms of the shapers.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/located_run.h"
+#include "bench/run/located_run.h"
 #include "bench/output/pattern_report.h"
 #include "bench/output/report.h"
 #include "model/integrator.h"

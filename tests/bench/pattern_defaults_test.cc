@@ -11,7 +11,7 @@
 
 #include "bench/scenario/pattern_defaults.h"
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"
 

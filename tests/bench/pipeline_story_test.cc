@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/config/override.h"
 #include "bench/scenario/scenario_loader.h"
 

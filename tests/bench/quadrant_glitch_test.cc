@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "model/cvode_cross_check.h"
 
 namespace shapebench::bench {

@@ -11,7 +11,7 @@
 
 #include "bench/scenario/scenario_loader.h"
 #include "bench/output/pattern_report.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench_test_support.h"
 #include "controller/shaper_registry.h"
 

@@ -1,4 +1,4 @@
-// residual_ratio as the input-shaping literature means it (bench/sim/residual_vibration.h):
+// residual_ratio as the input-shaping literature means it (bench/run/residual_vibration.h):
 // the amplitude of the free vibration at motion end, against oracles built here: the
 // shaper's V(w, zeta) from its impulses, a least-squares fit of the simulated free
 // response on independently computed poles, and the windowed maximum's bounds.
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <unsupported/Eigen/Polynomials>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "controller/shaper_registry.h"
 #include "tests/bench/sdof_fixture.h"
 

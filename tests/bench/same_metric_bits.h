@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/metrics.h"
+#include "bench/scenario/metrics.h"
 
 namespace shapebench::bench::testing {
 

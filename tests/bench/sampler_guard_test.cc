@@ -1,4 +1,4 @@
-// The guard of the run core's samplers (bench/sim/sampler.h): on every golden scenario,
+// The guard of the run core's samplers (bench/run/sampler.h): on every golden scenario,
 // each sampler that takes the run defines the same metrics as the general sampler, so a
 // metric added to one path cannot go NaN on a fast path unnoticed.
 #include <algorithm>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 
 namespace shapebench::bench {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench_test_support.h"
 

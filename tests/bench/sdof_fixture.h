@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "bench/sim/scenario.h"
+#include "bench/scenario/scenario.h"
 
 namespace shapebench::bench::testing {
 

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/sensitivity/sensitivity.h"
 #include "bench_test_support.h"

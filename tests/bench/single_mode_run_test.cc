@@ -1,4 +1,4 @@
-// The single-mode closed forms (bench/sim/closed_form_sampler.h): a run of one mode along one
+// The single-mode closed forms (bench/run/closed_form_sampler.h): a run of one mode along one
 // line without a trace. Checked against two independent answers:
 // - an oracle written here in extended precision (long double: 64-bit mantissa) from the
 //   model's closed form, the same ticks of the same command: the peak, the residual
@@ -17,8 +17,8 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/command_samples.h"
-#include "bench/sim/cosim.h"
+#include "bench/run/command_samples.h"
+#include "bench/run/run_scenario.h"
 #include "controller/controller.h"
 #include "tests/bench/general_path.h"
 #include "tests/bench/sdof_fixture.h"

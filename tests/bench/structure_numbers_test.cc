@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/sim/cosim.h"
+#include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/sweep/sweep.h"
 #include "bench_test_support.h"

@@ -1,0 +1,118 @@
+#include "bench/run/finish_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "controller/shaper_registry.h"
+#include "model/integrator.h"
+
+namespace shapebench::bench {
+namespace {
+
+// A metric that overflowed is a degenerate model, never a number (NaN is "undefined").
+void RefuseInfiniteMetrics(const Metrics& m) {
+  for (const MetricInfo& info : MetricTable()) {
+    if (std::isinf(m.*info.field)) {
+      throw model::SolverError("NON_FINITE_STATE",
+                               std::string(info.name) + " overflowed to infinity (a degenerate model)");
+    }
+  }
+}
+
+// A plant with nonlinear elements (docs/nonlinear.md): the residual from its free response
+// after motion end (half its peak-to-peak: one undamped mode's amplitude exactly), where it
+// comes to rest, and the quadrant glitches of its arcs.
+void FinishNonlinearMetrics(const MetricTally& t, Metrics* m) {
+  if (!std::isnan(t.free_half_range_m)) {
+    m->residual_amplitude_m = t.free_half_range_m;
+    m->residual_ratio = m->static_displacement_m > 0.0 ? m->residual_amplitude_m / m->static_displacement_m : NAN;
+    m->dead_band_m = t.dead_band_m;
+  }
+  m->quadrant_glitch_m = t.quadrant_glitch_m;
+}
+
+}  // namespace
+
+double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
+                          Eigen::Vector3d* vector) {
+  double static_m = 0.0;
+  std::size_t at = 0;
+  // Once per held acceleration (the same a, the same value: the first tick reaching the
+  // largest is the first of its run).
+  for (const std::size_t k : s.accel_changes) {
+    const double here = std::abs(view.Of(static_gain * s.accel[k]));
+    if (here > static_m) {
+      static_m = here;
+      at = k;
+    }
+  }
+  *vector = Eigen::Vector3d::Zero();
+  if (at == 0) return static_m;
+  const Eigen::Vector3d deflection = static_gain * s.accel[at];
+  const double along = view.magnitude ? deflection.dot(s.accel[at]) : view.Of(deflection);
+  for (int b = 0; b < 3; ++b) {
+    const double entry = along < 0.0 ? -deflection(b) : deflection(b);
+    (*vector)(b) = entry == 0.0 ? 0.0 : entry;  // no -0 for the axes it does not deflect
+  }
+  return static_m;
+}
+
+void SetStaticReference(const RunPlan& plan, const Eigen::Matrix3d& static_gain, MetricTally* tally) {
+  Eigen::Vector3d vector;
+  const double static_m = StaticDisplacement(plan.samples, static_gain, plan.view, &vector);
+  tally->SetStatic(static_m, vector, RunWindow::kSettlingBand);
+  tally->quiet_since_tick = plan.window.motion_ticks;
+}
+
+void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
+  const controller::ShaperKind kind = controller::FindShaper(pattern.method).kind;
+  if (pattern.mode == controller::PatternMode::kOff ||
+      (kind != controller::ShaperKind::kPatentStep && kind != controller::ShaperKind::kImpulse)) {
+    return;
+  }
+  const std::vector<double> frequencies = pattern.DesignFrequencies();
+  const std::size_t lowest = static_cast<std::size_t>(
+      std::min_element(frequencies.begin(), frequencies.end()) - frequencies.begin());
+  m->pattern_frequency_hz = frequencies[lowest];
+  m->pattern_damping_ratio =
+      kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
+}
+
+Metrics FinishMetrics(const RunPlan& plan, const MetricTally& t) {
+  Metrics m;
+  const double dt = plan.dt_s;
+  m.static_displacement_m = t.static_m;
+  m.static_displacement_x_m = t.static_vector(0);
+  m.static_displacement_y_m = t.static_vector(1);
+  m.static_displacement_z_m = t.static_vector(2);
+  m.motion_time_s = static_cast<double>(plan.window.motion_ticks) * dt;
+  if (t.settled) {
+    // The sample's time as the samples have it: dt * count / substeps.
+    m.settling_time_s = t.last_outside_band < 0
+                            ? 0.0
+                            : plan.SampleTime(t.last_outside_band) + dt / plan.substeps - m.motion_time_s;
+  }
+  m.peak_deflection_m = t.peak;
+  m.peak_ratio = t.peak / t.static_m;
+  m.residual_amplitude_m = t.residual_m;
+  m.residual_ratio = t.residual_m / t.static_m;
+  m.residual_peak_m = t.residual;
+  m.residual_peak_ratio = t.residual / t.static_m;
+  m.cruise_residual_ratio = t.cruise_m / t.static_m;
+  m.max_contour_error_m = std::sqrt(t.contour_sq);
+  m.radial_error_m = t.radial_error_m;
+  if (t.nonlinear) FinishNonlinearMetrics(t, &m);
+  m.peak_deflection_x_m = t.peak_axes(0);
+  m.peak_deflection_y_m = t.peak_axes(1);
+  m.peak_deflection_z_m = t.peak_axes(2);
+  m.short_block_clamps = plan.command.short_block_clamps;
+  m.stroke_overshoot_m = t.overshoot_m;
+  m.stroke_alarm = plan.command.stroke_alarm ? 1.0 : 0.0;
+  SetPatternMetrics(plan.scenario.controller.pattern, &m);
+  RefuseInfiniteMetrics(m);
+  return m;
+}
+
+}  // namespace shapebench::bench

@@ -1,0 +1,35 @@
+// The one place the metrics are computed from a run's tally: every sampler ends here, so a
+// metric added here is defined on every sampler (tests/bench/run/sampler_guard_test.cc).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "bench/run/command_samples.h"
+#include "bench/run/metric_tally.h"
+#include "bench/scenario/metrics.h"
+#include "bench/run/output_view.h"
+#include "bench/run/run_plan.h"
+#include "controller/pattern_config.h"
+
+namespace shapebench::bench {
+
+// The largest deflection a held commanded acceleration gives, in the view (the static
+// displacement the ratios divide by), and into *vector the deflection under that
+// acceleration (the first sample reaching it), oriented so that its component in the view
+// (magnitude: along the acceleration) is positive.
+double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
+                          Eigen::Vector3d* vector);
+
+// The tally's static reference from the plan's samples and view and the model's static gain.
+void SetStaticReference(const RunPlan& plan, const Eigen::Matrix3d& static_gain, MetricTally* tally);
+
+// What the pattern was designed for: its lowest design frequency and that mode's damping
+// ratio (methods 1-4: undamped), into *m. NaN for a pattern that does not shape for a
+// frequency (none, custom, mode off).
+void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m);
+
+// Every metric of the run from its plan and tally. Throws model::SolverError when a metric
+// overflowed to infinity (a degenerate model, never a number).
+Metrics FinishMetrics(const RunPlan& plan, const MetricTally& tally);
+
+}  // namespace shapebench::bench

@@ -1,0 +1,111 @@
+// The samplers that step the plant's integrator period by period (FMI order: set the
+// input, step to t_k, read the outputs): the set-up, the stepping, the probes of the free
+// vibration and the closed-form tail are here (plant_sampler.cc); how a period's outputs
+// become the tally is the strategy's: general_sampler.cc (every output),
+// single_axis_sampler.cc (one axis' scalars while the others stay exactly 0),
+// deferred_substeps_sampler.cc (inner substeps only where they can change a metric).
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bench/run/damped_tail.h"
+#include "bench/run/metric_tally.h"
+#include "bench/run/path_tallies.h"
+#include "bench/run/residual_vibration.h"
+#include "bench/run/run_plan.h"
+#include "bench/run/run_result.h"
+#include "bench/run/sampler.h"
+#include "bench/run/single_axis_sampler.h"
+#include "model/integrator.h"
+#include "model/multi_axis_machine.h"
+
+namespace shapebench::bench {
+
+class PlantSampler final : public Sampler {
+ public:
+  // The fastest strategy at or below `fastest` that qualifies (result->sampler tells).
+  PlantSampler(const RunPlan& plan, SamplerKind fastest, RunResult* result);
+
+  MetricTally Run() override;
+  std::size_t Tick(std::size_t k);
+  // After tick k: at the residual window's end, the settling tail in closed form when the
+  // plant allows (DampedTail); then the run ends where the simulated tail would.
+  bool SettleTail(std::size_t k);
+
+ private:
+  void SetUpPlant();
+  void CrossCheckCvode(const model::LinearPlant& plant, double scale_accel);
+  void SetUpSampling(SamplerKind fastest);
+  void SetUpSingleAxis();
+  bool StepPlant(std::size_t k);  // true: the other axes' outputs are all exactly 0
+  long SameInput(std::size_t k);
+  void CheckFinite(std::size_t k) const;
+  template <RunPhase P> void SampleTick(std::size_t k, bool others_zero);
+  void Probes(std::size_t k);
+  void ProbeMotionEnd();
+  void ProbeCruise(std::size_t k);
+  void TrackFreeResponse(std::size_t k, bool others_zero);
+  void Conclude();
+  // general_sampler.cc
+  template <RunPhase P> void SampleGeneral(std::size_t k, TickTally* tick);
+  void Record(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& v, const Eigen::Vector3d& a,
+              const Eigen::Vector3d& deflection, const Eigen::Vector3d& actual, int block);
+  void StartTrace();
+  // single_axis_sampler.cc
+  template <RunPhase P> void SampleSingleAxis(std::size_t k, TickTally* tick);
+  // deferred_substeps_sampler.cc
+  bool QualifiesForDeferredSubsteps() const;
+  template <RunPhase P> void DeferredTick(std::size_t k);
+  template <RunPhase P> bool InnerSamplesMatter(std::size_t k, double y_end, double inside) const;
+
+  const RunPlan& plan_;
+  const CommandSamples& samples_;
+  const RunWindow& window_;
+  RunResult& result_;
+  const double dt_;
+  const int substeps_;
+  SamplerKind kind_ = SamplerKind::kGeneral;
+  MetricTally tally_;
+  const ContourGauge contour_gauge_;
+  const model::MachinePlant machine_;
+  // What a nonlinear run integrates: machine_ without the structures of axes the command
+  // never moves (IdleAxesRigid).
+  model::MachinePlant integrated_;
+  std::unique_ptr<model::PlantIntegrator> integrator_;
+  // The free vibration of the plant's state (residual_ratio, cruise_residual_ratio), read at
+  // motion end and at the cruise probes (RunWindow::cruise_probe_ticks), never per tick.
+  std::unique_ptr<ResidualVibration> residual_vibration_;
+  std::unique_ptr<DampedTail> damped_tail_;  // a linear plant on the exact path, no trace
+  std::size_t next_probe_ = 0;  // index into cruise_probe_ticks
+  std::size_t next_probe_tick_ = std::numeric_limits<std::size_t>::max();
+  int rows_ = 0;
+  std::vector<double> outputs_;  // one period's substeps (AdvancePeriod), rows as in MachinePlant
+  std::vector<ArcWindow> arcs_;
+  SingleAxis single_;
+  SingleAxisSampling single_sampling_{};
+  double period_start_m_ = 0.0;    // the deflection at the current period's start (deferred)
+  std::vector<int> watched_rows_;  // other axes' rows the single-axis samples must see at 0
+  int width_ = 0;                  // outputs per substep in outputs_
+  int deflection_at_ = 0;
+  int tool_error_at_ = 0;
+  bool holds_ = false;           // the integrator integrates across held inputs (SameInput)
+  bool exact_extrema_ = false;   // the integrator finds the view's extrema inside a period
+  std::size_t next_change_ = 0;  // the first tick after k whose acceleration differs from a_k
+  // A plant with nonlinear elements (docs/nonlinear.md): its free response after motion
+  // end, sample by sample (the residual and the dead band), and its quadrant glitches.
+  bool nonlinear_ = false;
+  FreeResponse free_;
+  std::vector<ReversalWindows> glitches_;
+  Eigen::Vector3d peak_axes_ = Eigen::Vector3d::Zero();
+  double overshoot_ = 0.0;
+  double travelled_m_ = 0.0;  // the command's distance along its own path (magnitude view)
+  std::string unchecked_;     // why CVODE's accuracy is unknown (its check pulse failed)
+};
+
+}  // namespace shapebench::bench

@@ -1,0 +1,59 @@
+#include "bench/run/run_scenario.h"
+
+#include <algorithm>
+#include <memory>
+#include <utility>
+
+#include "bench/run/closed_form_sampler.h"
+#include "bench/run/finish_metrics.h"
+#include "bench/scenario/run_memory.h"
+#include "bench/run/run_plan.h"
+#include "bench/run/sampler.h"
+#include "controller/path_geometry.h"
+
+namespace shapebench::bench {
+
+controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program) {
+  controller::ControllerConfig controller = scenario.controller;
+  controller.stroke_limits = scenario.machine.stroke_m;  // the CNC's stroke check
+  // The memory budget again, on the planned length, before the per-tick command exists.
+  controller::CommandLimits limits;
+  limits.max_ticks = static_cast<std::size_t>(std::min(MemoryTickLimit(scenario.limits), 1e18));
+  limits.key = "limits.max_memory_mb";
+  return controller::GenerateProgramCommand(controller, program, limits);
+}
+
+RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
+  RunResult result;
+  // The command: generated here, or shared by a sweep's points.
+  result.program = scenario.RunProgram();
+  if (options.command == nullptr) result.command = GenerateScenarioCommand(scenario, result.program);
+  const controller::MultiAxisCommand& command = options.command != nullptr ? *options.command : result.command;
+  const controller::PathGeometry path(result.program);
+  // The prepared run: samples, view, modes, window, substeps (constant from here on).
+  const CommandSamples* shared = options.command != nullptr ? options.samples : nullptr;
+  const RunPlan plan(scenario, command, path, shared, options.record_trace);
+  // The sampler, its ticks, the metrics.
+  if (!options.record_trace || options.fastest_sampler != SamplerKind::kClosedForm ||
+      plan.single_mode.mode == nullptr) {
+    const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
+    result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
+    result.metrics = FinishMetrics(plan, tally);
+    return result;
+  }
+  // A trace of a closed-form run: the general sampler records it, the metrics stay the
+  // closed form's (one answer whatever a run records: run, run --json, a sweep's point,
+  // the Python API).
+  RunResult closed;
+  const Metrics metrics = FinishMetrics(plan, MakeClosedFormSampler(plan, &closed)->Run());
+  const MetricTally traced = MakeSampler(plan, SamplerKind::kGeneral, &result)->Run();
+  FinishMetrics(plan, traced);  // refuses an overflow as an untraced run would
+  result.simulated_s = static_cast<double>(traced.last_tick) * plan.dt_s;
+  result.metrics = metrics;
+  result.residual_modes = std::move(closed.residual_modes);
+  result.sampler = SamplerKind::kClosedForm;
+  result.single_mode = true;
+  return result;
+}
+
+}  // namespace shapebench::bench
