@@ -21,7 +21,7 @@
 #include "bench/run/run_plan.h"
 #include "bench/run/run_result.h"
 #include "bench/run/sampler.h"
-#include "bench/run/single_axis_sampler.h"
+#include "bench/run/single_axis.h"
 #include "model/integrator.h"
 #include "model/multi_axis_machine.h"
 

@@ -8,10 +8,25 @@
 #include "bench/run/finish_metrics.h"
 #include "bench/scenario/run_memory.h"
 #include "bench/run/run_plan.h"
+#include "bench/run/plant_sampler.h"
 #include "bench/run/sampler.h"
 #include "controller/path_geometry.h"
 
 namespace shapebench::bench {
+namespace {
+
+// The fastest sampler for the plan at or below `fastest` (in the order general < single
+// axis < deferred substeps < closed form) that qualifies; a trace only the general sampler
+// records. *result receives what the sampler reports beside the tally (which sampler,
+// residual modes, stats, substeps, warnings, the trace).
+std::unique_ptr<Sampler> MakeSampler(const RunPlan& plan, SamplerKind fastest, RunResult* result) {
+  if (fastest == SamplerKind::kClosedForm && plan.single_mode.mode != nullptr) {
+    return MakeClosedFormSampler(plan, result);
+  }
+  return std::make_unique<PlantSampler>(plan, fastest, result);
+}
+
+}  // namespace
 
 controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program) {
   controller::ControllerConfig controller = scenario.controller;

@@ -1,19 +1,15 @@
 // A sampler: the strategy that steps the plant (or its closed form) through the run's
 // ticks and turns its outputs into the metric tally. The master (run_scenario.cc) builds the
-// RunPlan, chooses a sampler (MakeSampler), runs it, and finishes the metrics from the
+// RunPlan, chooses a sampler, runs it, and finishes the metrics from the
 // tally; every sampler runs the same tick loop (RunTicks), with its own Tick inlined.
 #pragma once
 
 #include <cstddef>
-#include <memory>
 
 #include "bench/run/metric_tally.h"
-#include "bench/run/run_plan.h"
 #include "bench/run/run_window.h"
 
 namespace shapebench::bench {
-
-struct RunResult;
 
 class Sampler {
  public:
@@ -36,11 +32,5 @@ void RunTicks(S& sampler, const RunWindow& window, MetricTally* tally) {
     if (sampler.SettleTail(k)) break;
   }
 }
-
-// The fastest sampler for the plan at or below `fastest` (in the order general < single
-// axis < deferred substeps < closed form) that qualifies; a trace only the general sampler
-// records. *result receives what the sampler reports beside the tally (which sampler,
-// residual modes, stats, substeps, warnings, the trace).
-std::unique_ptr<Sampler> MakeSampler(const RunPlan& plan, SamplerKind fastest, RunResult* result);
 
 }  // namespace shapebench::bench

@@ -1,10 +1,11 @@
-#include "bench/run/single_axis_sampler.h"
-
+// The single-axis sampler (plant_sampler.h): one axis' scalars while every other output of
+// the period stays exactly 0; the general samples' arithmetic, component by component.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "bench/run/plant_sampler.h"
+#include "bench/run/single_axis.h"
 
 namespace shapebench::bench {
 namespace {
@@ -35,23 +36,6 @@ template <RunPhase P>
 }
 
 }  // namespace
-
-SingleAxis FindSingleAxis(const CommandSamples& samples, const OutputView& view,
-                          const ContourGauge& gauge, bool has_stroke) {
-  SingleAxis none;
-  const controller::PathElement* e = gauge.single();
-  if (e == nullptr || view.magnitude || has_stroke) return none;
-  const int axis = view.axis;
-  if (axis < 0 || std::abs(e->direction(axis)) != 1.0) return none;
-  for (int a = 0; a < controller::kNumAxes; ++a) {
-    if (a == axis) continue;
-    if (e->direction(a) != 0.0 || samples.axis_moves[a]) return none;
-    // Its velocities all (+ or -) 0, the axis' positions are its start plus sums of
-    // zeros: each equals (==) the first.
-    if (samples.positions.front()(a) != e->start_m(a)) return none;
-  }
-  return {axis, e->start_m(axis), e->direction(axis), e->length_m};
-}
 
 // The single axis and the rows its samples read; every other row must stay exactly 0.
 void PlantSampler::SetUpSingleAxis() {

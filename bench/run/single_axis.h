@@ -1,5 +1,5 @@
-// The single-axis sampler's pieces (single_axis_sampler.cc): a run whose command moves one
-// axis only, along one straight element of that axis, with the view on that axis.
+// What the single-axis sampler (single_axis_sampler.cc) needs of a run whose command moves
+// one axis only, along one straight element of that axis, with the view on that axis.
 #pragma once
 
 #include "bench/run/command_samples.h"
