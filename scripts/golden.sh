@@ -34,7 +34,10 @@ answer() {  # NAME COMMAND...: stdout into NAME, then "exit N"
   "$@" > "$out/$name" 2> /dev/null || code=$?
   echo "exit $code" >> "$out/$name"
 }
-answer identify_column_y.json "$bin" identify configs/measurements/column_y_accelerance.uff --json
+# identify writes its files (default identify_out/STEM) outside the source tree.
+tmp=$(mktemp -d)
+answer identify_column_y.json "$bin" identify configs/measurements/column_y_accelerance.uff --json --out "$tmp/identify"
+rm -rf "$tmp"
 answer recommend_accel_x.json "$bin" recommend configs/measurements/accel_x.csv --json
 answer compare_demo_unshaped.json "$bin" compare configs/demo.yaml \
   --baseline-set controller.pattern.method=none --json
