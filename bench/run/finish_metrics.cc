@@ -110,6 +110,7 @@ Metrics FinishMetrics(const RunPlan& plan, const MetricTally& t) {
   m.short_block_clamps = plan.command.short_block_clamps;
   m.stroke_overshoot_m = t.overshoot_m;
   m.stroke_alarm = plan.command.stroke_alarm ? 1.0 : 0.0;
+  m.peak_command_acceleration_m_s2 = plan.samples.max_accel_m_s2;
   SetPatternMetrics(plan.scenario.controller.pattern, &m);
   RefuseInfiniteMetrics(m);
   return m;

@@ -76,6 +76,10 @@ const std::vector<MetricInfo>& MetricTable() {
       {"stroke_alarm", "bool", Better::kLower,
        "true when the stroke check stopped the tool before the program's end",
        &M::stroke_alarm},
+      {"peak_command_acceleration_m_s2", "m/s^2", Better::kLower,
+       "the largest norm of the commanded acceleration vector over the run (the acceleration "
+       "held over an interpolation period, the axes' components together)",
+       &M::peak_command_acceleration_m_s2},
       {"pattern_frequency_hz", "Hz", Better::kLower,
        "the natural frequency the pattern was designed for (the lowest of several; given, or the "
        "machine's lowest participating mode); n/a for a pattern without one (none, custom, mode off)",

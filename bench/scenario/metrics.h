@@ -34,6 +34,7 @@ struct Metrics {
   double short_block_clamps = NAN;
   double stroke_overshoot_m = NAN;
   double stroke_alarm = NAN;  // 1 or 0; written as a bool
+  double peak_command_acceleration_m_s2 = NAN;
   double pattern_frequency_hz = NAN;
   double pattern_damping_ratio = NAN;
   // Of plants with nonlinear elements only (NonlinearMetricTable()).
@@ -50,15 +51,17 @@ enum class Better { kLower, kHigher };
 // One row of the metric table.
 struct MetricInfo {
   std::string_view name;
-  // "m", "s", "Hz", "1" (a ratio), "count" or "bool" (a 0/1 value written as false/true).
+  // "m", "s", "Hz", "m/s^2", "1" (a ratio), "count" or "bool" (a 0/1 value written as
+  // false/true).
   std::string_view unit;
   Better better;
   std::string_view description;
   double Metrics::*field;
 
   bool is_bool() const { return unit == "bool"; }
-  // The unit a table prints after the number: "m", "s" or "Hz", else nothing.
-  std::string_view shown_unit() const { return unit == "m" || unit == "s" || unit == "Hz" ? unit : ""; }
+  // The unit a table prints after the number: a physical unit, nothing for a ratio, a count
+  // or a bool.
+  std::string_view shown_unit() const { return unit == "1" || unit == "count" || is_bool() ? "" : unit; }
 };
 
 // Every metric, in the order JSON, tables and results.csv list them (their number is the

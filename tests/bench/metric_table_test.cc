@@ -35,7 +35,7 @@ TEST(MetricTable, RowsAreComplete) {
     for (auto field : fields) EXPECT_NE(field, info.field) << info.name;
     fields.push_back(info.field);
     EXPECT_FALSE(info.description.empty()) << info.name;
-    const std::set<std::string_view> units = {"m", "s", "Hz", "1", "count", "bool"};
+    const std::set<std::string_view> units = {"m", "s", "Hz", "m/s^2", "1", "count", "bool"};
     EXPECT_EQ(units.count(info.unit), 1u) << info.name;
     const std::string name(info.name);
     if (name.size() > 2 && name.substr(name.size() - 2) == "_m") {
