@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
+
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 Eigen::Vector3d FromAxes(const AxisVector& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
 

@@ -8,12 +8,11 @@
 #include <type_traits>
 #include <variant>
 
+#include "common/math_constants.h"
 #include "model/lumped_matrices.h"
 
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // A coupled form spans three axes: BuildMachinePlant and AnalyzeMachineModes build it
 // (model/coupled_modes.h); the one-axis view would drop its cross terms.

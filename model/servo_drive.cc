@@ -8,14 +8,13 @@
 #include <variant>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/lumped_matrices.h"
 #include "model/nonlinear_plant.h"
 
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // What the servo needs of the structure besides its kinematic plant.
 struct StructureCoupling {

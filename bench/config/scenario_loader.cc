@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/shown_text.h"
 #include "bench/config/config_document.h"
 #include "bench/config/controller_reader.h"
@@ -273,7 +274,7 @@ bool FiniteModalForms(const Scenario& scenario) {
     const auto* modal = std::get_if<model::ModalMachineConfig>(&axis->form);
     if (modal == nullptr || modal->coupled()) return false;
     for (const model::ModalMode& mode : modal->modes) {
-      const double w = 2.0 * 3.14159265358979323846 * mode.frequency_hz;
+      const double w = 2.0 * kPi * mode.frequency_hz;
       if (!std::isfinite(w * w) || !std::isfinite(2.0 * mode.damping_ratio * w) ||
           !std::isfinite(mode.gain / (w * w))) {
         return false;

@@ -15,6 +15,7 @@
 #include "bench/config/config_document.h"
 #include "bench/config/config_error.h"
 #include "bench/config/uff58_units.h"
+#include "common/math_constants.h"
 
 namespace shapebench::bench {
 namespace {
@@ -412,7 +413,7 @@ void Parser::ReadDataset58(const std::string& identifier, Uff58Record* record) {
   }
   StoreValues(form, numbers, units->scale, record);
   if (NormalizedUnits(characteristics[0].units_label) == "rad/s") {
-    for (double& f : record->frequency_hz) f /= 2.0 * M_PI;
+    for (double& f : record->frequency_hz) f /= 2.0 * kPi;
   }
 }
 

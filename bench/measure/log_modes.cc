@@ -7,13 +7,12 @@
 #include "bench/config/config_error.h"
 #include "bench/config/scenario_loader.h"
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Walks from peak `i` in `direction` until the PSD falls below half the peak: the
 // crossing's frequency (interpolated), or NaN at the band's edge; *higher when a bin

@@ -26,7 +26,8 @@ double RoundGain(double value) {
 void WritePathPlot(const std::string& path_png, const RunResult& result, const Scenario& scenario,
                    const std::string& plot_title) {
   const controller::PathGeometry path(result.program);
-  // The programmed path, finely sampled (arcs every degree or better).
+  // The programmed path, finely sampled (arcs every degree or better). The short pi is
+  // kept, not kPi: kPi could round a piece count, hence the plotted points, differently.
   std::vector<Eigen::Vector3d> programmed{path.start_m()};
   Eigen::Vector3d lo = path.start_m(), hi = path.start_m();
   for (const controller::PathElement& e : path.elements()) {
