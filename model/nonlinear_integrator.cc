@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <variant>
 
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -28,7 +29,8 @@ constexpr long kMaxEventsPerSubstep = 10000;
 bool SplitPays(const NonlinearPlant& plant) {
   if (plant.elements.empty()) return false;  // nothing to split off
   for (const NonlinearElement& e : plant.elements) {
-    if (e.kind != NonlinearKind::kFriction || e.friction.model != FrictionModel::kLuGre) return false;
+    const auto* friction = std::get_if<FrictionElement>(&e.law);
+    if (friction == nullptr || !friction->HasBristle()) return false;
   }
   return true;
 }

@@ -218,9 +218,8 @@ NonlinearPlant BuildServoAxis(const MachineConfig* structure, const ServoConfig&
   }
   if (servo.friction.present()) {
     NonlinearElement friction;
-    friction.kind = NonlinearKind::kFriction;
+    friction.law = FrictionElement{servo.friction};
     friction.name = "drive.friction";
-    friction.friction = servo.friction;
     friction.row_x = c.sd_x.transpose();
     friction.row_v = Eigen::VectorXd::Constant(1, c.sd_v);
     friction.column_x = -c.motor_column;
@@ -228,9 +227,8 @@ NonlinearPlant BuildServoAxis(const MachineConfig* structure, const ServoConfig&
   }
   if (servo.force_limit_n > 0.0) {
     NonlinearElement limit;
-    limit.kind = NonlinearKind::kSaturation;
+    limit.law = SaturationElement{servo.force_limit_n};
     limit.name = "drive.force_limit_n";
-    limit.limit_n = servo.force_limit_n;
     limit.row_x = c.force_x.transpose();
     limit.row_v = Eigen::VectorXd::Constant(1, c.force_v);
     limit.column_x = c.motor_column;
