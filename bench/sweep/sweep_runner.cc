@@ -24,6 +24,7 @@
 #include "common/interrupt.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
+#include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep_plot.h"
 
 namespace shapebench::bench {
@@ -227,7 +228,8 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets,
   try {
     rows.OpenIfReady();
     // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
-    RunDistributed<Row>(
+    const PointCodec<Row> codec{EncodeRow, DecodeRow};
+    ForEachSweepPoint<Row>(
         summary->resumed, shard.Size(), options.jobs,
         [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
         [&](std::uint64_t, Row&& row) {
@@ -235,7 +237,7 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets,
           if (!row.ok) ++summary->errors;
           progress.Update(++written);
         },
-        EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
+        [] { return PendingInterrupt() != 0; }, &codec);
     progress.Finish(written);
     rows.Close();
   } catch (...) {
