@@ -658,7 +658,7 @@ int ExportCase4(const std::string& path) {
   out << "  \"elements\": [";
   for (std::size_t i = 0; i < plant.nonlinear.size(); ++i) {
     const model::NonlinearElement& e = plant.nonlinear[i];
-    const model::FrictionConfig& f = e.friction;
+    const model::FrictionConfig& f = std::get<model::FrictionElement>(e.law).friction;
     out << (i > 0 ? ", " : "") << "{\"coulomb_n\": " << f.coulomb_n << ", \"static_n\": " << f.StaticN()
         << ", \"stribeck_velocity_m_s\": " << f.stribeck_velocity_m_s << ", \"viscous_n_s_m\": " << f.viscous_n_s_m
         << ", \"sigma0_n_m\": " << f.sigma0_n_m << ", \"sigma1_n_s_m\": " << f.sigma1_n_s_m << ", \"row_x\": [";

@@ -142,11 +142,10 @@ void RaiseStrokeAlarm(SpeedPlan& plan, double crossing_s, const PlannerSettings&
   }
 }
 
-}  // namespace
-
-SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
-                        const PlannerSettings& settings) {
-  SpeedPlan plan;
+// Each block's feed: programmed (or the default, or rapid), clamped by the arc radius and
+// for short blocks.
+void PlanBlockFeeds(const Program& program, const PathGeometry& path,
+                    const PlannerSettings& settings, SpeedPlan* plan) {
   for (std::size_t i = 0; i < program.blocks.size(); ++i) {
     const ProgramBlock& block = program.blocks[i];
     double feed = block.kind == MotionKind::kRapid ? settings.rapid_feed_m_s
@@ -166,67 +165,93 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
       feed = short_block.feed_m_s;
       clamped = short_block.clamped;
     }
-    plan.block_feed_m_s.push_back(feed);
-    plan.block_clamped.push_back(clamped);
-    plan.short_block_clamps += clamped ? 1 : 0;
+    plan->block_feed_m_s.push_back(feed);
+    plan->block_clamped.push_back(clamped);
+    plan->short_block_clamps += clamped ? 1 : 0;
+  }
+}
+
+// The stroke end: with the function on, the path from the crossing on runs at the minute
+// feed, reached by the crossing (a junction there), so the planner slows down ahead of it.
+// The pre-read window: a crossing more than look_ahead_blocks blocks ahead of where the
+// slowdown must begin is seen only from block (crossing - window) on. The speed limit at
+// the crossing.
+double CrossingSpeedLimit(const PathGeometry& path, const PlannerSettings& settings,
+                          const SpeedPlan& plan, double crossing_s) {
+  const double minute = settings.stroke_end.minute_feed_mm_min / 60000.0;
+  const std::size_t crossing_element = path.ElementAt(crossing_s);
+  const std::size_t first_seen =
+      crossing_element > static_cast<std::size_t>(settings.stroke_end.look_ahead_blocks)
+          ? crossing_element - settings.stroke_end.look_ahead_blocks
+          : 0;
+  const double window_m = crossing_s - path.elements()[first_seen].start_s_m;
+  const double feed = plan.block_feed_m_s[path.elements()[crossing_element].block];
+  if (feed > minute && PhaseDistance(feed, minute, settings) > window_m) {
+    // The speed at the crossing when the slowdown from the feed starts at the window:
+    // D(feed, w) = window (D falls as w rises).
+    return LargestWithin(minute, feed, -window_m,
+                         [&](double w) { return -PhaseDistance(feed, w, settings); });
+  }
+  return minute;
+}
+
+// The stretches of one motion (rest to rest) as they come; each finished motion's speeds
+// are appended to the plan, with a stop at its end.
+class MotionAppender {
+ public:
+  MotionAppender(const PlannerSettings& settings, SpeedPlan* plan) : settings_(settings), plan_(plan) {}
+
+  // Appends a stretch of `length` at `feed` whose start is limited to `limit`.
+  void Add(double length, double feed, double limit) {
+    if (segments_.empty()) {
+      segments_.push_back({length, feed});
+      junction_.assign(1, 0.0);
+    } else if (limit >= feed && segments_.back().feed_m_s == feed) {
+      segments_.back().length_m += length;  // no limit: one stretch
+    } else {
+      junction_.push_back(std::min({limit, segments_.back().feed_m_s, feed}));
+      segments_.push_back({length, feed});
+    }
   }
 
-  // The stroke end: with the function on, the path from the crossing on runs at the
-  // minute feed, reached by the crossing (a junction there), so the planner slows down
-  // ahead of it. The pre-read window: a crossing more than look_ahead_blocks blocks ahead
-  // of where the slowdown must begin is seen only from block (crossing - window) on.
+  void Finish() {
+    if (segments_.empty()) return;
+    junction_.push_back(0.0);
+    const CommandTrajectory motion = RealizeMotion(segments_, junction_, settings_);
+    plan_->speed_m_s.insert(plan_->speed_m_s.end(), motion.velocity_m_s.begin() + 1,
+                            motion.velocity_m_s.end());
+    for (const Segment& segment : segments_) travelled_m_ += segment.length_m;
+    plan_->stops.emplace_back(plan_->speed_m_s.size() - 1, travelled_m_);
+    segments_.clear();
+    junction_.clear();
+  }
+
+ private:
+  const PlannerSettings& settings_;
+  SpeedPlan* plan_;
+  std::vector<Segment> segments_;
+  std::vector<double> junction_;  // junction_[i]: the speed limit where segment i starts
+  double travelled_m_ = 0.0;
+};
+
+}  // namespace
+
+SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
+                        const PlannerSettings& settings) {
+  SpeedPlan plan;
+  PlanBlockFeeds(program, path, settings, &plan);
   plan.stroke_crossing_s_m = FindStrokeCrossing(path, settings.stroke_limits);
   const bool slow_down = plan.stroke_crossing_s_m && settings.stroke_end.enabled;
   const double crossing_s = plan.stroke_crossing_s_m.value_or(0.0);
-  const double minute = settings.stroke_end.minute_feed_mm_min / 60000.0;
-  double crossing_limit = minute;
-  if (slow_down) {
-    const std::size_t crossing_element = path.ElementAt(crossing_s);
-    const std::size_t first_seen =
-        crossing_element > static_cast<std::size_t>(settings.stroke_end.look_ahead_blocks)
-            ? crossing_element - settings.stroke_end.look_ahead_blocks
-            : 0;
-    const double window_m = crossing_s - path.elements()[first_seen].start_s_m;
-    const double feed = plan.block_feed_m_s[path.elements()[crossing_element].block];
-    if (feed > minute && PhaseDistance(feed, minute, settings) > window_m) {
-      // The speed at the crossing when the slowdown from the feed starts at the window:
-      // D(feed, w) = window (D falls as w rises).
-      crossing_limit = LargestWithin(minute, feed, -window_m,
-                                     [&](double w) { return -PhaseDistance(feed, w, settings); });
-    }
-  }
+  const double crossing_limit = slow_down ? CrossingSpeedLimit(path, settings, plan, crossing_s)
+                                          : settings.stroke_end.minute_feed_mm_min / 60000.0;
 
   plan.speed_m_s.push_back(0.0);
-  std::vector<Segment> segments;
-  std::vector<double> junction;  // junction[i]: the speed limit where segment i starts
-  double travelled_m = 0.0;
-  auto finish_motion = [&]() {
-    if (segments.empty()) return;
-    junction.push_back(0.0);
-    const CommandTrajectory motion = RealizeMotion(segments, junction, settings);
-    plan.speed_m_s.insert(plan.speed_m_s.end(), motion.velocity_m_s.begin() + 1,
-                          motion.velocity_m_s.end());
-    for (const Segment& segment : segments) travelled_m += segment.length_m;
-    plan.stops.emplace_back(plan.speed_m_s.size() - 1, travelled_m);
-    segments.clear();
-    junction.clear();
-  };
-  // Appends a stretch of `length` at `feed` whose start is limited to `limit`.
-  auto add = [&](double length, double feed, double limit) {
-    if (segments.empty()) {
-      segments.push_back({length, feed});
-      junction.assign(1, 0.0);
-    } else if (limit >= feed && segments.back().feed_m_s == feed) {
-      segments.back().length_m += length;  // no limit: one stretch
-    } else {
-      junction.push_back(std::min({limit, segments.back().feed_m_s, feed}));
-      segments.push_back({length, feed});
-    }
-  };
+  MotionAppender motion(settings, &plan);
   const PathElement* previous = nullptr;
   for (const PathElement& element : path.elements()) {
     if (element.kind == MotionKind::kDwell) {
-      finish_motion();
+      motion.Finish();
       // A dwell of any length holds at least until the next tick.
       const auto ticks = static_cast<std::size_t>(std::ceil(element.dwell_s / settings.period_s - 1e-9));
       plan.speed_m_s.insert(plan.speed_m_s.end(), ticks, 0.0);
@@ -240,17 +265,17 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
     if (previous != nullptr) {
       limit = CornerSpeedLimit(previous->TangentAtFraction(1.0), element.TangentAtFraction(0.0),
                                settings.corner_velocity_change_m_s);
-      if (limit <= 0.0) finish_motion();  // an exact stop at the corner
+      if (limit <= 0.0) motion.Finish();  // an exact stop at the corner
     }
     if (slow_down && element.start_s_m < crossing_s && crossing_s < element.end_s_m()) {
-      add(crossing_s - element.start_s_m, feed, limit);
-      add(element.end_s_m() - crossing_s, std::min(feed, crossing_limit), crossing_limit);
+      motion.Add(crossing_s - element.start_s_m, feed, limit);
+      motion.Add(element.end_s_m() - crossing_s, std::min(feed, crossing_limit), crossing_limit);
     } else {
-      add(element.length_m, feed, limit);
+      motion.Add(element.length_m, feed, limit);
     }
     previous = &element;
   }
-  finish_motion();
+  motion.Finish();
   if (plan.speed_m_s.size() < 2) plan.speed_m_s.push_back(0.0);
   if (plan.stroke_crossing_s_m) RaiseStrokeAlarm(plan, crossing_s, settings);
   return plan;

@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include "common/math_constants.h"
+
 namespace shapebench::controller {
 namespace {
 
@@ -61,7 +63,7 @@ bool IsDesigned(const GridDesign& design) {
   return designed;
 }
 
-double RadPerS(double frequency_hz) { return 2.0 * 3.14159265358979323846 * frequency_hz; }
+double RadPerS(double frequency_hz) { return 2.0 * kPi * frequency_hz; }
 
 // The ticks the split group covers: first_tick .. first_tick + periods.
 struct Span {

@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
+
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Impulses of a convolution closer than this are one impulse.
 constexpr double kSameTimeS = 1e-12;
 

@@ -3,6 +3,50 @@
 #include <algorithm>
 
 namespace shapebench::controller {
+namespace {
+
+// PathGeometry::PointAt(s, &hint), in its two parts: the element (the hint walked on),
+// then the point on it. Within one line the pulse needs no point (it is ds times the
+// direction), so the point is computed only where it is used, from the element the
+// tick found: the same numbers, once per element change instead of once per tick.
+Eigen::Vector3d PointOn(const PathGeometry& path, std::size_t element, double s_m) {
+  const std::vector<PathElement>& elements = path.elements();
+  if (elements.empty()) return path.start_m();
+  const PathElement& e = elements[element];
+  if (e.length_m == 0.0) return e.end_m;
+  return e.PointAtFraction((s_m - e.start_s_m) / e.length_m);
+}
+
+int BlockAt(const std::vector<PathElement>& elements, std::size_t element) {
+  return elements.empty() ? -1 : elements[element].block;
+}
+
+// The common run of ticks inside one line of positive length, ticks k..last at most: the
+// general tick of Interpolate with its answers known (the hint stays, the pulse is ds
+// times the direction, no stop), in a loop with no calls, so the position stays in a
+// register. The first tick it left to the general one.
+std::size_t AlongLine(const PathElement& line, const double* speed, double period_s, std::size_t k,
+                      std::size_t last, double* s_m, InterpolatedPulses* out) {
+  double s = *s_m;
+  const double start_s = line.start_s_m;
+  const double end_s = line.end_s_m();
+  const Eigen::Vector3d direction = line.direction;
+  const int block = line.block;
+  for (; k <= last; ++k) {
+    const double ds = speed[k] * period_s;
+    const double s_next = s + ds;
+    if (!(s_next >= start_s && s_next <= end_s)) break;
+    out->axis_pulses_m[k - 1] = ds * direction;
+    out->tangential_pulses_m[k - 1] = ds;
+    out->path_position_m[k] = s_next;
+    out->block[k] = block;
+    s = s_next;
+  }
+  *s_m = s;
+  return k;
+}
+
+}  // namespace
 
 InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, double period_s) {
   InterpolatedPulses out;
@@ -12,53 +56,23 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
   out.tangential_pulses_m.resize(n);
   out.path_position_m.resize(n + 1);
   out.block.resize(n + 1);
-  std::size_t hint = 0;
   std::size_t next_stop = 0;
   double s = 0.0;
   const std::vector<PathElement>& elements = path.elements();
-  // PathGeometry::PointAt(s, &hint), in its two parts: the element (the hint walked on),
-  // then the point on it. Within one line the pulse needs no point (it is ds times the
-  // direction), so the point is computed only where it is used, from the element the
-  // tick found: the same numbers, once per element change instead of once per tick.
-  auto point_on = [&](std::size_t element, double s_m) -> Eigen::Vector3d {
-    if (elements.empty()) return path.start_m();
-    const PathElement& e = elements[element];
-    if (e.length_m == 0.0) return e.end_m;
-    return e.PointAtFraction((s_m - e.start_s_m) / e.length_m);
-  };
-  auto block_at = [&](std::size_t element) {
-    return elements.empty() ? -1 : elements[element].block;
-  };
-  hint = elements.empty() ? 0 : path.ElementAt(0.0, hint);
+  std::size_t hint = elements.empty() ? 0 : path.ElementAt(0.0, 0);
   std::size_t point_element = hint;  // where `s` was found (the previous tick's point)
   out.path_position_m[0] = 0.0;
-  out.block[0] = block_at(hint);
+  out.block[0] = BlockAt(elements, hint);
   const PathElement none;
   const double* speed = plan.speed_m_s.data();
   for (std::size_t k = 1; k <= n; ++k) {
-    // The common run of ticks inside one line of positive length, up to the next motion
-    // end: the general tick below with its answers known (the hint stays, the pulse is ds
-    // times the direction, no stop), in a loop with no calls, so `s` stays in a register.
     if (!elements.empty() && hint == point_element) {
       const PathElement& line = elements[hint];
       if (!line.is_arc() && line.length_m > 0.0) {
+        // Up to the next motion end.
         while (next_stop < plan.stops.size() && plan.stops[next_stop].first < k) ++next_stop;
         const std::size_t stop_k = next_stop < plan.stops.size() ? plan.stops[next_stop].first : n + 1;
-        const std::size_t last = std::min(n, stop_k - 1);
-        const double start_s = line.start_s_m;
-        const double end_s = line.end_s_m();
-        const Eigen::Vector3d direction = line.direction;
-        const int block = line.block;
-        for (; k <= last; ++k) {
-          const double ds = speed[k] * period_s;
-          const double s_next = s + ds;
-          if (!(s_next >= start_s && s_next <= end_s)) break;
-          out.axis_pulses_m[k - 1] = ds * direction;
-          out.tangential_pulses_m[k - 1] = ds;
-          out.path_position_m[k] = s_next;
-          out.block[k] = block;
-          s = s_next;
-        }
+        k = AlongLine(line, speed, period_s, k, std::min(n, stop_k - 1), &s, &out);
         if (k > n) break;
       }
     }
@@ -85,11 +99,11 @@ InterpolatedPulses Interpolate(const PathGeometry& path, const SpeedPlan& plan, 
     if (hint == element_before && !e.is_arc() && e.length_m > 0.0) {
       pulse = ds * e.direction;  // within one line: exact, no differencing
     } else {
-      pulse = point_on(hint, s_next) - point_on(point_element, s);
+      pulse = PointOn(path, hint, s_next) - PointOn(path, point_element, s);
     }
     out.tangential_pulses_m[k - 1] = ds;
     out.path_position_m[k] = s_next;
-    out.block[k] = block_at(hint);
+    out.block[k] = BlockAt(elements, hint);
     s = s_next;
     point_element = hint;
   }

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "common/math_constants.h"
+
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2.0 * kPi;
 // End points closer than this in the arc plane make a full circle (the builder's own
 // tolerance is far coarser: 1e-6 mm would already be a different program).
 constexpr double kFullCircleM = 1e-9;

@@ -34,7 +34,8 @@ std::optional<double> FindStrokeCrossing(const PathGeometry& path, const StrokeL
     if (e.length_m == 0.0) continue;
     // Lines are straight: their end decides. Arcs are walked along the curve in steps
     // of at most 1 degree (a chord then cannot jump over a crossing by more than the
-    // sagitta r (1 - cos 0.5 deg) = 4e-5 r), then the crossing is bisected.
+    // sagitta r (1 - cos 0.5 deg) = 4e-5 r), then the crossing is bisected. The short pi
+    // is kept, not kPi: with kPi a full circle takes 360 steps instead of 361.
     const int steps = e.is_arc() ? std::max(4, static_cast<int>(std::ceil(std::abs(e.sweep_rad) / (3.14159265358979 / 180.0))))
                                  : 1;
     double u_prev = 0.0;

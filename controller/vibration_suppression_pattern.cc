@@ -5,12 +5,11 @@
 #include <string>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 
 namespace shapebench::controller {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string Num(double v) { return FormatNumber(v); }
 

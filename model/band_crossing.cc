@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
+
 namespace shapebench::model {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The terms' sizes, once (std::abs of a complex is a hypot).
 struct Sizes {

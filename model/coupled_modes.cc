@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
+
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 Eigen::Vector3d FromAxes(const AxisVector& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
 
@@ -39,16 +39,34 @@ Eigen::Matrix3d ModalCompliance(const ModalMachineConfig& config, int own_axis) 
   return compliance;
 }
 
-LinearPlant BuildCoupledModalPlant(const ModalMachineConfig& config, int own_axis) {
-  config.validate();
+LinearPlant ModalOscillatorPlant(const ModalMachineConfig& config, int num_inputs, int num_outputs) {
   const int num_modes = static_cast<int>(config.modes.size());
   const int n = 2 * num_modes;
   LinearPlant plant;
   plant.A = Eigen::MatrixXd::Zero(n, n);
-  plant.B_accel = Eigen::MatrixXd::Zero(n, 3);
-  plant.B_vel = Eigen::MatrixXd::Zero(n, 3);
-  plant.C = Eigen::MatrixXd::Zero(3, n);
+  plant.B_accel = Eigen::MatrixXd::Zero(n, num_inputs);
+  plant.B_vel = Eigen::MatrixXd::Zero(n, num_inputs);
+  plant.C = Eigen::MatrixXd::Zero(num_outputs, n);
   for (int i = 0; i < num_modes; ++i) {
+    const ModalMode& mode = config.modes[i];
+    const double w = kTwoPi * mode.frequency_hz;
+    const int q = 2 * i;  // states [q_i, q_i']
+    plant.A(q, q + 1) = 1.0;
+    plant.A(q + 1, q) = -w * w;
+    plant.A(q + 1, q + 1) = -2.0 * mode.damping_ratio * w;
+    plant.state_kinds.push_back(StateKind::kPosition);
+    plant.state_kinds.push_back(StateKind::kVelocity);
+    plant.max_frequency_rad_s = std::max(plant.max_frequency_rad_s, w);
+  }
+  return plant;
+}
+
+// Not the gain form's B and C with participation e_axis, shape gain e_axis: those would
+// be the same but for the sign of a zero gain (Entry writes +0, the gain form keeps -0.0).
+LinearPlant BuildCoupledModalPlant(const ModalMachineConfig& config, int own_axis) {
+  config.validate();
+  LinearPlant plant = ModalOscillatorPlant(config, 3, 3);
+  for (std::size_t i = 0; i < config.modes.size(); ++i) {
     const ModalMode& mode = config.modes[i];
     Eigen::Vector3d participation = ModeParticipation(mode, own_axis);
     Eigen::Vector3d shape = ModeShape(mode, own_axis);
@@ -60,18 +78,11 @@ LinearPlant BuildCoupledModalPlant(const ModalMachineConfig& config, int own_axi
       participation /= scale;
       shape *= scale;
     }
-    const double w = kTwoPi * mode.frequency_hz;
-    const int q = 2 * i;  // states [q_i, q_i'], as BuildPlant's modal form
-    plant.A(q, q + 1) = 1.0;
-    plant.A(q + 1, q) = -w * w;
-    plant.A(q + 1, q + 1) = -2.0 * mode.damping_ratio * w;
+    const int q = 2 * static_cast<int>(i);
     for (int axis = 0; axis < 3; ++axis) {
       plant.B_accel(q + 1, axis) = Entry(-participation(axis));
       plant.C(axis, q) = Entry(shape(axis));
     }
-    plant.state_kinds.push_back(StateKind::kPosition);
-    plant.state_kinds.push_back(StateKind::kVelocity);
-    plant.max_frequency_rad_s = std::max(plant.max_frequency_rad_s, w);
   }
   return plant;
 }

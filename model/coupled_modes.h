@@ -24,6 +24,11 @@ Eigen::Vector3d ModeShape(const ModalMode& mode, int own_axis);
 // The closed form C_ba = sum_i shape_b,i participation_a,i / w_i^2.
 Eigen::Matrix3d ModalCompliance(const ModalMachineConfig& config, int own_axis);
 
+// The part of a modal plant both forms share: per mode the states [q_i, q_i'] (A's 2 x 2
+// block, the state kinds, the fastest w), in the config's order; B_accel, B_vel (n x
+// num_inputs) and C (num_outputs x n) zero, for the form to fill.
+LinearPlant ModalOscillatorPlant(const ModalMachineConfig& config, int num_inputs, int num_outputs);
+
 // The structure relative to the driven points: inputs the three axes' accelerations,
 // outputs the deflection along x, y, z (3 rows). States [q_i, q_i'] per mode in the
 // config's order, q_i per unit of the mode's largest |participation_a| (its shape scaled

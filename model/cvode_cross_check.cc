@@ -10,12 +10,12 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "model/nonlinear_integrator.h"
 
 namespace shapebench::model {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr long kMaxHalfPulseTicks = 500;  // a 1 Hz mode at 1 ms: the sample stays < 2,000 ticks
 
 // Ticks in half a period of the plant's slowest pole (oscillatory or real), at least 1.

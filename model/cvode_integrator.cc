@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdlib>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
-#include "model/serial_vector_ops.h"
+#include "model/cvode_memory.h"
 
 namespace shapebench::model {
 namespace {
@@ -22,36 +18,6 @@ namespace {
 Eigen::Map<Eigen::VectorXd> View(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
 }
-
-std::string FlagName(int flag) {
-  char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by CVODE
-  std::string result = name != nullptr ? name : "CV_UNKNOWN";
-  std::free(name);
-  return result;
-}
-
-std::string PlainWords(int flag) {
-  switch (flag) {
-    case CV_TOO_MUCH_WORK:
-      return "integrator.max_num_steps internal steps were not enough to reach the next "
-             "output time; raise integrator.max_num_steps or loosen integrator.rtol";
-    case CV_TOO_MUCH_ACC:
-      return "the accuracy asked for is below what double precision can deliver; loosen "
-             "integrator.rtol or raise integrator.atol_scale";
-    case CV_ERR_FAILURE:
-      return "the local error test failed repeatedly (step size hit its minimum)";
-    case CV_CONV_FAILURE:
-      return "the corrector iteration failed to converge repeatedly";
-    case CV_LSETUP_FAIL:
-    case CV_LSOLVE_FAIL:
-      return "the dense linear solver failed (singular iteration matrix)";
-    case CV_ILL_INPUT:
-      return "CVODE rejected an input (see its message)";
-    default:
-      return "see the CVODE documentation for this flag";
-  }
-}
-
 
 // The longest step over which the Hermite output (CvodeOutput::kHermite) is used. Its
 // error is at most |y^(8)| h^8 / (8! 2^8) (the two-point remainder, largest mid-step); a
@@ -69,111 +35,34 @@ double HermiteMaxStep(const Eigen::MatrixXd& a, double rtol) {
 
 namespace cvode_detail {
 
-struct Context {
-  SUNContext ctx = nullptr;
-  Context() {
-    if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr) throw std::bad_alloc();
-  }
-  ~Context() { SUNContext_Free(&ctx); }
-  Context(const Context&) = delete;
-  Context& operator=(const Context&) = delete;
-};
-
 struct Pool;
 
-// CVODE's memory for one problem: size, LMM, nonlinear solver. Created once (CVodeCreate,
-// CVodeInit, the linear or fixed-point solver attached); each integrator that takes it sets
-// its own user data, tolerances, Jacobian and limits and restarts it with CVodeReInit.
+// A memory and the pool it goes back to (null: freed with its integrator).
 struct Workspace {
-  std::shared_ptr<Context> context;  // outlives the objects below
-  Pool* pool = nullptr;              // where it goes back to; null: freed with its integrator
-  int nz = 0;
-  bool bdf = false;
-  bool fixed_point = false;
-  bool optimized_ops = false;
-  N_Vector y = nullptr;
-  N_Vector y_step = nullptr;  // CVode's output in CV_ONE_STEP mode (the Hermite output)
-  N_Vector atol = nullptr;
-  SUNMatrix matrix = nullptr;
-  SUNLinearSolver solver = nullptr;
-  SUNNonlinearSolver nls = nullptr;
-  void* memory = nullptr;
-
-  Workspace(std::shared_ptr<Context> shared, int size, bool use_bdf, bool use_fixed_point,
-            bool use_optimized_ops, CVRhsFn rhs)
-      : context(std::move(shared)),
-        nz(size),
-        bdf(use_bdf),
-        fixed_point(use_fixed_point),
-        optimized_ops(use_optimized_ops) {
-    SUNContext ctx = context->ctx;
-    y = N_VNew_Serial(nz, ctx);
-    y_step = N_VNew_Serial(nz, ctx);
-    atol = N_VNew_Serial(nz, ctx);
-    memory = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, ctx);
-    if (y == nullptr || y_step == nullptr || atol == nullptr || memory == nullptr) {
-      throw std::bad_alloc();
-    }
-    N_VConst(0.0, y);
-    // Fused vector operations (one pass for a linear combination instead of one call per
-    // term): CVODE clones its vectors from y, so they all get them. Its interpolation
-    // (CVodeGetDky, a combination of q + 1 history vectors) and its history updates use them.
-    if (N_VEnableFusedOps_Serial(y, SUNTRUE) != 0) throw std::runtime_error("N_VEnableFusedOps failed");
-    // Before CVodeInit, which clones its vectors from y.
-    if (optimized_ops) {
-      UseOptimizedSerialOps(y);
-      UseOptimizedSerialOps(y_step);
-    }
-    if (CVodeInit(memory, rhs, 0.0, y) != CV_SUCCESS) throw std::runtime_error("CVodeInit failed");
-    if (fixed_point) {
-      nls = SUNNonlinSol_FixedPoint(y, 0, ctx);
-      if (nls == nullptr || CVodeSetNonlinearSolver(memory, nls) != CV_SUCCESS) {
-        throw std::runtime_error("CVodeSetNonlinearSolver failed");
-      }
-    } else {
-      matrix = SUNDenseMatrix(nz, nz, ctx);
-      if (matrix == nullptr) throw std::bad_alloc();
-      solver = SUNLinSol_Dense(y, matrix, ctx);
-      if (solver == nullptr || CVodeSetLinearSolver(memory, solver, matrix) != CVLS_SUCCESS) {
-        throw std::runtime_error("CVodeSetLinearSolver failed");
-      }
-    }
-  }
-  ~Workspace() {
-    CVodeFree(&memory);
-    if (nls != nullptr) SUNNonlinSolFree(nls);
-    if (solver != nullptr) SUNLinSolFree(solver);
-    if (matrix != nullptr) SUNMatDestroy(matrix);
-    N_VDestroy(atol);
-    N_VDestroy(y_step);
-    N_VDestroy(y);
-  }
-  Workspace(const Workspace&) = delete;
-  Workspace& operator=(const Workspace&) = delete;
+  CvodeMemory memory;
+  Pool* pool = nullptr;
+  Workspace(std::shared_ptr<CvodeContext> context, CvodeProblem problem, CVRhsFn rhs)
+      : memory(std::move(context), std::move(problem), rhs) {}
 };
 
 // One per thread: its SUNContext (a context is used by one thread at a time) and the
 // workspaces not in use. A sweep's runs have one problem size: one workspace, reused.
 struct Pool {
   static constexpr std::size_t kKept = 4;
-  std::shared_ptr<Context> context;
+  std::shared_ptr<CvodeContext> context;
   std::vector<std::unique_ptr<Workspace>> idle;  // most recently returned last
 
-  std::unique_ptr<Workspace> Take(int nz, bool bdf, bool fixed_point, bool optimized_ops,
-                                  CVRhsFn rhs, bool* reused) {
+  std::unique_ptr<Workspace> Take(const CvodeProblem& problem, CVRhsFn rhs, bool* reused) {
     for (std::size_t i = idle.size(); i-- > 0;) {
-      Workspace& w = *idle[i];
-      if (w.nz == nz && w.bdf == bdf && w.fixed_point == fixed_point &&
-          w.optimized_ops == optimized_ops) {
+      if (idle[i]->memory.problem() == problem) {
         std::unique_ptr<Workspace> taken = std::move(idle[i]);
         idle.erase(idle.begin() + static_cast<std::ptrdiff_t>(i));
         *reused = true;
         return taken;
       }
     }
-    if (!context) context = std::make_shared<Context>();
-    auto created =
-        std::make_unique<Workspace>(context, nz, bdf, fixed_point, optimized_ops, rhs);
+    if (!context) context = std::make_shared<CvodeContext>();
+    auto created = std::make_unique<Workspace>(context, problem, rhs);
     created->pool = this;
     *reused = false;
     return created;
@@ -210,17 +99,15 @@ namespace {
 
 std::unique_ptr<cvode_detail::Workspace, cvode_detail::WorkspaceReturn> TakeWorkspace(
     int nz, const IntegratorConfig& config, CVRhsFn rhs, bool* reused) {
-  const bool bdf = config.lmm == CvodeLmm::kBdf;
-  const bool fixed_point = config.tuning.fixed_point;
-  const bool optimized_ops = config.tuning.optimized_vector_ops;
+  CvodeProblem problem;
+  problem.size = nz;
+  problem.bdf = config.lmm == CvodeLmm::kBdf;
+  problem.optimized_ops = config.tuning.optimized_vector_ops;
+  problem.solver = config.tuning.fixed_point ? CvodeSolver::kFixedPoint : CvodeSolver::kDense;
   cvode_detail::Pool* pool = config.tuning.reuse_memory ? cvode_detail::ThisThreadsPool() : nullptr;
-  if (pool != nullptr) {
-    return {pool->Take(nz, bdf, fixed_point, optimized_ops, rhs, reused).release(), {}};
-  }
+  if (pool != nullptr) return {pool->Take(problem, rhs, reused).release(), {}};
   *reused = false;
-  return {new cvode_detail::Workspace(std::make_shared<cvode_detail::Context>(), nz, bdf,
-                                      fixed_point, optimized_ops, rhs),
-          {}};
+  return {new cvode_detail::Workspace(std::make_shared<CvodeContext>(), problem, rhs), {}};
 }
 
 }  // namespace
@@ -250,8 +137,8 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
   Check(CVodeSetErrHandlerFn(mem, RecordError, this), "CVodeSetErrHandlerFn");
   Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
   if (tuning_.per_state_atol) {
-    View(workspace_->atol) = atol;
-    Check(CVodeSVtolerances(mem, config.rtol, workspace_->atol), "CVodeSVtolerances");
+    View(workspace_->memory.atol()) = atol;
+    Check(CVodeSVtolerances(mem, config.rtol, workspace_->memory.atol()), "CVodeSVtolerances");
   } else {
     Check(CVodeSStolerances(mem, config.rtol, atol.minCoeff()), "CVodeSStolerances");
   }
@@ -275,12 +162,12 @@ CvodeIntegrator::CvodeIntegrator(const LinearPlant& plant, const IntegratorConfi
 CvodeIntegrator::~CvodeIntegrator() {
   if (workspace_) {
     // The memory may serve another integrator: nothing of this one may be called back.
-    CVodeSetErrHandlerFn(workspace_->memory, nullptr, nullptr);
-    CVodeSetUserData(workspace_->memory, nullptr);
+    CVodeSetErrHandlerFn(workspace_->memory.cvode(), nullptr, nullptr);
+    CVodeSetUserData(workspace_->memory.cvode(), nullptr);
   }
 }
 
-void* CvodeIntegrator::memory() const { return workspace_->memory; }
+void* CvodeIntegrator::memory() const { return workspace_->memory.cvode(); }
 
 // Error weights: CVODE's norm is |e_i| / (rtol |y_i| + atol_i), and deflection states start
 // at 0, so atol sets the accuracy near rest. Scale it by what each state reaches statically
@@ -398,13 +285,7 @@ void CvodeIntegrator::Check(int flag, const char* call) const {
   if (flag >= 0) return;
   sunrealtype t_now = Time();
   if (workspace_) CVodeGetCurrentTime(memory(), &t_now);
-  std::ostringstream what;
-  const std::string name = FlagName(flag);
-  what << "CVODE failed at t = " << t_now << " s: " << name << ": " << PlainWords(flag) << " ("
-       << call;
-  if (!last_message_.empty()) what << ": " << last_message_;
-  what << ")";
-  throw SolverError(name, what.str());
+  ThrowCvodeFailure(flag, call, t_now, last_message_, false);
 }
 
 double CvodeIntegrator::TimeAt(long count) const {
@@ -415,7 +296,7 @@ void CvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   if (drive_velocity.size() != num_inputs_) {
     throw std::invalid_argument("CvodeIntegrator::Reset: wrong drive velocity size");
   }
-  Eigen::Map<Eigen::VectorXd> y = View(workspace_->y);
+  Eigen::Map<Eigen::VectorXd> y = View(workspace_->memory.y());
   y.head(num_states_).setZero();
   y.tail(num_inputs_) = drive_velocity;
   accel_.setZero();
@@ -423,7 +304,7 @@ void CvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   count_ = 0;
   // Restart from t = 0 now (this also zeroes CVODE's counters); SetInput re-initialises
   // again only if the first acceleration is not 0.
-  Check(CVodeReInit(memory(), 0.0, workspace_->y), "CVodeReInit");
+  Check(CVodeReInit(memory(), 0.0, workspace_->memory.y()), "CVodeReInit");
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   finished_ = {};
   need_reinit_ = false;
@@ -452,7 +333,7 @@ void CvodeIntegrator::Reinit() {
   finished_.steps += steps;
   finished_.rhs_evals += rhs_evals;
   ++finished_.reinits;
-  Check(CVodeReInit(mem, Time(), workspace_->y), "CVodeReInit");
+  Check(CVodeReInit(mem, Time(), workspace_->memory.y()), "CVodeReInit");
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
   need_reinit_ = false;
   have_step_ = false;
@@ -486,7 +367,7 @@ void CvodeIntegrator::AdvanceByHermite(double t_out) {
   const std::size_t stride = static_cast<std::size_t>(kHermiteOrders) * nz;
   if (!have_step_) {
     // After a (re)start: an empty interval at the current state.
-    SetEnd(1, Time(), N_VGetArrayPointer(workspace_->y));
+    SetEnd(1, Time(), N_VGetArrayPointer(workspace_->memory.y()));
     have_step_ = true;
   }
   for (long steps = 0; end_time_s_[1] < t_out; ++steps) {
@@ -498,14 +379,14 @@ void CvodeIntegrator::AdvanceByHermite(double t_out) {
     }
     sunrealtype t_reached = 0.0;
     // tout only sets the direction and the first step after a restart, as CV_NORMAL's did.
-    const int flag = CVode(memory(), t_out, workspace_->y_step, &t_reached, CV_ONE_STEP);
+    const int flag = CVode(memory(), t_out, workspace_->memory.step(), &t_reached, CV_ONE_STEP);
     Check(flag, "CVode");
     if (flag == CV_TSTOP_RETURN) stop_set_ = false;
     std::copy(ends_.begin() + static_cast<std::ptrdiff_t>(stride), ends_.end(), ends_.begin());
     end_time_s_[0] = end_time_s_[1];
-    SetEnd(1, t_reached, N_VGetArrayPointer(workspace_->y_step));
+    SetEnd(1, t_reached, N_VGetArrayPointer(workspace_->memory.step()));
   }
-  double* y = N_VGetArrayPointer(workspace_->y);
+  double* y = N_VGetArrayPointer(workspace_->memory.y());
   const double* left = ends_.data();
   const double* right = ends_.data() + stride;
   if (t_out == end_time_s_[1]) {
@@ -514,7 +395,7 @@ void CvodeIntegrator::AdvanceByHermite(double t_out) {
   }
   const double h = end_time_s_[1] - end_time_s_[0];
   if (h > hermite_max_step_s_) {
-    Check(CVodeGetDky(memory(), t_out, 0, workspace_->y), "CVodeGetDky");
+    Check(CVodeGetDky(memory(), t_out, 0, workspace_->memory.y()), "CVodeGetDky");
     ++cvode_interpolated_;
     return;
   }
@@ -552,7 +433,7 @@ void CvodeIntegrator::Advance(long count) {
   }
   sunrealtype t_reached = 0.0;
   // CV_SUCCESS and CV_TSTOP_RETURN (tout == tstop) are both normal returns.
-  const int flag = CVode(memory(), TimeAt(count), workspace_->y, &t_reached, CV_NORMAL);
+  const int flag = CVode(memory(), TimeAt(count), workspace_->memory.y(), &t_reached, CV_NORMAL);
   Check(flag, "CVode");
   if (flag == CV_TSTOP_RETURN) stop_set_ = false;
 }
@@ -603,20 +484,20 @@ void CvodeIntegrator::AdvancePeriod(const double* drive_accel, long same_input_p
     Advance(count_ + 1);
     ++count_;
     if (selected_rows_.empty()) {
-      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), outputs + j * width);
+      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->memory.y()), outputs + j * width);
     } else {
-      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->y), all_outputs_.data());
+      c_sparse_.Multiply(N_VGetArrayPointer(workspace_->memory.y()), all_outputs_.data());
       WriteSelected(all_outputs_.data(), outputs + j * width);
     }
   }
 }
 
 Eigen::VectorXd CvodeIntegrator::Output() const {
-  return C_ * View(workspace_->y).head(num_states_);
+  return C_ * View(workspace_->memory.y()).head(num_states_);
 }
 
 // The state at the last output substep (Advance leaves it in y, interpolated or not).
-Eigen::VectorXd CvodeIntegrator::PlantState() const { return View(workspace_->y).head(num_states_); }
+Eigen::VectorXd CvodeIntegrator::PlantState() const { return View(workspace_->memory.y()).head(num_states_); }
 
 double CvodeIntegrator::Time() const { return TimeAt(count_); }
 

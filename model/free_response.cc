@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstddef>
 
+#include "common/math_constants.h"
+
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // Poles closer than this share of the largest |lambda| are one (the same mode of two axes:
 // rounding separates them by ~1e-15 of it); distinct modes of a model differ far more.

@@ -7,13 +7,13 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "common/math_constants.h"
 #include "model/exact_integrator.h"
 
 namespace shapebench::model {
 namespace {
 
 constexpr int kNodes = HeldInputResponse::kDegree + 1;
-constexpr double kPi = 3.14159265358979323846;
 
 // Chebyshev points of the first kind on [-1, 1] (no end points: the series is read at the
 // piece's ends by evaluation, the same from both sides to rounding).

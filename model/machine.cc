@@ -8,12 +8,12 @@
 #include <type_traits>
 #include <variant>
 
+#include "common/math_constants.h"
+#include "model/coupled_modes.h"
 #include "model/lumped_matrices.h"
 
 namespace shapebench::model {
 namespace {
-
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // A coupled form spans three axes: BuildMachinePlant and AnalyzeMachineModes build it
 // (model/coupled_modes.h); the one-axis view would drop its cross terms.
@@ -26,25 +26,11 @@ void RefuseCoupled(const ModalMachineConfig& config, const char* what) {
 
 LinearPlant BuildFormPlant(const ModalMachineConfig& config) {
   RefuseCoupled(config, "BuildPlant");
-  const int num_modes = static_cast<int>(config.modes.size());
-  const int n = 2 * num_modes;
-  LinearPlant plant;
-  plant.A = Eigen::MatrixXd::Zero(n, n);
-  plant.B_accel = Eigen::MatrixXd::Zero(n, 1);
-  plant.B_vel = Eigen::MatrixXd::Zero(n, 1);
-  plant.C = Eigen::MatrixXd::Zero(1, n);
-  for (int i = 0; i < num_modes; ++i) {
-    const ModalMode& mode = config.modes[i];
-    const double w = kTwoPi * mode.frequency_hz;
-    const int q = 2 * i;  // states [q_i, q_i']
-    plant.A(q, q + 1) = 1.0;
-    plant.A(q + 1, q) = -w * w;
-    plant.A(q + 1, q + 1) = -2.0 * mode.damping_ratio * w;
+  LinearPlant plant = ModalOscillatorPlant(config, 1, 1);
+  for (std::size_t i = 0; i < config.modes.size(); ++i) {
+    const int q = 2 * static_cast<int>(i);  // states [q_i, q_i']
     plant.B_accel(q + 1, 0) = -1.0;
-    plant.C(0, q) = mode.gain;
-    plant.state_kinds.push_back(StateKind::kPosition);
-    plant.state_kinds.push_back(StateKind::kVelocity);
-    plant.max_frequency_rad_s = std::max(plant.max_frequency_rad_s, w);
+    plant.C(0, q) = config.modes[i].gain;
   }
   return plant;
 }

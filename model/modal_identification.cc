@@ -7,13 +7,13 @@
 
 #include <Eigen/Dense>
 
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 
 namespace shapebench::model {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // The FRFs restricted to the band, scaled to unit RMS (the poles do not depend on the
 // scale; the normal equations stay well scaled whatever the unit).
@@ -135,7 +135,7 @@ DiagramPole ToDiagramPole(int order, Complex lambda) {
 // Each order's physical poles, marked against the previous order's.
 std::vector<DiagramPole> BuildDiagram(const BandData& band, const IdentificationOptions& options,
                                       double band_lo_hz, double band_hi_hz, int max_order) {
-  const double ts = M_PI / band.omega.back();  // the band's top line maps to theta = pi
+  const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi
   const LagSums sums = ComputeLagSums(band, ts, 2 * max_order);
   std::vector<DiagramPole> diagram;
   std::vector<DiagramPole> previous;

@@ -3,13 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 namespace shapebench::model {
-namespace {
-
-double Sign(double x) { return x > 0.0 ? 1.0 : x < 0.0 ? -1.0 : 0.0; }
-
-}  // namespace
 
 void NonlinearDynamics::Sparse::Assign(const Eigen::VectorXd& v) {
   index.clear();
@@ -53,11 +49,11 @@ NonlinearDynamics::NonlinearDynamics(const NonlinearPlant& plant) {
     e.row.Assign(rows.col(i));
     e.column.Assign(columns.col(i));
     e.row_a.Assign(a_z_.transpose() * rows.col(i));
-    if (config.kind == NonlinearKind::kFriction && config.friction.model == FrictionModel::kLuGre) {
-      e.bristle = num_bristles_++;
-    }
+    const auto* friction = std::get_if<FrictionElement>(&config.law);
+    if (friction != nullptr && friction->HasBristle()) e.bristle = num_bristles_++;
+    e.sticks = friction != nullptr && friction->Sticks();
     e.root = num_roots_;
-    num_roots_ += config.kind == NonlinearKind::kFriction ? 1 : 2;
+    num_roots_ += NumRoots(config.law);
     elements_.push_back(std::move(e));
   }
   coupling_ = rows.transpose() * columns;
@@ -72,7 +68,7 @@ NonlinearDynamics::NonlinearDynamics(const NonlinearPlant& plant) {
 std::vector<double> NonlinearDynamics::BristleScales() const {
   std::vector<double> scales;
   for (const Element& e : elements_) {
-    if (e.bristle >= 0) scales.push_back(e.config.friction.StaticN() / e.config.friction.sigma0_n_m);
+    if (e.bristle >= 0) scales.push_back(Friction(e).friction.StaticN() / Friction(e).friction.sigma0_n_m);
   }
   return scales;
 }
@@ -82,63 +78,10 @@ void NonlinearDynamics::SetForcing(const Eigen::VectorXd& forcing) {
   for (Element& e : elements_) e.row_forcing = e.row.Dot(forcing_.data());
 }
 
-double NonlinearDynamics::BristleRate(const Element& e, double w, double zeta, double* dw,
-                                      double* dzeta) const {
-  const FrictionConfig& f = e.config.friction;
-  const double g = f.SlidingLevel(w);
-  const double aw = std::abs(w);
-  if (dw != nullptr) {
-    *dw = 1.0 - f.sigma0_n_m * zeta * (Sign(w) * g - aw * f.SlidingLevelSlope(w)) / (g * g);
-    *dzeta = -f.sigma0_n_m * aw / g;
-  }
-  return w - f.sigma0_n_m * aw * zeta / g;
-}
-
 double NonlinearDynamics::Force(const Element& e, double w, const double* y, double* dw,
                                 double* dzeta) const {
-  double slope = 0.0;
-  double slope_zeta = 0.0;
-  double force = 0.0;
-  const NonlinearElement& c = e.config;
-  switch (c.kind) {
-    case NonlinearKind::kFriction: {
-      const FrictionConfig& f = c.friction;
-      if (e.bristle >= 0) {
-        const double zeta = y[nz_ + e.bristle];
-        double rate_w = 0.0;
-        double rate_zeta = 0.0;
-        const double rate = BristleRate(e, w, zeta, &rate_w, &rate_zeta);
-        force = f.sigma0_n_m * zeta + f.sigma1_n_s_m * rate + f.viscous_n_s_m * w;
-        slope = f.sigma1_n_s_m * rate_w + f.viscous_n_s_m;
-        slope_zeta = f.sigma0_n_m + f.sigma1_n_s_m * rate_zeta;
-      } else {
-        const double s = static_cast<double>(e.mode);
-        force = s * f.SlidingLevel(w) + f.viscous_n_s_m * w;
-        slope = s * f.SlidingLevelSlope(w) + f.viscous_n_s_m;
-      }
-      break;
-    }
-    case NonlinearKind::kBacklash:
-      // k (|d| - b/2) sign(d) - k d: -k d in the gap, -k b/2 sign(d) in contact.
-      if (e.mode == 0) {
-        force = -c.stiffness_n_m * w;
-        slope = -c.stiffness_n_m;
-      } else {
-        force = -0.5 * c.stiffness_n_m * c.backlash_m * e.mode;
-      }
-      break;
-    case NonlinearKind::kSaturation:
-      if (e.mode != 0) {
-        force = e.mode * c.limit_n - w;
-        slope = -1.0;
-      }
-      break;
-  }
-  if (dw != nullptr) {
-    *dw = slope;
-    *dzeta = slope_zeta;
-  }
-  return force;
+  const double zeta = e.bristle >= 0 ? y[nz_ + e.bristle] : 0.0;
+  return std::visit([&](const auto& law) { return law.Force(w, e.mode, zeta, dw, dzeta); }, e.config.law);
 }
 
 void NonlinearDynamics::RebuildStuckSet() {
@@ -182,9 +125,9 @@ void NonlinearDynamics::Forces(const double* y) {
     value_[i] = Value(i, y);
     if (e.bristle >= 0) {
       // LuGre: the bristle rate once (its exp), for the force and for zeta' (Rhs).
-      const FrictionConfig& f = e.config.friction;
-      rate_[i] = BristleRate(e, value_[i], y[nz_ + e.bristle], nullptr, nullptr);
-      force_[i] = f.sigma0_n_m * y[nz_ + e.bristle] + f.sigma1_n_s_m * rate_[i] + f.viscous_n_s_m * value_[i];
+      const FrictionElement& f = Friction(e);
+      rate_[i] = f.BristleRate(value_[i], y[nz_ + e.bristle], nullptr, nullptr);
+      force_[i] = f.BristleForce(value_[i], y[nz_ + e.bristle], rate_[i]);
     } else if (!Stuck(e)) {
       force_[i] = Force(e, value_[i], y, nullptr, nullptr);
     }
@@ -216,27 +159,7 @@ void NonlinearDynamics::Roots(const double* y, double* g) {
   }
   for (int i = 0; i < num_elements(); ++i) {
     const Element& e = elements_[i];
-    const double w = value_[i];
-    switch (e.config.kind) {
-      case NonlinearKind::kFriction:
-        // Falling through 0 only (RootDirections): a sliding element's s w reaching 0 (it
-        // stops), a stuck one's holding force reaching F_s. LuGre: w, either way (the kink).
-        // F_s = 0 (then F_c = 0): the force does not depend on the direction; nothing to find.
-        if (Sticks(e) && e.config.friction.StaticN() == 0.0) {
-          g[e.root] = 1.0;
-        } else {
-          g[e.root] = Stuck(e) ? e.config.friction.StaticN() - std::abs(force_[i]) : Sticks(e) ? e.mode * w : w;
-        }
-        break;
-      case NonlinearKind::kBacklash:
-        g[e.root] = w - 0.5 * e.config.backlash_m;
-        g[e.root + 1] = w + 0.5 * e.config.backlash_m;
-        break;
-      case NonlinearKind::kSaturation:
-        g[e.root] = w - e.config.limit_n;
-        g[e.root + 1] = w + e.config.limit_n;
-        break;
-    }
+    std::visit([&](const auto& law) { law.Roots(value_[i], e.mode, force_[i], g + e.root); }, e.config.law);
   }
 }
 
@@ -275,7 +198,7 @@ std::vector<std::vector<int>> NonlinearDynamics::Blocks() const {
 std::vector<int> NonlinearDynamics::RootDirections() const {
   std::vector<int> directions(num_roots_, 0);
   for (const Element& e : elements_) {
-    if (Sticks(e)) directions[e.root] = -1;
+    std::visit([&](const auto& law) { law.RootDirections(directions.data() + e.root); }, e.config.law);
   }
   return directions;
 }
@@ -298,7 +221,7 @@ void NonlinearDynamics::Jacobian(const double* y, double* jac) {
       grads_(nz_ + e.bristle, i) = dzeta;
       double rate_w = 0.0;
       double rate_zeta = 0.0;
-      BristleRate(e, value_[i], y[nz_ + e.bristle], &rate_w, &rate_zeta);
+      Friction(e).BristleRate(value_[i], y[nz_ + e.bristle], &rate_w, &rate_zeta);
       for (std::size_t k = 0; k < e.row.index.size(); ++k) J(nz_ + e.bristle, e.row.index[k]) = rate_w * e.row.value[k];
       J(nz_ + e.bristle, nz_ + e.bristle) = rate_zeta;
     }
@@ -330,18 +253,7 @@ void NonlinearDynamics::InitModes(const double* y) {
   for (int i = 0; i < num_elements(); ++i) {
     Element& e = elements_[i];
     const double w = Value(i, y);
-    const NonlinearElement& c = e.config;
-    switch (c.kind) {
-      case NonlinearKind::kFriction:
-        e.mode = w != 0.0 || !(c.friction.StaticN() > 0.0) ? (w < 0.0 ? -1 : 1) : 0;
-        break;
-      case NonlinearKind::kBacklash:
-        e.mode = std::abs(w) <= 0.5 * c.backlash_m ? 0 : static_cast<int>(Sign(w));
-        break;
-      case NonlinearKind::kSaturation:
-        e.mode = std::abs(w) <= c.limit_n ? 0 : static_cast<int>(Sign(w));
-        break;
-    }
+    e.mode = std::visit([&](const auto& law) { return law.RestMode(w); }, e.config.law);
   }
   Settle(y);
 }
@@ -357,7 +269,7 @@ bool NonlinearDynamics::Settle(const double* y) {
     int worst = -1;
     double excess = 0.0;
     for (int i : stuck_) {
-      const double f_s = elements_[i].config.friction.StaticN();
+      const double f_s = Friction(elements_[i]).friction.StaticN();
       const double over = std::abs(force_[i]) - f_s;
       if ((over > 0.0 || f_s == 0.0) && (worst < 0 || over > excess)) {
         worst = i;
@@ -392,22 +304,13 @@ bool NonlinearDynamics::HandleRoots(const int* found, double* y) {
   bool sticks = false;
   for (int i = 0; i < num_elements(); ++i) {
     Element& e = elements_[i];
-    const int first = found[e.root];
-    const int second = e.config.kind == NonlinearKind::kFriction ? 0 : found[e.root + 1];
-    if (first == 0 && second == 0) continue;
+    const int* own = found + e.root;
+    if (std::all_of(own, own + NumRoots(e.config.law), [](int f) { return f == 0; })) continue;
     changed = true;  // at least a restart (LuGre: the kink of |w|)
-    if (Sticks(e)) {
-      if (e.mode != 0) {
-        e.mode = 0;  // w reached 0: stuck, unless Settle finds F* beyond F_s
-        sticks = true;
-      } else {
-        e.mode = force_[i] < 0.0 ? -1 : 1;
-      }
-    } else if (e.config.kind != NonlinearKind::kFriction) {
-      // The upper edge (+b/2, +L) rising enters +1, falling leaves it; the lower alike.
-      if (first != 0) e.mode = first > 0 ? 1 : 0;
-      if (second != 0) e.mode = second < 0 ? -1 : 0;
-    }
+    const int before = e.mode;
+    e.mode = std::visit([&](const auto& law) { return law.ModeAfterRoots(own, e.mode, force_[i]); }, e.config.law);
+    // w reached 0: stuck, unless Settle finds F* beyond F_s.
+    if (Sticks(e) && before != 0 && e.mode == 0) sticks = true;
   }
   RebuildStuckSet();
   if (sticks) Project(y);

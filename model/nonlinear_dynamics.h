@@ -85,17 +85,19 @@ class NonlinearDynamics {
     int bristle = -1;  // LuGre: index of zeta in y after z
     int root = 0;      // its first root function
     int mode = 0;      // friction: +-1 sliding, 0 stuck; backlash/saturation: -1, 0, +1
+    bool sticks = false;  // Coulomb or Stribeck friction (config.law's Sticks())
     double row_forcing = 0.0;  // row . forcing
   };
 
-  bool Sticks(const Element& e) const { return e.config.kind == NonlinearKind::kFriction && e.config.friction.sticks(); }
-  bool Stuck(const Element& e) const { return Sticks(e) && e.mode == 0; }
+  static bool Sticks(const Element& e) { return e.sticks; }
+  static bool Stuck(const Element& e) { return e.sticks && e.mode == 0; }
+  // The friction of an element that has a bristle or sticks.
+  static const FrictionElement& Friction(const Element& e) { return std::get<FrictionElement>(e.config.law); }
   // The forces of every element at y (stuck ones solved jointly), into force_.
   void Forces(const double* y);
   // The force and its derivative by its row value (and by its bristle state) of a
   // non-stuck element.
   double Force(const Element& e, double w, const double* y, double* dw, double* dzeta) const;
-  double BristleRate(const Element& e, double w, double zeta, double* dw, double* dzeta) const;
   void SolveStuck(const double* y);
   // Gives every stuck element the impulse that makes its w 0 (jointly).
   void Project(double* y);

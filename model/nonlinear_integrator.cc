@@ -3,18 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
 #include <stdexcept>
+#include <variant>
 
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "common/validation_error.h"
-#include "model/block_lu_solver.h"
 #include "model/cvode_integrator.h"
-#include "model/serial_vector_ops.h"
+#include "model/cvode_memory.h"
 
 namespace shapebench::model {
 namespace {
@@ -22,13 +18,6 @@ namespace {
 // Events at one instant beyond this are a chattering model (two elements handing a force
 // back and forth forever), not physics: the run fails instead of looping.
 constexpr long kMaxEventsPerSubstep = 10000;
-
-std::string FlagName(int flag) {
-  char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by CVODE
-  std::string result = name != nullptr ? name : "CV_UNKNOWN";
-  std::free(name);
-  return result;
-}
 
 // The split (CvodeTuning::split_linear_part) pays where e stays a small correction to z:
 // LuGre friction, smooth, no modes. Not for the others: a stuck Coulomb or Stribeck element
@@ -40,54 +29,13 @@ std::string FlagName(int flag) {
 bool SplitPays(const NonlinearPlant& plant) {
   if (plant.elements.empty()) return false;  // nothing to split off
   for (const NonlinearElement& e : plant.elements) {
-    if (e.kind != NonlinearKind::kFriction || e.friction.model != FrictionModel::kLuGre) return false;
+    const auto* friction = std::get_if<FrictionElement>(&e.law);
+    if (friction == nullptr || !friction->HasBristle()) return false;
   }
   return true;
 }
 
 }  // namespace
-
-// CVODE's memory with its Newton matrix I - gamma J (a dense SUNMatrix: the storage the
-// integrator's LinSys fills) and the block LU that solves with it.
-struct NonlinearCvodeIntegrator::Memory {
-  SUNContext context = nullptr;
-  N_Vector y = nullptr;     // the state at the last output time
-  N_Vector step = nullptr;  // CVODE's state at its last internal step (or root)
-  N_Vector atol = nullptr;
-  SUNMatrix matrix = nullptr;
-  std::unique_ptr<BlockLuSolver> solver;
-  void* cvode = nullptr;
-
-  Memory(int size, CVRhsFn rhs, std::vector<std::vector<int>> blocks) {
-    if (SUNContext_Create(nullptr, &context) != 0) throw std::bad_alloc();
-    y = N_VNew_Serial(size, context);
-    atol = N_VNew_Serial(size, context);
-    step = N_VNew_Serial(size, context);
-    cvode = CVodeCreate(CV_BDF, context);
-    if (y == nullptr || atol == nullptr || step == nullptr || cvode == nullptr) throw std::bad_alloc();
-    N_VConst(0.0, y);
-    if (N_VEnableFusedOps_Serial(y, SUNTRUE) != 0) throw std::runtime_error("N_VEnableFusedOps failed");
-    UseOptimizedSerialOps(y);  // before CVodeInit, which clones its vectors from y
-    if (CVodeInit(cvode, rhs, 0.0, y) != CV_SUCCESS) throw std::runtime_error("CVodeInit failed");
-    matrix = SUNDenseMatrix(size, size, context);
-    if (matrix == nullptr) throw std::bad_alloc();
-    solver = std::make_unique<BlockLuSolver>(context, std::move(blocks));
-    if (CVodeSetLinearSolver(cvode, solver->get(), matrix) != CVLS_SUCCESS) {
-      throw std::runtime_error("CVodeSetLinearSolver failed");
-    }
-  }
-  ~Memory() {
-    CVodeFree(&cvode);
-    solver.reset();
-    if (matrix != nullptr) SUNMatDestroy(matrix);
-    N_VDestroy(atol);
-    N_VDestroy(step);
-    N_VDestroy(y);
-    SUNContext_Free(&context);
-  }
-  Memory(const Memory&) = delete;
-  Memory& operator=(const Memory&) = delete;
-};
 
 NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, const IntegratorConfig& config,
                                                    double period_s, int substeps, double scale_accel_m_s2,
@@ -107,14 +55,20 @@ NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, 
       if (C_(r, c) != 0.0) c_entries_.push_back({r, c, C_(r, c)});
     }
   }
-  memory_ = std::make_unique<Memory>(dynamics_.size(), Rhs, dynamics_.Blocks());
+  // Newton's matrix I - gamma J is a dense SUNMatrix (the storage LinSys fills), solved by
+  // blocks (the axes are uncoupled).
+  CvodeProblem problem;
+  problem.size = dynamics_.size();
+  problem.solver = CvodeSolver::kBlockLu;
+  problem.blocks = dynamics_.Blocks();
+  memory_ = std::make_unique<CvodeMemory>(std::make_shared<CvodeContext>(), std::move(problem), Rhs);
   jacobian_ = Eigen::MatrixXd::Zero(dynamics_.size(), dynamics_.size());
-  void* mem = memory_->cvode;
+  void* mem = memory_->cvode();
   Check(CVodeSetErrHandlerFn(mem, RecordError, this), "CVodeSetErrHandlerFn");
   Check(CVodeSetUserData(mem, this), "CVodeSetUserData");
-  Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(memory_->atol), dynamics_.size()) =
+  Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(memory_->atol()), dynamics_.size()) =
       AbsoluteTolerances(plant, config, scale_accel_m_s2, scale_velocity_m_s);
-  Check(CVodeSVtolerances(mem, config.rtol, memory_->atol), "CVodeSVtolerances");
+  Check(CVodeSVtolerances(mem, config.rtol, memory_->atol()), "CVodeSVtolerances");
   // The plant's Jacobian (NonlinearDynamics::Jacobian), I - gamma J formed here.
   Check(CVodeSetLinSysFn(mem, LinSys), "CVodeSetLinSysFn");
   Check(CVodeSetMaxNumSteps(mem, config.max_num_steps), "CVodeSetMaxNumSteps");
@@ -216,19 +170,14 @@ void NonlinearCvodeIntegrator::RecordError(int /*code*/, const char* /*module*/,
 
 void NonlinearCvodeIntegrator::Check(int flag, const char* call) const {
   if (flag >= 0) return;
-  std::ostringstream what;
-  const std::string name = FlagName(flag);
-  what << "CVODE failed at t = " << Time() << " s on a plant with nonlinear elements: " << name << " (" << call;
-  if (!last_message_.empty()) what << ": " << last_message_;
-  what << "); loosen integrator.rtol or raise integrator.max_num_steps (docs/nonlinear.md)";
-  throw SolverError(name, what.str());
+  ThrowCvodeFailure(flag, call, Time(), last_message_, true);
 }
 
 void NonlinearCvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   if (drive_velocity.size() != num_inputs_) {
     throw std::invalid_argument("NonlinearCvodeIntegrator::Reset: wrong drive velocity size");
   }
-  double* y = N_VGetArrayPointer(memory_->y);
+  double* y = N_VGetArrayPointer(memory_->y());
   std::fill(y, y + dynamics_.size(), 0.0);
   accel_.setZero();
   dynamics_.SetForcing(Eigen::VectorXd::Zero(num_states_ + num_inputs_));
@@ -245,22 +194,22 @@ void NonlinearCvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   count_ = 0;
   events_ = 0;
   dynamics_.InitModes(y);
-  Check(CVodeReInit(memory_->cvode, 0.0, memory_->y), "CVodeReInit");
+  Check(CVodeReInit(memory_->cvode(), 0.0, memory_->y()), "CVodeReInit");
   stop_set_ = false;
   finished_ = {};
   need_reinit_ = false;
   pending_event_ = false;
 }
 
-// CVODE restarted at t from memory_->y, its counts so far kept.
+// CVODE restarted at t from memory_->y(), its counts so far kept.
 void NonlinearCvodeIntegrator::RestartAt(double t) {
   long steps = 0;
   long rhs_evals = 0;
-  CVodeGetNumSteps(memory_->cvode, &steps);
-  CVodeGetNumRhsEvals(memory_->cvode, &rhs_evals);
+  CVodeGetNumSteps(memory_->cvode(), &steps);
+  CVodeGetNumRhsEvals(memory_->cvode(), &rhs_evals);
   finished_.steps += steps;
   finished_.rhs_evals += rhs_evals;
-  Check(CVodeReInit(memory_->cvode, t, memory_->y), "CVodeReInit");
+  Check(CVodeReInit(memory_->cvode(), t, memory_->y()), "CVodeReInit");
   stop_set_ = false;  // CVodeReInit forgets the stop time (SUNDIALS 6.4.1)
 }
 
@@ -281,7 +230,7 @@ void NonlinearCvodeIntegrator::ApplyInput(const double* drive_accel) {
     accel_ = accel;
     particular_->SetInput(accel_.data());
     OffsetsAt(Time(), true);
-    if (dynamics_.ReleaseOverloaded(N_VGetArrayPointer(memory_->y))) need_reinit_ = true;
+    if (dynamics_.ReleaseOverloaded(N_VGetArrayPointer(memory_->y()))) need_reinit_ = true;
     return;
   }
   // As CvodeIntegrator: a change of rounding size (1e-12 of the input) keeps the history;
@@ -297,7 +246,7 @@ void NonlinearCvodeIntegrator::ApplyInput(const double* drive_accel) {
   accel_ = accel;
   dynamics_.SetForcing(B_z_ * accel_);
   // The new forcing may break a stuck element loose (its holding force jumps with it).
-  const bool modes = dynamics_.ReleaseOverloaded(N_VGetArrayPointer(memory_->y));
+  const bool modes = dynamics_.ReleaseOverloaded(N_VGetArrayPointer(memory_->y()));
   if (!small || modes) need_reinit_ = true;
 }
 
@@ -310,8 +259,6 @@ void NonlinearCvodeIntegrator::SetInput(const Eigen::VectorXd& drive_accel) {
 
 // To the output substep `count`, through the events on the way: at each, CVODE's state
 // there gets the new modes (and a sticking element's impulse) and integration restarts.
-// To the output substep `count`, through the events on the way: at each, CVODE's state
-// there gets the new modes (and a sticking element's impulse) and integration restarts.
 void NonlinearCvodeIntegrator::Advance(long count) {
   if (particular_) {
     AdvanceOneStep(count);
@@ -321,9 +268,9 @@ void NonlinearCvodeIntegrator::Advance(long count) {
   for (long events = 0;;) {
     if (need_reinit_) Reinit();
     double t_reached = 0.0;
-    if (CallCvode(t_out, memory_->y, CV_NORMAL, &t_reached) != CV_ROOT_RETURN) return;
+    if (CallCvode(t_out, memory_->y(), CV_NORMAL, &t_reached) != CV_ROOT_RETURN) return;
     event_s_ = t_reached;
-    ApplyEvent(memory_->y, &events);
+    ApplyEvent(memory_->y(), &events);
     if (OnSubstepEnd(t_out, t_reached)) return;
   }
 }
@@ -331,7 +278,7 @@ void NonlinearCvodeIntegrator::Advance(long count) {
 // CVode towards t_out in `mode` (the stop time set again where CVODE forgot it), the roots
 // found recorded; its return flag.
 int NonlinearCvodeIntegrator::CallCvode(double t_out, N_Vector out, int mode, double* t_reached) {
-  void* mem = memory_->cvode;
+  void* mem = memory_->cvode();
   if (!stop_set_) {
     Check(CVodeSetStopTime(mem, stop_s_), "CVodeSetStopTime");
     stop_set_ = true;
@@ -357,13 +304,13 @@ bool NonlinearCvodeIntegrator::OnSubstepEnd(double t_out, double t) {
 // state then stays the same to the bit, which its tests read.)
 void NonlinearCvodeIntegrator::AdvanceOneStep(long count) {
   const double t_out = TimeAt(count);
-  void* mem = memory_->cvode;
+  void* mem = memory_->cvode();
   SyncParticular((count - 1) / substeps_);
   for (long events = 0;;) {
     if (pending_event_) {
       if (event_s_ > t_out) break;  // after this substep
       pending_event_ = false;
-      ApplyEvent(memory_->step, &events);
+      ApplyEvent(memory_->step(), &events);
       if (OnSubstepEnd(t_out, event_s_)) return;
       continue;
     }
@@ -372,12 +319,12 @@ void NonlinearCvodeIntegrator::AdvanceOneStep(long count) {
     Check(CVodeGetCurrentTime(mem, &t_now), "CVodeGetCurrentTime");
     if (t_now >= t_out) break;
     double t_reached = 0.0;
-    if (CallCvode(t_out, memory_->step, CV_ONE_STEP, &t_reached) == CV_ROOT_RETURN) {
+    if (CallCvode(t_out, memory_->step(), CV_ONE_STEP, &t_reached) == CV_ROOT_RETURN) {
       pending_event_ = true;
       event_s_ = t_reached;
     }
   }
-  Check(CVodeGetDky(mem, t_out, 0, memory_->y), "CVodeGetDky");
+  Check(CVodeGetDky(mem, t_out, 0, memory_->y()), "CVodeGetDky");
 }
 
 // The event at event_s_ (roots_found_), CVODE's state there in `state`: the new modes (and
@@ -390,9 +337,9 @@ void NonlinearCvodeIntegrator::ApplyEvent(N_Vector state, long* events) {
   }
   ++*events;
   ++events_;
-  if (state != memory_->y) N_VScale(1.0, state, memory_->y);
+  if (state != memory_->y()) N_VScale(1.0, state, memory_->y());
   OffsetsAt(event_s_, true);  // the modes may change: a new stuck element reads its rate
-  dynamics_.HandleRoots(roots_found_.data(), N_VGetArrayPointer(memory_->y));
+  dynamics_.HandleRoots(roots_found_.data(), N_VGetArrayPointer(memory_->y()));
   RestartAt(event_s_);
 }
 
@@ -425,7 +372,7 @@ void NonlinearCvodeIntegrator::AdvancePeriod(const double* drive_accel, long sam
       all_outputs_.setZero();
     }
     // C y over C's entries that are not 0 (an axis' rows read that axis' states).
-    const double* y = N_VGetArrayPointer(memory_->y);
+    const double* y = N_VGetArrayPointer(memory_->y());
     for (const OutputEntry& c : c_entries_) all_outputs_(c.row) += c.value * y[c.column];
     WriteSelected(all_outputs_.data(), outputs + static_cast<std::ptrdiff_t>(j) * width);
   }
@@ -436,7 +383,7 @@ Eigen::VectorXd NonlinearCvodeIntegrator::Output() const {
 }
 
 Eigen::VectorXd NonlinearCvodeIntegrator::PlantState() const {
-  const Eigen::Map<const Eigen::VectorXd> e(N_VGetArrayPointer(memory_->y), num_states_);
+  const Eigen::Map<const Eigen::VectorXd> e(N_VGetArrayPointer(memory_->y()), num_states_);
   return particular_ ? Eigen::VectorXd(e + ParticularState()) : Eigen::VectorXd(e);
 }
 
@@ -444,8 +391,8 @@ IntegratorStats NonlinearCvodeIntegrator::Stats() const {
   IntegratorStats stats = finished_;
   long steps = 0;
   long rhs_evals = 0;
-  CVodeGetNumSteps(memory_->cvode, &steps);
-  CVodeGetNumRhsEvals(memory_->cvode, &rhs_evals);
+  CVodeGetNumSteps(memory_->cvode(), &steps);
+  CVodeGetNumRhsEvals(memory_->cvode(), &rhs_evals);
   stats.steps += steps;
   stats.rhs_evals += rhs_evals;
   stats.events = events_;

@@ -19,6 +19,7 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 
+#include "model/cvode_memory.h"
 #include "model/held_input_response.h"
 #include "model/integrator.h"
 #include "model/nonlinear_dynamics.h"
@@ -55,7 +56,6 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   long events() const { return events_; }
 
  private:
-  struct Memory;  // CVODE's context, vectors, matrix, solver and memory
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* user_data);
   static int RootFn(double t, N_Vector y, double* gout, void* user_data);
   static int LinSys(double t, N_Vector y, N_Vector fy, SUNMatrix a, booleantype jok, booleantype* jcur,
@@ -107,7 +107,7 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   long events_ = 0;
   IntegratorStats finished_;
   std::string last_message_;
-  std::unique_ptr<Memory> memory_;
+  std::unique_ptr<CvodeMemory> memory_;
   // Split mode (null without it): the linear part's response and the tick it starts.
   std::unique_ptr<HeldInputResponse> particular_;
   long particular_tick_ = 0;

@@ -36,8 +36,7 @@ std::vector<NonlinearElement> FormElements(const LumpedMachineConfig& config) {
     element.column_x.tail(nb) = -D.cwiseQuotient(m.mass_kg);
     element.driven_share = m.element_d(row);
     if (e.friction.present()) {
-      element.kind = NonlinearKind::kFriction;
-      element.friction = e.friction;
+      element.law = FrictionElement{e.friction};
       element.row_x.tail(nb) = D;
       element.row_v(0) = m.rigid_stretch(row);
     } else {
@@ -51,9 +50,7 @@ std::vector<NonlinearElement> FormElements(const LumpedMachineConfig& config) {
                                          "on the drive's path (e.g. from driven to the table it "
                                          "moves), where the rigid motion does not stretch it");
       }
-      element.kind = NonlinearKind::kBacklash;
-      element.stiffness_n_m = e.stiffness_n_m;
-      element.backlash_m = e.backlash_m;
+      element.law = BacklashElement{e.stiffness_n_m, e.backlash_m};
       element.row_x.head(nb) = D;
     }
     result.push_back(std::move(element));

@@ -16,22 +16,16 @@
 
 #include <Eigen/Dense>
 
-#include "model/friction.h"
 #include "model/linear_plant.h"
 #include "model/machine.h"
+#include "model/nonlinear_element.h"
 
 namespace shapebench::model {
 
-enum class NonlinearKind { kFriction, kBacklash, kSaturation };
-
 struct NonlinearElement {
-  NonlinearKind kind = NonlinearKind::kFriction;
+  NonlinearLaw law;  // friction, backlash or the force limit (model/nonlinear_element.h)
   // How messages name it: "machine.axes.y.elements[1] (y_guides_friction)", "drive.friction".
   std::string name;
-  FrictionConfig friction;      // kFriction
-  double stiffness_n_m = 0.0;   // kBacklash: the contact stiffness k
-  double backlash_m = 0.0;      // kBacklash: the whole play b
-  double limit_n = 0.0;         // kSaturation
   // row z = row_x . x + row_v . v;  the force enters x' along column_x (v' = a has none).
   Eigen::VectorXd row_x;
   Eigen::VectorXd row_v;

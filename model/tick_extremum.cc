@@ -5,10 +5,11 @@
 #include <complex>
 #include <vector>
 
+#include "common/math_constants.h"
+
 namespace shapebench::model {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxDepth = 30;          // halvings of a grid interval (multi-pole search)
 constexpr double kTimeTolerance = 1e-15;  // of the period
 

@@ -4,7 +4,7 @@
 // are the CLI's to the last bit:
 //   run       LoadScenario, RunScenarioLocated, RunJson (`run --json`)
 //   checks    ValidateBandChecks, EvaluateScenarioChecks, CheckReportsJson (`check --json`)
-//   sweep     LoadSweep, MakePoint and RunPoint on RunOrdered (results.csv's rows)
+//   sweep     LoadSweep, MakePoint and RunPoint on ForEachSweepPoint (results.csv's rows)
 //   pattern   ComputePattern, MachineModeResiduals, MotionTimesWithAndWithoutPattern
 //   modes     LoadMachineAxes, AnalyzeMachineModes, ModesJson (`modes --json`)
 //   sensitivity  LoadSensitivity, ComputeSensitivity
@@ -38,8 +38,8 @@
 #include "bench/run/run_scenario.h"
 #include "bench/sweep/band_check.h"
 #include "bench/sensitivity/sensitivity.h"
+#include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep.h"
-#include "common/ordered_pool.h"
 #include "common/validation_error.h"
 #include "controller/impulse.h"
 #include "controller/shaper_registry.h"
@@ -265,8 +265,8 @@ py::dict Sweep(const std::string& path, const std::vector<std::string>& sets, in
   using Row = std::pair<std::vector<std::string>, bench::PointOutcome>;
   {
     py::gil_scoped_release release;
-    RunOrdered<Row>(
-        points, jobs,
+    bench::ForEachSweepPoint<Row>(
+        0, points, jobs,
         [&](std::uint64_t p) {
           return Row{bench::MakePoint(sweep, p, overrides).texts, bench::RunPoint(sweep, overrides, p)};
         },
@@ -284,7 +284,7 @@ py::dict Sweep(const std::string& path, const std::vector<std::string>& sets, in
             if (PyErr_CheckSignals() != 0) interrupted = true;
           }
         },
-        0, [&] { return interrupted.load(); });
+        [&] { return interrupted.load(); });
   }
   if (interrupted) throw py::error_already_set();
   py::dict columns;

@@ -6,8 +6,8 @@
 
 #include "common/csv.h"
 #include "common/interrupt.h"
-#include "common/ordered_pool.h"
 #include "common/shown_text.h"
+#include "bench/sweep/point_loop.h"
 
 namespace shapebench::bench {
 namespace {
@@ -206,13 +206,13 @@ SweepComparison CompareSweeps(const ComparedSweeps& sweeps, const std::vector<Ga
     comparison.gates.push_back(summary);
   }
   Tally tally(&comparison, sweeps.baseline_sweep, points_csv, err);
-  RunOrdered<PointPair>(
-      comparison.points, jobs,
+  ForEachSweepPoint<PointPair>(
+      0, comparison.points, jobs,
       [&](std::uint64_t point) {
         return PointPair{RunPoint(sweeps.baseline_sweep, sweeps.baseline.overrides, point),
                          RunPoint(sweeps.candidate_sweep, sweeps.candidate.overrides, point)};
       },
-      [&](std::uint64_t point, PointPair&& pair) { tally.Add(point, std::move(pair)); }, 0,
+      [&](std::uint64_t point, PointPair&& pair) { tally.Add(point, std::move(pair)); },
       [] { return PendingInterrupt() != 0; });
   ThrowIfInterrupted("nothing written");
   return comparison;

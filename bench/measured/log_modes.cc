@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
+
 namespace shapebench::bench {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Walks from peak `i` in `direction` until the PSD falls below half the peak: the
 // crossing's frequency (interpolated), or NaN at the band's edge; *higher when a bin

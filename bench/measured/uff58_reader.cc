@@ -15,6 +15,7 @@
 #include "bench/config/config_document.h"
 #include "bench/config/config_error.h"
 #include "bench/measured/uff58_units.h"
+#include "common/math_constants.h"
 
 namespace shapebench::bench {
 namespace {
@@ -100,6 +101,14 @@ class Parser {
   void ReadDataset58(const std::string& identifier, Uff58Record* record);
   DataForm ReadDataForm(const std::string& text);
   void ReadAsciiValues(const DataForm& form, std::vector<double>* numbers);
+  // Record 12 of a 58b as its identifier line and record 7 announce it.
+  struct BinaryLayout {
+    bool big = false;              // big endian
+    bool single_abscissa = false;  // an uneven abscissa stored single beside double values
+    std::size_t expected = 0;      // bytes
+  };
+  BinaryLayout ReadBinaryLayout(const std::string& identifier, const DataForm& form);
+  double ReadBinaryNumber(std::size_t width, bool big);
   void ReadBinaryValues(const std::string& identifier, const DataForm& form, std::vector<double>* numbers);
   void StoreValues(const DataForm& form, const std::vector<double>& numbers, double scale, Uff58Record* record);
   void SkipDataset(long number, int line);
@@ -230,12 +239,9 @@ void Parser::ReadAsciiValues(const DataForm& form, std::vector<double>* numbers)
   }
 }
 
-
-// Record 12 of a 58b: `bytes` raw numbers of the record's precision right after record
-// 11, in the byte order of the identifier line (1 little, 2 big endian; IEEE 754 only).
-// An uneven abscissa may be stored single while the ordinate is double (the ASCII form's
-// E13.5): the byte count tells which.
-void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& form, std::vector<double>* numbers) {
+// The numbers after '58b' on the identifier line: byte order, floating-point format,
+// ASCII lines, bytes (as many of them as parse).
+std::vector<long> BinaryHeaderFields(const std::string& identifier) {
   std::vector<long> fields;
   std::size_t i = 7;
   while (fields.size() < 4) {
@@ -248,6 +254,15 @@ void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& for
     fields.push_back(value);
     i = end;
   }
+  return fields;
+}
+
+// Record 12 of a 58b: `bytes` raw numbers of the record's precision right after record
+// 11, in the byte order of the identifier line (1 little, 2 big endian; IEEE 754 only).
+// An uneven abscissa may be stored single while the ordinate is double (the ASCII form's
+// E13.5): the byte count tells which.
+Parser::BinaryLayout Parser::ReadBinaryLayout(const std::string& identifier, const DataForm& form) {
+  const std::vector<long> fields = BinaryHeaderFields(identifier);
   const int header_line = line_ - 11;
   if (fields.size() < 4) {
     Fail(header_line, 8, "record 58b", "expected byte order, floating-point format, ASCII lines and bytes after '58b'"
@@ -278,28 +293,37 @@ void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& for
     Fail(line_ + 1, 1, "record 12", "truncated: " + std::to_string(expected) + " bytes of binary data announced, " +
                                         std::to_string(bytes_.size() - std::min(pos_, bytes_.size())) + " left in the file");
   }
-  const bool big = fields[0] == 2;
-  auto read = [&](std::size_t width) {
-    std::uint64_t bits = 0;
-    for (std::size_t b = 0; b < width; ++b) {
-      const auto byte = static_cast<std::uint64_t>(static_cast<unsigned char>(bytes_[pos_ + (big ? b : width - 1 - b)]));
-      bits = (bits << 8) | byte;
-    }
-    pos_ += width;
-    if (width == 8) {
-      double value;
-      std::memcpy(&value, &bits, 8);
-      return value;
-    }
-    const auto narrow = static_cast<std::uint32_t>(bits);
-    float value;
-    std::memcpy(&value, &narrow, 4);
-    return static_cast<double>(value);
-  };
+  return BinaryLayout{fields[0] == 2, single_abscissa, expected};
+}
+
+// One number of `width` bytes (8: double, 4: single) at pos_, in the file's byte order.
+double Parser::ReadBinaryNumber(std::size_t width, bool big) {
+  std::uint64_t bits = 0;
+  for (std::size_t b = 0; b < width; ++b) {
+    const auto byte = static_cast<std::uint64_t>(static_cast<unsigned char>(bytes_[pos_ + (big ? b : width - 1 - b)]));
+    bits = (bits << 8) | byte;
+  }
+  pos_ += width;
+  if (width == 8) {
+    double value;
+    std::memcpy(&value, &bits, 8);
+    return value;
+  }
+  const auto narrow = static_cast<std::uint32_t>(bits);
+  float value;
+  std::memcpy(&value, &narrow, 4);
+  return static_cast<double>(value);
+}
+
+void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& form, std::vector<double>* numbers) {
+  const BinaryLayout layout = ReadBinaryLayout(identifier, form);
+  const std::size_t points = static_cast<std::size_t>(form.count);
+  const std::size_t per_point = form.PerPoint();
+  const std::size_t size = form.Double() ? 8 : 4;
   const int data_line = line_ + 1;
   for (std::size_t p = 0; p < points; ++p) {
     for (std::size_t n = 0; n < per_point; ++n) {
-      const double value = read(single_abscissa && n == 0 ? 4 : size);
+      const double value = ReadBinaryNumber(layout.single_abscissa && n == 0 ? 4 : size, layout.big);
       if (!std::isfinite(value)) {
         Fail(data_line, 1, "record 12", "value " + std::to_string(numbers->size() + 1) + " of the binary data (point " +
                                             std::to_string(p + 1) + ") is not a finite number; an FRF to identify "
@@ -309,7 +333,7 @@ void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& for
     }
   }
   // The closing "    -1" right after the data (some writers put a line end before it).
-  line_ += static_cast<int>(std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_ - expected),
+  line_ += static_cast<int>(std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_ - layout.expected),
                                        bytes_.begin() + static_cast<std::ptrdiff_t>(pos_), '\n'));
   if (pos_ < bytes_.size() && bytes_[pos_] == '\r') ++pos_;
   if (pos_ < bytes_.size() && bytes_[pos_] == '\n') {
@@ -320,7 +344,7 @@ void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& for
   const std::size_t at = pos_;
   if (!NextLine(&text) || Trim(text) != "-1") {
     pos_ = at;
-    Fail(line_, 1, "record 12", "expected '    -1' right after the " + std::to_string(expected) +
+    Fail(line_, 1, "record 12", "expected '    -1' right after the " + std::to_string(layout.expected) +
                                     " bytes of binary data (more data than announced, or a truncated file)");
   }
 }
@@ -412,7 +436,7 @@ void Parser::ReadDataset58(const std::string& identifier, Uff58Record* record) {
   }
   StoreValues(form, numbers, units->scale, record);
   if (NormalizedUnits(characteristics[0].units_label) == "rad/s") {
-    for (double& f : record->frequency_hz) f /= 2.0 * M_PI;
+    for (double& f : record->frequency_hz) f /= 2.0 * kPi;
   }
 }
 

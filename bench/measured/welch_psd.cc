@@ -11,10 +11,10 @@
 
 #include <fftw3.h>
 
+#include "common/math_constants.h"
+
 namespace shapebench::bench {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // FFTW's planner is not thread-safe (its execution is): plans are made and destroyed
 // under this lock. FFTW_ESTIMATE: the same algorithm, hence the same bits, on every run.

@@ -120,9 +120,11 @@ PatternData ComputePattern(const controller::ControllerConfig& controller) {
   return data;
 }
 
-void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& controller) {
+namespace {
+
+// What the pattern is designed for: method, frequencies, damping, the steady acceleration.
+void PrintPatternDesign(std::ostream& out, const controller::ControllerConfig& controller) {
   const controller::PatternConfig& config = controller.pattern;
-  const controller::StepPattern pattern = controller::MakeStepPattern(config);
   const double steady_accel_m_s2 =
       controller.accel_time_s > 0.0 ? controller.feed_m_s() / controller.accel_time_s : 0.0;
 
@@ -155,6 +157,11 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
     out << "  step times rounded to " << Num(config.step_resolution_s) << " s\n";
   }
 
+}
+
+// The shaper's steps (para. 49) or the library shaper's mode.
+void PrintPatternSteps(std::ostream& out, const controller::PatternConfig& config,
+                       const controller::StepPattern& pattern) {
   if (pattern.general()) {
     const bool patent = controller::FindShaper(config.method).kind == controller::ShaperKind::kPatentStep;
     out << "\nshaper ("
@@ -179,7 +186,12 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
     }
   }
 
-  const PatternData data = ComputePattern(controller);
+}
+
+// The jerk impulses, the two realizations and the profile table.
+void PrintImpulsesAndTable(std::ostream& out, const controller::ControllerConfig& controller,
+                           const PatternData& data) {
+  const controller::PatternConfig& config = controller.pattern;
   out << "\njerk impulses at the start of a phase (continuous time, per unit a)\n"
       << "  t_s            amplitude\n";
   for (const auto& impulse : data.impulses) {
@@ -201,6 +213,9 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
       << ")\n";
   PrintProfileTable(out, table, controller.period_s);
 
+}
+
+void PrintDesignResiduals(std::ostream& out, const PatternData& data) {
   for (const PatternResidual& residual : data.residuals) {
     const double zeta = residual.damping_ratio;
     out << "\nresidual vibration at " << Num(residual.frequency_hz) << " Hz ("
@@ -211,6 +226,18 @@ void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& c
         << "  rounded to the nearest tick      " << Num(residual.rounded, "%.3e")
         << "   (for comparison: no correction)\n";
   }
+}
+
+}  // namespace
+
+void PrintPatternReport(std::ostream& out, const controller::ControllerConfig& controller) {
+  const controller::PatternConfig& config = controller.pattern;
+  const controller::StepPattern pattern = controller::MakeStepPattern(config);  // may throw: before any line
+  PrintPatternDesign(out, controller);
+  PrintPatternSteps(out, config, pattern);
+  const PatternData data = ComputePattern(controller);
+  PrintImpulsesAndTable(out, controller, data);
+  PrintDesignResiduals(out, data);
 }
 
 namespace {

@@ -1,10 +1,16 @@
 #include "bench/scenario/metrics.h"
 
+#include <iterator>
+
 namespace shapebench::bench {
 
-const std::vector<MetricInfo>& MetricTable() {
-  using M = Metrics;
-  static const std::vector<MetricInfo> table = {
+namespace {
+
+using M = Metrics;
+
+// MetricTable's rows: a constant table (constexpr: built at compile time), not code; the
+// number of metrics is its size.
+constexpr MetricInfo kMetricRows[] = {
       {"static_displacement_m", "m", Better::kLower,
        "the deflection under the run's largest commanded acceleration held constant (a static "
        "solve of the model): the reference of every ratio",
@@ -88,7 +94,12 @@ const std::vector<MetricInfo>& MetricTable() {
        "the damping ratio that design frequency's shaper was designed for (methods 1-4: 0); n/a "
        "as pattern_frequency_hz",
        &M::pattern_damping_ratio},
-  };
+};
+
+}  // namespace
+
+const std::vector<MetricInfo>& MetricTable() {
+  static const std::vector<MetricInfo> table(std::begin(kMetricRows), std::end(kMetricRows));
   return table;
 }
 

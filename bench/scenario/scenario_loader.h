@@ -14,6 +14,7 @@
 #include "bench/config/override.h"
 #include "bench/scenario/pattern_defaults.h"
 #include "bench/scenario/scenario.h"
+#include "bench/scenario/scenario_guards.h"
 #include "common/validation_error.h"
 #include "model/machine.h"
 #include "model/multi_axis_machine.h"
@@ -60,27 +61,6 @@ model::MultiAxisMachineConfig LoadMachineAxes(const std::string& path,
 // The same, reduced to the driven axis' model (the single-axis view); a ConfigError when
 // the driven axis is rigid.
 model::MachineConfig LoadMachine(const std::string& path, const std::vector<Override>& overrides);
-
-// A lower bound of the simulated time of a run (seconds), computed without generating the
-// command: the path at its programmed feeds (or, if longer, from rest to rest at twice the
-// acc/dec's acceleration), dwells, the pattern's duration, the post-interpolation filter's
-// length, and the residual window (three periods of the lowest mode). `breakdown`, when
-// given, receives the parts in words. The loader refuses a scenario whose bound exceeds
-// limits.max_simulated_s or limits.max_ticks periods (a ConfigError naming the scenario).
-double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
-// Its two parts: the motion (program and controller: the structure does not change it) and
-// the residual window (three periods of the lowest mode).
-double MinimumMotionSeconds(const Scenario& scenario, std::string* breakdown = nullptr);
-double ResidualWindowSeconds(const Scenario& scenario);
-
-// What LoadScenario checks of a scenario's machine once it is read, without its sources:
-// the machine's validate(), a finite state-space model, the run length within limits:.
-// True when all hold. A sweep point that changes only numbers of the structure on a loaded
-// scenario (structure_numbers.h) asks this; on false the point is loaded from its sources,
-// which locates the error.
-// `motion_s`: MinimumMotionSeconds of the scenario when known (a sweep's points that
-// change only the structure share it).
-bool MachineChecksPass(const Scenario& scenario, std::optional<double> motion_s = std::nullopt);
 
 // Locates a ValidationError raised later about a loaded scenario (its field a scenario
 // key path, e.g. from RunScenario) in the scenario's sources.

@@ -139,16 +139,12 @@ Band BandAroundDesign(const std::function<double(double)>& residual, double leve
   return band;
 }
 
-SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Override>& overrides) {
-  ConfigDocument document(ConfigDocument::ParseFile(path), path);
-  for (std::size_t i = 0; i < overrides.size(); ++i) {
-    document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
-  }
-  NodeReader top(document, document.root(), "");
-  top.ExpectMap({"shapers", "ratio", "damping_ratios", "level", "period_s"});
-  SensitivitySpec spec;
-  spec.source_file = path;
+namespace {
 
+// `shapers:`: each a pattern as in controller.pattern with an optional label, validated;
+// labels sanitized and made unique.
+std::vector<SensitivityShaper> ReadShapers(const ConfigDocument& document, const NodeReader& top) {
+  std::vector<SensitivityShaper> shapers_read;
   const auto shapers = top.Child("shapers");
   if (!shapers) {
     throw top.Error("missing 'shapers': a list of pattern mappings as in controller.pattern, e.g. "
@@ -171,34 +167,51 @@ SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Overr
       throw document.ErrorAtPath(entry.path() + "." + error.field(), error.message());
     }
     if (shaper.label.empty()) shaper.label = AutoLabel(shaper.pattern);
-    spec.shapers.push_back(shaper);
+    shapers_read.push_back(shaper);
   }
-  if (spec.shapers.empty()) throw shapers->Error("expected at least one shaper");
+  if (shapers_read.empty()) throw shapers->Error("expected at least one shaper");
   // Two shapers with the same label are told apart by their position.
   std::set<std::string> seen;
-  for (std::size_t i = 0; i < spec.shapers.size(); ++i) {
-    std::string& label = spec.shapers[i].label;
+  for (std::size_t i = 0; i < shapers_read.size(); ++i) {
+    std::string& label = shapers_read[i].label;
     label = Sanitized(label);
     if (!seen.insert(label).second) label += " #" + std::to_string(i + 1);
   }
+  return shapers_read;
+}
 
-  if (const auto ratio = top.Child("ratio")) {
-    ratio->ExpectMap({"from", "to", "steps"});
-    ratio->Read("from", &spec.ratio_from);
-    ratio->Read("to", &spec.ratio_to);
-    ratio->Read("steps", &spec.ratio_steps);
-    auto fail = [&](const std::string& key, const std::string& message) {
-      const auto child = ratio->Child(key);
-      return (child ? *child : *ratio).Error(message);
-    };
-    if (!(spec.ratio_from > 0.0)) throw fail("from", "must be > 0 (got " + Num(spec.ratio_from) + ")");
-    if (!(spec.ratio_to > spec.ratio_from)) {
-      throw fail("to", "must be above from (" + Num(spec.ratio_from) + "; got " + Num(spec.ratio_to) + ")");
-    }
-    if (spec.ratio_steps < 2 || spec.ratio_steps > 1000001) {
-      throw fail("steps", "must be in [2, 1000001] (got " + std::to_string(spec.ratio_steps) + ")");
-    }
+// `ratio: {from, to, steps}` into the spec.
+void ReadRatioRange(const NodeReader& ratio, SensitivitySpec* spec) {
+  ratio.ExpectMap({"from", "to", "steps"});
+  ratio.Read("from", &spec->ratio_from);
+  ratio.Read("to", &spec->ratio_to);
+  ratio.Read("steps", &spec->ratio_steps);
+  auto fail = [&](const std::string& key, const std::string& message) {
+    const auto child = ratio.Child(key);
+    return (child ? *child : ratio).Error(message);
+  };
+  if (!(spec->ratio_from > 0.0)) throw fail("from", "must be > 0 (got " + Num(spec->ratio_from) + ")");
+  if (!(spec->ratio_to > spec->ratio_from)) {
+    throw fail("to", "must be above from (" + Num(spec->ratio_from) + "; got " + Num(spec->ratio_to) + ")");
   }
+  if (spec->ratio_steps < 2 || spec->ratio_steps > 1000001) {
+    throw fail("steps", "must be in [2, 1000001] (got " + std::to_string(spec->ratio_steps) + ")");
+  }
+}
+
+}  // namespace
+
+SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Override>& overrides) {
+  ConfigDocument document(ConfigDocument::ParseFile(path), path);
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
+  }
+  NodeReader top(document, document.root(), "");
+  top.ExpectMap({"shapers", "ratio", "damping_ratios", "level", "period_s"});
+  SensitivitySpec spec;
+  spec.source_file = path;
+  spec.shapers = ReadShapers(document, top);
+  if (const auto ratio = top.Child("ratio")) ReadRatioRange(*ratio, &spec);
   if (const auto damping = top.Child("damping_ratios")) {
     spec.damping_ratios.clear();
     for (const NodeReader& value : damping->Elements()) {

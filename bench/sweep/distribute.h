@@ -1,8 +1,9 @@
 // Where a sweep's points are computed: on this process's threads (common/ordered_pool.h),
 // or, when the process is one rank of an MPI run (bench/sweep/sweep_mpi.h installs a
 // Distributor), on every rank's threads with rank 0 consuming the results in order
-// (docs/scaling.md). RunSweep and CheckSweep call RunDistributed; the other ranks call
-// Serve with the same work, so a result is the same bytes whichever rank computed it.
+// (docs/scaling.md). RunSweep and CheckSweep go through it (ForEachSweepPoint with a codec,
+// point_loop.h); the other ranks call Serve with the same work, so a result is the same
+// bytes whichever rank computed it.
 #pragma once
 
 #include <cstdint>
@@ -47,25 +48,5 @@ inline bool IsDistributedWorker() {
 
 // The default of --jobs: this host's hardware threads shared by its ranks (at least 1).
 int DefaultJobs();
-
-// RunOrdered (common/ordered_pool.h) over k in [first, end), through the current
-// Distributor when there is one: `encode` and `decode` carry a Result across processes.
-template <typename Result>
-std::uint64_t RunDistributed(std::uint64_t first, std::uint64_t end, int jobs,
-                             const std::function<Result(std::uint64_t)>& work,
-                             const std::function<void(std::uint64_t, Result&&)>& consume,
-                             const std::function<std::string(const Result&)>& encode,
-                             const std::function<Result(const std::string&)>& decode,
-                             const std::function<bool()>& cancelled = {}) {
-  if (Distributor* distributor = CurrentDistributor()) {
-    return distributor->Coordinate(
-        first, end, jobs, [&](std::uint64_t k) { return encode(work(k)); },
-        [&](std::uint64_t k, std::string&& bytes) { consume(k, decode(bytes)); }, cancelled);
-  }
-  return RunOrdered<Result>(
-      end - first, jobs, [&](std::uint64_t k) { return work(first + k); },
-      [&](std::uint64_t k, Result&& result) { consume(first + k, std::move(result)); }, 0,
-      cancelled);
-}
 
 }  // namespace shapebench::bench

@@ -14,6 +14,7 @@
 #include "common/shown_text.h"
 #include "bench/scenario/checks.h"
 #include "bench/sweep/distribute.h"
+#include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep_runner.h"
 #include "common/sample_math.h"
 
@@ -196,7 +197,8 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   const bool yield_gated = std::any_of(sweep.gates.begin(), sweep.gates.end(), [](const SampleGate& gate) {
     return gate.kind == SampleGate::Kind::kYield;
   });
-  RunDistributed<TimedOutcome>(
+  const PointCodec<TimedOutcome> codec{EncodeOutcome, DecodeOutcome};
+  ForEachSweepPoint<TimedOutcome>(
       0, sweep.points, jobs, [&](std::uint64_t point) { return TimedRun(sweep, sets, point); },
       [&](std::uint64_t point, TimedOutcome&& timed) {
         const PointOutcome& outcome = timed.first;
@@ -234,7 +236,7 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
           report->results.push_back(std::move(result));
         }
       },
-      EncodeOutcome, DecodeOutcome);
+      {}, &codec);
   for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
     const CheckTally& tally = tallies[c];
     const std::uint64_t run = tally.passed + tally.failed;

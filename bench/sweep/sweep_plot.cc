@@ -200,26 +200,9 @@ void Preamble(std::FILE* gnuplot, const std::string& output_path, const std::str
   std::fprintf(gnuplot, "set grid\n");
 }
 
-void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
-                    const SweepPlot& plot, Slice slice) {
-  const double level = FivePercentLevel(plot.metric);
-  const bool log = ApplyLog(plot, &slice);
-  Preamble(gnuplot, output_path,
-           Title(layout, plot.metric + " vs " + plot.x +
-                             (plot.series.empty() ? "" : ", one line per " + plot.series),
-                 slice));
-  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.x)).c_str());
-  std::fprintf(gnuplot, "set ylabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
-  // The legend in rows under the plot, short samples: the plot keeps the page's width.
-  const std::size_t entries = slice.y.texts.size() + (std::isfinite(level) ? 1 : 0);
-  std::fprintf(gnuplot,
-               "set bmargin %zu\nset key at screen 0.5, screen 0.01 center bottom horizontal maxcols 4 "
-               "box samplen 2\n",
-               5 + (entries + 3) / 4);
-  if (slice.x.numeric && slice.x.log) std::fprintf(gnuplot, "set logscale x\n");
-  if (log) std::fprintf(gnuplot, "set logscale y\nset format y '%%g'\n");
-  if (!slice.x.numeric) std::fprintf(gnuplot, "set xtics %s\n", IndexTics(slice.x).c_str());
-  // Ranges gnuplot cannot derive without warning: no defined value, or one value only.
+// The line plot's ranges gnuplot cannot derive without warning (no defined value, one
+// value only; in log, values a million times under the largest), and the x range.
+void SetLineRanges(std::FILE* gnuplot, const Slice& slice, double level, bool log) {
   const std::size_t nx = slice.x.texts.size();
   double low = std::numeric_limits<double>::infinity();
   double high = -low;
@@ -254,6 +237,12 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
     x_high += pad;
   }
   std::fprintf(gnuplot, "set xrange [%.17g:%.17g]\n", x_low, x_high);
+}
+
+// One data block and plot term per series value with a defined point.
+std::vector<std::string> LineSeriesTerms(std::FILE* gnuplot, const SweepLayout& layout,
+                                         const SweepPlot& plot, const Slice& slice) {
+  const std::size_t nx = slice.x.texts.size();
   std::vector<std::string> terms;
   for (std::size_t s = 0; s < slice.y.texts.size(); ++s) {
     bool any = false;
@@ -278,6 +267,30 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
                   kColors[s % (sizeof kColors / sizeof kColors[0])]);
     terms.push_back(term + Quoted(title));
   }
+  return terms;
+}
+
+void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const SweepLayout& layout,
+                    const SweepPlot& plot, Slice slice) {
+  const double level = FivePercentLevel(plot.metric);
+  const bool log = ApplyLog(plot, &slice);
+  Preamble(gnuplot, output_path,
+           Title(layout, plot.metric + " vs " + plot.x +
+                             (plot.series.empty() ? "" : ", one line per " + plot.series),
+                 slice));
+  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.x)).c_str());
+  std::fprintf(gnuplot, "set ylabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
+  // The legend in rows under the plot, short samples: the plot keeps the page's width.
+  const std::size_t entries = slice.y.texts.size() + (std::isfinite(level) ? 1 : 0);
+  std::fprintf(gnuplot,
+               "set bmargin %zu\nset key at screen 0.5, screen 0.01 center bottom horizontal maxcols 4 "
+               "box samplen 2\n",
+               5 + (entries + 3) / 4);
+  if (slice.x.numeric && slice.x.log) std::fprintf(gnuplot, "set logscale x\n");
+  if (log) std::fprintf(gnuplot, "set logscale y\nset format y '%%g'\n");
+  if (!slice.x.numeric) std::fprintf(gnuplot, "set xtics %s\n", IndexTics(slice.x).c_str());
+  SetLineRanges(gnuplot, slice, level, log);
+  std::vector<std::string> terms = LineSeriesTerms(gnuplot, layout, plot, slice);
   if (std::isfinite(level)) {
     char term[128];
     std::snprintf(term, sizeof term, "%.17g with lines dt 2 lw 1.5 lc rgb '#444444' title ", level);

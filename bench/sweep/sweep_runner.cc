@@ -24,6 +24,7 @@
 #include "common/interrupt.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
+#include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep_plot.h"
 
 namespace shapebench::bench {
@@ -204,6 +205,66 @@ class PartialRows {
   std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
 };
 
+// The output directory, created when missing.
+void CreateOutputDir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw std::runtime_error("cannot create " + dir.string() + ": " +
+                             (ec ? ec.message() : "not a directory"));
+  }
+}
+
+// The shard's points from summary->resumed on, their rows appended to `partial` in order
+// (after the manifest `preparing` writes, if any), and `partial` renamed results.csv once
+// complete. An interruption keeps the rows so far and says how to resume.
+void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets,
+                        const SweepRunOptions& options, const ShardPoints& shard, const fs::path& partial,
+                        std::future<ResumedRows>* preparing, SweepRunSummary* summary) {
+  const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
+  ProgressBar progress(options.progress, shard.Size(), summary->resumed);
+  std::uint64_t written = summary->resumed;
+  PartialRows rows(partial, preparing, options.durability);
+  try {
+    rows.OpenIfReady();
+    // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
+    const PointCodec<Row> codec{EncodeRow, DecodeRow};
+    ForEachSweepPoint<Row>(
+        summary->resumed, shard.Size(), options.jobs,
+        [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
+        [&](std::uint64_t, Row&& row) {
+          rows.Add(row.text);
+          if (!row.ok) ++summary->errors;
+          progress.Update(++written);
+        },
+        [] { return PendingInterrupt() != 0; }, &codec);
+    progress.Finish(written);
+    rows.Close();
+  } catch (...) {
+    rows.KeepComputed();  // the rows computed before the failure are kept, as those written
+    throw;
+  }
+  if (written < shard.Size()) {
+    // SIGINT/SIGTERM: the rows so far are complete and flushed; the same command resumes.
+    ThrowIfInterrupted(std::to_string(written) + " of " + std::to_string(shard.Size()) +
+                       " points done, kept in " + partial.string() +
+                       "; run the same command again to resume");
+  }
+  fs::rename(partial, summary->results);  // dir / kSweepResultsFile
+}
+
+// The plots of a complete, unsharded sweep.
+void DrawPlots(const Sweep& sweep, const fs::path& dir, SweepRunSummary* summary) {
+  try {
+    summary->plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary->results);
+  } catch (const std::exception&) {
+    // gnuplot gets the terminal's SIGINT too: report the interruption, not its failure.
+    ThrowIfInterrupted(summary->results + " is complete; run the same command again to draw the plots");
+    throw;
+  }
+  ThrowIfInterrupted(summary->results + " and the plots are complete");
+}
+
 }  // namespace
 
 SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
@@ -218,12 +279,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   const nlohmann::ordered_json manifest =
       ManifestJson(sweep, sets, options.shard_index, options.shard_count);
   const ShardPoints shard{sweep.points, options.shard_index, options.shard_count};
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    throw std::runtime_error("cannot create " + dir.string() + ": " +
-                             (ec ? ec.message() : "not a directory"));
-  }
+  CreateOutputDir(dir);
   const OutputDirLock lock(dir.string());  // one writer at a time, until we return
   SweepRunSummary summary;
   summary.points = shard.Size();
@@ -252,50 +308,11 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   if (fresh) preparing = std::async(here ? std::launch::deferred : std::launch::async, prepare);
   summary.resumed = resumed.rows;
   summary.errors = resumed.errors;
-  if (!resumed.finished) {
-    const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
-    ProgressBar progress(options.progress, shard.Size(), summary.resumed);
-    std::uint64_t written = summary.resumed;
-    PartialRows rows(partial, &preparing, options.durability);
-    try {
-      rows.OpenIfReady();
-      // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
-      RunDistributed<Row>(
-          summary.resumed, shard.Size(), options.jobs,
-          [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
-          [&](std::uint64_t, Row&& row) {
-            rows.Add(row.text);
-            if (!row.ok) ++summary.errors;
-            progress.Update(++written);
-          },
-          EncodeRow, DecodeRow, [] { return PendingInterrupt() != 0; });
-      progress.Finish(written);
-      rows.Close();
-    } catch (...) {
-      rows.KeepComputed();  // the rows computed before the failure are kept, as those written
-      throw;
-    }
-    if (written < shard.Size()) {
-      // SIGINT/SIGTERM: the rows so far are complete and flushed; the same command resumes.
-      ThrowIfInterrupted(std::to_string(written) + " of " + std::to_string(shard.Size()) +
-                         " points done, kept in " + partial.string() +
-                         "; run the same command again to resume");
-    }
-    fs::rename(partial, dir / kSweepResultsFile);
-  }
+  if (!resumed.finished) RunRemainingPoints(sweep, sets, options, shard, partial, &preparing, &summary);
   summary.ok = summary.points - summary.errors;
   ThrowIfInterrupted("all " + std::to_string(summary.points) + " points done, " + summary.results +
                      " is complete; run the same command again to draw the plots");
-  if (options.shard_count == 1) {
-    try {
-      summary.plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary.results);
-    } catch (const std::exception&) {
-      // gnuplot gets the terminal's SIGINT too: report the interruption, not its failure.
-      ThrowIfInterrupted(summary.results + " is complete; run the same command again to draw the plots");
-      throw;
-    }
-    ThrowIfInterrupted(summary.results + " and the plots are complete");
-  }
+  if (options.shard_count == 1) DrawPlots(sweep, dir, &summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }

@@ -24,14 +24,13 @@
 #include <string>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "controller/shaper_registry.h"
 #include "controller/vibration_conditions.h"
 
 namespace shapebench::controller {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 using Kind = ConditionKind;
 

@@ -7,12 +7,12 @@
 // any zeta (the K_m^j scaling cancels the decay).
 #include <cmath>
 
+#include "common/math_constants.h"
+
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<Impulse> Mzv(double frequency_hz, double z) {
   const double root = std::sqrt(1.0 - z * z);

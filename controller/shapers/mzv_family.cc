@@ -18,13 +18,13 @@
 #include <vector>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxImpulses = 16;
 
 std::vector<double> Multiply(const std::vector<double>& a, const std::vector<double>& b) {

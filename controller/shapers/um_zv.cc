@@ -12,13 +12,12 @@
 #include <utility>
 
 #include "common/format.h"
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The damped UM-ZV times (t2, t3) for a mode of `frequency_hz` and `damping_ratio`;
 // throws ValidationError("design_damping_ratio") when Newton finds no solution.

@@ -6,12 +6,12 @@
 // - zvdd  [1, 3K, 3K^2, K^3] / (1 + K)^3 at [0, T_d/2, T_d, 3T_d/2] (ZV convolved thrice)
 #include <cmath>
 
+#include "common/math_constants.h"
+
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct DampedMode {
   double td;  // the damped period T_d

@@ -1,0 +1,127 @@
+#include "bench/sweep/sweep_definition.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "common/csv.h"
+
+namespace shapebench::bench {
+namespace {
+
+// printf's "%.15g" (std::to_chars' general format with a precision is that, to the
+// character), without printf's cost: a sweep writes one a point.
+std::string Digits15(double value) {
+  char text[40];
+  const std::to_chars_result written = std::to_chars(text, text + sizeof text, value, std::chars_format::general, 15);
+  return std::string(text, written.ptr);
+}
+
+// The position of the `index`-th grid override's value for this point.
+std::pair<int, int> OverridePosition(const Sweep& sweep, const SweepPoint& point, int index) {
+  const std::vector<std::uint64_t> digits = sweep.AxisIndices(point.index);
+  int k = 0;
+  for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
+    for (const auto& values : sweep.axes[a].keys) {
+      if (++k == index) return values.Position(digits[a]);
+    }
+  }
+  return {1, 1};
+}
+
+}  // namespace
+
+std::uint64_t SweepValues::size() const {
+  if (kind == Kind::kSampled) return samples ? static_cast<std::uint64_t>(samples->size()) : 0;
+  return kind == Kind::kList ? static_cast<std::uint64_t>(texts.size()) : steps;
+}
+
+std::string SweepValues::Text(std::uint64_t i) const {
+  if (kind == Kind::kList) return texts[i];
+  if (kind == Kind::kSampled) return Digits15((*samples)[i]);
+  if (i == 0) return ShortestDouble(from);
+  if (i + 1 == steps) return ShortestDouble(to);
+  // Inner values in 15 significant digits: 15.3, not 15.300000000000001 (the value a
+  // point runs with is the text it shows).
+  const double last = static_cast<double>(steps - 1);
+  const double k = static_cast<double>(i);
+  const double value =
+      kind == Kind::kLinear
+          ? from + (to - from) * k / last
+          : std::exp(std::log(from) + (std::log(to) - std::log(from)) * k / last);
+  return Digits15(value);
+}
+
+std::string SweepValues::Yaml(std::uint64_t i) const {
+  return kind == Kind::kList ? yamls[i] : Text(i);
+}
+
+std::pair<int, int> SweepValues::Position(std::uint64_t i) const {
+  return kind == Kind::kList ? positions[i] : std::make_pair(line, column);
+}
+
+std::vector<std::string> Sweep::Keys() const {
+  std::vector<std::string> keys;
+  for (const auto& axis : axes) {
+    for (const auto& values : axis.keys) keys.push_back(values.key);
+  }
+  return keys;
+}
+
+std::vector<std::uint64_t> Sweep::AxisIndices(std::uint64_t point) const {
+  std::vector<std::uint64_t> digits(axes.size(), 0);
+  for (std::size_t a = axes.size(); a-- > 0;) {
+    digits[a] = point % axes[a].size();
+    point /= axes[a].size();
+  }
+  return digits;
+}
+
+std::string SweepPoint::Label() const {
+  std::string label;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    label += (i == 0 ? "" : ", ") + keys[i] + "=" + texts[i];
+  }
+  return label;
+}
+
+SweepPoint MakePoint(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets) {
+  SweepPoint point;
+  point.index = index;
+  const std::vector<std::uint64_t> digits = sweep.AxisIndices(index);
+  for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
+    for (const auto& values : sweep.axes[a].keys) {
+      point.keys.push_back(values.key);
+      point.texts.push_back(values.Text(digits[a]));
+      // Yaml is Text except for a list's values (one conversion a point, not two).
+      point.overrides.push_back(
+          Override{values.key, values.kind == SweepValues::Kind::kList ? values.Yaml(digits[a]) : point.texts.back()});
+    }
+  }
+  point.overrides.insert(point.overrides.end(), sets.begin(), sets.end());
+  return point;
+}
+
+std::string OverridesKey(std::vector<Override>::const_iterator first,
+                         std::vector<Override>::const_iterator last) {
+  std::string key;
+  for (; first != last; ++first) key += first->key_path + "=" + first->value_yaml + "\n";
+  return key;
+}
+
+ConfigError RelocatePointError(const Sweep& sweep, const SweepPoint& point, const ConfigError& error) {
+  if (error.file() != kOverrideSource) return error;
+  const int grid_overrides = static_cast<int>(point.keys.size());
+  if (error.line() >= 1 && error.line() <= grid_overrides) {
+    const auto [line, column] = OverridePosition(sweep, point, error.line());
+    return ConfigError(sweep.file, line, column, error.key_path(), error.message());
+  }
+  return ConfigError(kOverrideSource, error.line() - grid_overrides, 1, error.key_path(),
+                     error.message());
+}
+
+bool IsGridOverrideError(const SweepPoint& point, const ConfigError& error) {
+  return error.file() == kOverrideSource && error.line() >= 1 &&
+         error.line() <= static_cast<int>(point.keys.size());
+}
+
+}  // namespace shapebench::bench

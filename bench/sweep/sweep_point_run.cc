@@ -1,0 +1,179 @@
+#include "bench/sweep/sweep_point_run.h"
+
+#include <algorithm>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
+
+#include "bench/config/key_path.h"
+#include "bench/run/located_run.h"
+#include "bench/scenario/scenario_loader.h"
+#include "bench/scenario/structure_numbers.h"
+#include "bench/run/run_scenario.h"
+#include "bench/sweep/shared_command.h"
+#include "common/field_list.h"
+#include "common/validation_error.h"
+#include "model/integrator.h"
+
+namespace shapebench::bench {
+namespace {
+
+// Keys the command (controller::GenerateProgramCommand: controller, program, move, the
+// machine's stroke and driven axis) does not read: the structure (the machine forms' lists,
+// as their field lists name them, a lumped axis' `damping:` block, a modal form's
+// `modal_file`), the drive, the integrator, the output view, the checks.
+bool PlantOnlyKey(const std::string& key) {
+  for (const char* prefix : {"drive", "integrator", "output", "checks"}) {
+    if (IsPathPrefix(prefix, key)) return true;
+  }
+  static const std::vector<std::string> lists = [] {
+    std::vector<std::string> names;
+    model::ForEachMachineForm([&](const auto& form) {
+      for (std::string& list : ListNames<std::decay_t<decltype(form)>>()) names.push_back(std::move(list));
+    });
+    names.emplace_back(model::LumpedDamping::kKey);
+    names.emplace_back(model::ModalMachineConfig::kModalFileKey);
+    return names;
+  }();
+  for (const std::string& list : lists) {
+    if (IsPathPrefix("machine." + list, key)) return true;
+    for (const char* axis : {"x", "y", "z"}) {
+      if (IsPathPrefix(std::string("machine.axes.") + axis + "." + list, key)) return true;
+    }
+  }
+  return false;
+}
+
+std::string CommandKey(const SweepPoint& point) {
+  std::string key;
+  for (std::size_t i = 0; i < point.overrides.size(); ++i) {
+    const Override& o = point.overrides[i];
+    // The --set options (after the point's values) and the swept keys the controller reads.
+    if (i >= point.keys.size() || !PlantOnlyKey(o.key_path)) key += o.key_path + "=" + o.value_yaml + "\n";
+  }
+  return key;
+}
+
+// The scenario a point of a sweep loaded on this thread, with what it depends on besides
+// the point's own values: the sweep and the --set options.
+struct LoadedScenario {
+  std::uint64_t sweep_id = 0;
+  std::string sets_key;
+  Scenario scenario;
+  double motion_s = 0.0;  // MinimumMotionSeconds(scenario): the same for every such point
+};
+
+std::string SetsKey(const SweepPoint& point) {
+  return OverridesKey(point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()),
+                      point.overrides.end());
+}
+
+// A point that ran with a warning (integrator.cross_check: warn) says so in its row's
+// error column; its status stays ok.
+std::string WarningText(const std::vector<std::string>& warnings) {
+  std::string text;
+  for (const std::string& warning : warnings) text += (text.empty() ? "warning: " : "; warning: ") + warning;
+  return text;
+}
+
+// The scenario of a point. A point that changes only numbers of the structure takes the
+// scenario the last point loaded on this thread and sets them (structure_numbers.h).
+// Otherwise the base (and its machine file) is parsed once per thread (ParseCacheScope); a
+// point whose scenario does not load is loaded again without, which locates its error.
+// `loaded_here` holds a scenario loaded for this point alone.
+const Scenario& PointScenario(const Sweep& sweep, const SweepPoint& point, Scenario* loaded_here) {
+  thread_local LoadedScenario loaded;
+  const bool structure_only =
+      std::all_of(point.keys.begin(), point.keys.end(), IsStructureNumberKey);
+  const std::string sets_key = SetsKey(point);
+  if (structure_only && sweep.id != 0 && !(loaded.sweep_id == sweep.id && loaded.sets_key == sets_key) &&
+      sweep.base_scenario != nullptr && sweep.base_sets_key == sets_key) {
+    loaded = {sweep.id, sets_key, *sweep.base_scenario, MinimumMotionSeconds(*sweep.base_scenario)};
+  }
+  if (structure_only && loaded.sweep_id == sweep.id && sweep.id != 0 && loaded.sets_key == sets_key) {
+    // Set in place: every such point sets every swept number, so what the last one set
+    // is overwritten (no copy of the scenario a point). A refused value may have left some
+    // set: the cache is dropped then.
+    const std::vector<Override> values(point.overrides.begin(),
+                                       point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
+    if (SetStructureNumbers(&loaded.scenario, values, loaded.motion_s)) return loaded.scenario;
+    loaded = LoadedScenario{};
+  }
+  LoadOptions options;
+  options.design_modes = sweep.design_modes;  // the base's: the pattern stays fixed
+  try {
+    const ParseCacheScope parse_once;
+    *loaded_here = LoadScenario(sweep.base, point.overrides, options);
+  } catch (const std::exception&) {
+    *loaded_here = LoadScenario(sweep.base, point.overrides, options);
+  }
+  if (structure_only) loaded = {sweep.id, sets_key, *loaded_here, MinimumMotionSeconds(*loaded_here)};
+  return *loaded_here;
+}
+
+// Points that differ only in keys the controller does not read (the natural-period
+// sweep: the plant's frequency) share one command and its samples, generated once for
+// all threads (shared_command.h): the same inputs, the same command, so the same
+// metrics bit for bit (tests/bench/sweep_test.cc checks the rows against independent
+// runs, tests/bench/shared_command_test.cc against a sweep without sharing).
+void UseSharedCommand(const Sweep& sweep, const SweepPoint& point, const Scenario& scenario,
+                      RunOptions* options) {
+  if (sweep.id == 0 || !SharedCommandCache::Enabled()) return;
+  // The command this thread used last, when the point's is the same one: no lock and
+  // no count of its owners a point (the threads of a sweep would take turns at the
+  // cache's lock and at the shared count's cache line; the thread's copy keeps it).
+  thread_local struct {
+    std::uint64_t sweep_id = 0;
+    std::string key;
+    std::shared_ptr<const SharedCommand> command;
+  } last;
+  std::string key = CommandKey(point);
+  if (last.command == nullptr || last.sweep_id != sweep.id || last.key != key) {
+    std::shared_ptr<const SharedCommand> got = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
+      return GenerateScenarioCommand(scenario, scenario.RunProgram());
+    });
+    last = {sweep.id, std::move(key), std::move(got)};
+  }
+  options->command = &last.command->command;
+  options->samples = &last.command->samples;
+}
+
+}  // namespace
+
+PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
+  return RunPoint(sweep, MakePoint(sweep, index, sets));  // (MakePoint reads the grid: no input error)
+}
+
+PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
+  PointOutcome outcome;
+  outcome.index = point.index;
+  try {
+    Scenario loaded_here;
+    const Scenario& scenario = PointScenario(sweep, point, &loaded_here);
+    try {
+      RunOptions options{false};  // no trace needed
+      UseSharedCommand(sweep, point, scenario, &options);
+      const RunResult result = RunScenario(scenario, options);
+      outcome.metrics = result.metrics;
+      outcome.error = WarningText(result.warnings);
+    } catch (const ValidationError& error) {
+      throw LocateValidationError(sweep.base, point.overrides, error);
+    }
+  } catch (const ConfigError& error) {
+    outcome.status = PointOutcome::Status::kBadInput;
+    outcome.error = RelocatePointError(sweep, point, error).what();
+  } catch (const model::SolverError& error) {
+    outcome.status = PointOutcome::Status::kSolverFailed;
+    outcome.error = SolverFailureText(error);
+  } catch (const std::bad_alloc&) {
+    throw;  // the machine's, not the point's: no row, the sweep stops and resumes later
+  } catch (const std::exception& error) {
+    outcome.status = PointOutcome::Status::kFailed;
+    outcome.error = error.what();
+  }
+  if (!outcome.ok()) outcome.metrics = Metrics{};
+  return outcome;
+}
+
+}  // namespace shapebench::bench
