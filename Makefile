@@ -50,7 +50,7 @@ SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks
 test-sanitize: deps
 	@cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DSHAPEBENCH_PYTHON=OFF \
 	  -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1 $(SANITIZE_FLAGS) -Wno-maybe-uninitialized" >/dev/null
-	@cmake --build $(SANITIZE_DIR) -j $(JOBS) --target shapebench model_tests controller_tests bench_tests
+	@cmake --build $(SANITIZE_DIR) -j $(JOBS) --target shapebench shapebench_tests
 	@cd $(SANITIZE_DIR) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS)
 
 FUZZ_DIR ?= build-fuzz

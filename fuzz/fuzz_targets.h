@@ -1,5 +1,5 @@
 // The bodies of the libFuzzer targets (fuzz/fuzz_*.cc), shared with the regression test
-// (tests/bench/fuzz_regressions_test.cc) that runs every file of fuzz/regressions/TARGET/
+// (tests/fuzz/fuzz_regressions_test.cc) that runs every file of fuzz/regressions/TARGET/
 // through them. Each takes the input's bytes and returns normally when the bench accepts
 // the input or refuses it with its documented, located error. Anything else is a finding:
 // a Violation thrown (an invariant broken), another exception escaping, a crash, a

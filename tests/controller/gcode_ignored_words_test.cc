@@ -12,7 +12,7 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kTolM = 1e-12;
+constexpr double kIgnoredWordsTolM = 1e-12;
 
 // A pocket with a tool-change header, and the same program with only the modelled words.
 const char* const kWithHeader =
@@ -52,7 +52,7 @@ const char* const kStripped =
     "N140\n"
     "%\n";
 
-ControllerConfig Config() {
+ControllerConfig IgnoredWordsConfig() {
   ControllerConfig c;
   c.feed_mm_min = 6000;
   c.rapid_feed_mm_min = 12000;
@@ -60,7 +60,7 @@ ControllerConfig Config() {
   return c;
 }
 
-ProgramError ParseError(const std::string& text, const GcodeOptions& options = {}) {
+ProgramError IgnoredWordsParseError(const std::string& text, const GcodeOptions& options = {}) {
   try {
     ParseGcode(text, Eigen::Vector3d::Zero(), {}, options);
   } catch (const ProgramError& error) {
@@ -70,9 +70,9 @@ ProgramError ParseError(const std::string& text, const GcodeOptions& options = {
   return ProgramError(0, 0, -1, "");
 }
 
-void ExpectError(const std::string& text, int line, int column, const std::string& message_part,
+void ExpectIgnoredWordsError(const std::string& text, int line, int column, const std::string& message_part,
                  const GcodeOptions& options = {}) {
-  const ProgramError error = ParseError(text, options);
+  const ProgramError error = IgnoredWordsParseError(text, options);
   EXPECT_EQ(error.line(), line) << error.what();
   EXPECT_EQ(error.column(), column) << error.what();
   EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
@@ -93,8 +93,8 @@ TEST(GcodeIgnoredWordsTest, HeaderWordsLeaveTheCommandUnchanged) {
   ASSERT_EQ(with.blocks.size(), 8u);
   for (std::size_t i = 0; i < with.blocks.size(); ++i) {
     EXPECT_EQ(with.blocks[i].kind, stripped.blocks[i].kind);
-    EXPECT_LE((with.blocks[i].end_m - stripped.blocks[i].end_m).norm(), kTolM);
-    EXPECT_LE((with.blocks[i].center_m - stripped.blocks[i].center_m).norm(), kTolM);
+    EXPECT_LE((with.blocks[i].end_m - stripped.blocks[i].end_m).norm(), kIgnoredWordsTolM);
+    EXPECT_LE((with.blocks[i].center_m - stripped.blocks[i].center_m).norm(), kIgnoredWordsTolM);
     EXPECT_EQ(with.blocks[i].source_line, stripped.blocks[i].source_line);
   }
   EXPECT_TRUE(stripped.warnings.empty());
@@ -105,14 +105,14 @@ TEST(GcodeIgnoredWordsTest, HeaderWordsLeaveTheCommandUnchanged) {
             "(line 14), M5 (line 15), M30 (line 16); tool-length and work offsets do not move "
             "the commanded path (the bench has no tool or offset table)");
 
-  const MultiAxisCommand a = GenerateProgramCommand(Config(), with);
-  const MultiAxisCommand b = GenerateProgramCommand(Config(), stripped);
+  const MultiAxisCommand a = GenerateProgramCommand(IgnoredWordsConfig(), with);
+  const MultiAxisCommand b = GenerateProgramCommand(IgnoredWordsConfig(), stripped);
   ASSERT_EQ(a.num_ticks(), b.num_ticks());
   const std::vector<Eigen::Vector3d> pa = a.Positions();
   const std::vector<Eigen::Vector3d> pb = b.Positions();
   ASSERT_EQ(pa.size(), pb.size());
-  for (std::size_t k = 0; k < pa.size(); ++k) EXPECT_LE((pa[k] - pb[k]).norm(), kTolM) << k;
-  EXPECT_LE((pa.back() - Eigen::Vector3d(10e-3, 30e-3, 25e-3)).norm(), kTolM);
+  for (std::size_t k = 0; k < pa.size(); ++k) EXPECT_LE((pa[k] - pb[k]).norm(), kIgnoredWordsTolM) << k;
+  EXPECT_LE((pa.back() - Eigen::Vector3d(10e-3, 30e-3, 25e-3)).norm(), kIgnoredWordsTolM);
   // The one warning reaches the command, where the CLI prints it (bench/cli/main.cc).
   ASSERT_EQ(a.warnings.size(), 1u);
   EXPECT_EQ(a.warnings[0], with.warnings[0]);
@@ -137,23 +137,23 @@ TEST(GcodeIgnoredWordsTest, ModelledStateWordsAreSilent) {
   const Program program = ParseGcode("G40 G49 G80 G94 G1 X10 F600\nG80 Y5\n");
   EXPECT_TRUE(program.warnings.empty());
   ASSERT_EQ(program.blocks.size(), 2u);
-  EXPECT_LE((program.blocks[1].end_m - Eigen::Vector3d(10e-3, 5e-3, 0)).norm(), kTolM);
+  EXPECT_LE((program.blocks[1].end_m - Eigen::Vector3d(10e-3, 5e-3, 0)).norm(), kIgnoredWordsTolM);
 }
 
 // Tests that words changing the motion the bench does not model are refused at their line
 // and column, saying why.
 TEST(GcodeIgnoredWordsTest, MotionChangingWordsRefusedAtLineAndColumn) {
-  ExpectError("G1 X10 F600\nG41 D1 X20\n", 2, 1, "cutter radius compensation");
-  ExpectError("G1 X10 F600\nX20 g42\n", 2, 5, "'G42' (cutter radius compensation)");
-  ExpectError("G95 G1 X1 F0.1\n", 1, 1, "feed per revolution");
-  ExpectError("S200 G96 X1\n", 1, 6, "constant surface speed");
-  ExpectError("G0 X0 Y0\n\nG98 G81 X10 Y10 Z-5 R2 F100\n", 3, 5, "'G81' is a canned cycle");
-  ExpectError("G91 G28 Z0\n", 1, 5, "reference point return");
-  ExpectError("G53 G0 Z0\n", 1, 1, "machine coordinates");
-  ExpectError("M98 P1000\n", 1, 1, "subprogram");
-  ExpectError("G1 X1\nM30\n  G1 X2\n", 3, 3, "after the program end (M2/M30) of line 2");
+  ExpectIgnoredWordsError("G1 X10 F600\nG41 D1 X20\n", 2, 1, "cutter radius compensation");
+  ExpectIgnoredWordsError("G1 X10 F600\nX20 g42\n", 2, 5, "'G42' (cutter radius compensation)");
+  ExpectIgnoredWordsError("G95 G1 X1 F0.1\n", 1, 1, "feed per revolution");
+  ExpectIgnoredWordsError("S200 G96 X1\n", 1, 6, "constant surface speed");
+  ExpectIgnoredWordsError("G0 X0 Y0\n\nG98 G81 X10 Y10 Z-5 R2 F100\n", 3, 5, "'G81' is a canned cycle");
+  ExpectIgnoredWordsError("G91 G28 Z0\n", 1, 5, "reference point return");
+  ExpectIgnoredWordsError("G53 G0 Z0\n", 1, 1, "machine coordinates");
+  ExpectIgnoredWordsError("M98 P1000\n", 1, 1, "subprogram");
+  ExpectIgnoredWordsError("G1 X1\nM30\n  G1 X2\n", 3, 3, "after the program end (M2/M30) of line 2");
   // Before a motion-changing word, an ignored word in the same block is no excuse.
-  ExpectError("T1 M6 G41 X1\n", 1, 7, "G41");
+  ExpectIgnoredWordsError("T1 M6 G41 X1\n", 1, 7, "G41");
 }
 
 // Tests that strict options refuse each word the parser would otherwise drop, at its line
@@ -162,12 +162,12 @@ TEST(GcodeIgnoredWordsTest, StrictRefusesIgnoredWords) {
   GcodeOptions strict;
   strict.strict = true;
   strict.strict_key = "program_strict";
-  ExpectError("G1 X1 F600\nT1 M6\n", 2, 1, "'T1' is not modelled by the bench, and "
+  ExpectIgnoredWordsError("G1 X1 F600\nT1 M6\n", 2, 1, "'T1' is not modelled by the bench, and "
                                            "program_strict refuses", strict);
-  ExpectError("G1 X1 F600\nX2 M3\n", 2, 4, "'M3'", strict);
-  ExpectError("O1000\n", 1, 1, "'O1000'", strict);
-  ExpectError("G0 X1\nG43 H1 Z5\n", 2, 1, "'G43'", strict);
-  ExpectError("G55 X1\n", 1, 1, "'G55'", strict);
+  ExpectIgnoredWordsError("G1 X1 F600\nX2 M3\n", 2, 4, "'M3'", strict);
+  ExpectIgnoredWordsError("O1000\n", 1, 1, "'O1000'", strict);
+  ExpectIgnoredWordsError("G0 X1\nG43 H1 Z5\n", 2, 1, "'G43'", strict);
+  ExpectIgnoredWordsError("G55 X1\n", 1, 1, "'G55'", strict);
   EXPECT_TRUE(ParseGcode("G40 G49 G80 G94 G1 X1 F600\n", Eigen::Vector3d::Zero(), {}, strict)
                   .warnings.empty());
 }

@@ -20,7 +20,7 @@ GcodeLimits TestLimits() {
   return limits;
 }
 
-std::string ErrorOf(const std::string& text, int* line) {
+std::string LimitErrorOf(const std::string& text, int* line) {
   try {
     ParseGcode(text, Eigen::Vector3d::Zero(), TestLimits());
   } catch (const ProgramError& error) {
@@ -36,11 +36,11 @@ std::string ErrorOf(const std::string& text, int* line) {
 TEST(GcodeLimits, PathTimeStopsTheParseAtTheCrossingLine) {
   int line = 0;
   // 4 mm at 600 mm/min: 0.4 s each; the third block crosses 1 s.
-  std::string message = ErrorOf("G1 X4\nX0\nX4\nX0\n", &line);
+  std::string message = LimitErrorOf("G1 X4\nX0\nX4\nX0\n", &line);
   EXPECT_EQ(line, 3);
   EXPECT_NE(message.find("more than limits.seconds allows; reading stopped here"), std::string::npos) << message;
   // A dwell counts; F6000 (0.1 m/s) makes the moves short in time.
-  message = ErrorOf("G1 F6000 X4\nG4 P990\nX0\n", &line);
+  message = LimitErrorOf("G1 F6000 X4\nG4 P990\nX0\n", &line);
   EXPECT_EQ(line, 2);
   // Rapids at the rapid feed: 1 m in 1 s is not more than the limit.
   EXPECT_EQ(ParseGcode("G0 X1000\n", Eigen::Vector3d::Zero(), TestLimits()).blocks.size(), 1u);
@@ -49,7 +49,7 @@ TEST(GcodeLimits, PathTimeStopsTheParseAtTheCrossingLine) {
 // Tests that more blocks than max_blocks stop the parse even when they take no time.
 TEST(GcodeLimits, BlockCountStopsTheParse) {
   int line = 0;
-  const std::string message = ErrorOf("G4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\n", &line);
+  const std::string message = LimitErrorOf("G4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\nG4 P0\n", &line);
   EXPECT_EQ(line, 6);
   EXPECT_NE(message.find("more than 5 blocks by this line, more than limits.blocks"), std::string::npos) << message;
 }

@@ -1,6 +1,7 @@
 // RealizeOnGrid against its contract (controller/grid_realization.h): the acceleration and
 // the velocity after the group exact, the group's (damped) phasor at every design frequency
 // the ideal one, and the largest acceleration not raised where the span has room.
+#include "common/math_constants.h"
 #include "controller/grid_realization.h"
 
 #include <algorithm>
@@ -13,7 +14,6 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 constexpr double kPeriodS = 1e-3;
 
 // sum A e^{(zeta w + i w_d) (t - origin)}: the residual of a mode of that damping after

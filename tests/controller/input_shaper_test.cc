@@ -3,7 +3,8 @@
 // formula sum A_j e^{(zeta w + i w_d) t_j}, evaluated here independently of
 // ResidualVibration), the grid realization keeping those zeros, convolution for several
 // modes, and validation naming the field.
-#include "tests/controller/validation_field.h"
+#include "common/math_constants.h"
+#include "tests/support/validation_field.h"
 #include "controller/shaper_registry.h"
 
 #include <cmath>
@@ -21,7 +22,6 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kF = 25.0;  // design frequency, Hz (the patent's moving column)
 
 PatternConfig Shaper(const std::string& method, double zeta = 0.0) {

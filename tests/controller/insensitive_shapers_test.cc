@@ -12,20 +12,20 @@
 
 #include <gtest/gtest.h>
 
+#include "common/math_constants.h"
 #include "common/validation_error.h"
-#include "tests/controller/validation_field.h"
+#include "tests/support/validation_field.h"
 #include "controller/shaper_registry.h"
 
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kF = 25.0;  // design frequency, Hz
+constexpr double kInsensitiveF = 25.0;  // design frequency, Hz
 
-PatternConfig Shaper(const std::string& method, double zeta = 0.0, double tolerance = 0.05) {
+PatternConfig InsensitiveShaper(const std::string& method, double zeta = 0.0, double tolerance = 0.05) {
   PatternConfig config;
   config.method = method;
-  config.frequency_hz = kF;
+  config.frequency_hz = kInsensitiveF;
   config.design_damping_ratio = zeta;
   config.vibration_tolerance = tolerance;
   return config;
@@ -33,7 +33,7 @@ PatternConfig Shaper(const std::string& method, double zeta = 0.0, double tolera
 
 // V at r times the design frequency, for a mode of damping ratio zeta.
 double Residual(const std::vector<Impulse>& impulses, double r, double zeta) {
-  const double w = 2 * kPi * kF * r;
+  const double w = 2 * kPi * kInsensitiveF * r;
   const double wd = w * std::sqrt(1 - zeta * zeta);
   double c = 0.0;
   double s = 0.0;
@@ -101,7 +101,7 @@ class HumpDesignTest : public ::testing::TestWithParam<HumpCase> {};
 // 1e-12, never above), V never above the tolerance between the outer zeros; unit gain.
 TEST_P(HumpDesignTest, MeetsTheDesignConditions) {
   const HumpCase c = GetParam();
-  const PatternConfig config = Shaper(c.method, c.zeta, c.tolerance);
+  const PatternConfig config = InsensitiveShaper(c.method, c.zeta, c.tolerance);
   ASSERT_NO_THROW(config.validate());
   const std::vector<Impulse> impulses = ShaperImpulses(config);
   double sum = 0.0;
@@ -160,15 +160,15 @@ INSTANTIATE_TEST_SUITE_P(Family, HumpDesignTest, ::testing::ValuesIn(HumpCases()
 TEST(ExtraInsensitive, ContinuousInDampingAtZero) {
   for (const char* method : {"ei", "ei_2hump", "ei_3hump"}) {
     for (double v : {0.05, 0.2}) {
-      const std::vector<Impulse> undamped = ShaperImpulses(Shaper(method, 0.0, v));
+      const std::vector<Impulse> undamped = ShaperImpulses(InsensitiveShaper(method, 0.0, v));
       for (double zeta : {1e-9, 1e-3}) {
-        const std::vector<Impulse> damped = ShaperImpulses(Shaper(method, zeta, v));
+        const std::vector<Impulse> damped = ShaperImpulses(InsensitiveShaper(method, zeta, v));
         ASSERT_EQ(damped.size(), undamped.size());
         const double bound = zeta == 1e-9 ? 1e-8 : 1e-2;
         double largest = 0.0;
         for (std::size_t j = 0; j < damped.size(); ++j) {
           EXPECT_NEAR(damped[j].amplitude, undamped[j].amplitude, bound) << method << " " << zeta;
-          EXPECT_NEAR(damped[j].time_s * kF, undamped[j].time_s * kF, bound) << method << " " << zeta;
+          EXPECT_NEAR(damped[j].time_s * kInsensitiveF, undamped[j].time_s * kInsensitiveF, bound) << method << " " << zeta;
           largest = std::max(largest, std::abs(damped[j].amplitude - undamped[j].amplitude));
         }
         EXPECT_GT(largest, zeta * 1e-2) << method << " " << zeta;
@@ -192,11 +192,11 @@ TEST(ExtraInsensitive, UndampedClosedForms) {
         {"ei_2hump", {a2h, 0.5 - a2h, 0.5 - a2h, a2h}},
         {"ei_3hump", {a3h, b3h, 1 - 2 * (a3h + b3h), b3h, a3h}}};
     for (const auto& [method, amplitudes] : forms) {
-      const std::vector<Impulse> impulses = ShaperImpulses(Shaper(method, 0.0, v));
+      const std::vector<Impulse> impulses = ShaperImpulses(InsensitiveShaper(method, 0.0, v));
       ASSERT_EQ(impulses.size(), amplitudes.size()) << method;
       for (std::size_t j = 0; j < amplitudes.size(); ++j) {
         EXPECT_NEAR(impulses[j].amplitude, amplitudes[j], 1e-15) << method << " " << v;
-        EXPECT_NEAR(impulses[j].time_s, j * 0.5 / kF, 1e-15) << method << " " << v;
+        EXPECT_NEAR(impulses[j].time_s, j * 0.5 / kInsensitiveF, 1e-15) << method << " " << v;
       }
     }
   }
@@ -216,16 +216,16 @@ double Poly(const std::vector<double>& c, double zeta) {
 TEST(ExtraInsensitive, AgreesWithSinghosesCurveFits) {
   const double v = 0.05;
   for (double zeta : {0.02, 0.05, 0.1}) {
-    const double td = 1 / (kF * std::sqrt(1 - zeta * zeta));
+    const double td = 1 / (kInsensitiveF * std::sqrt(1 - zeta * zeta));
     const double a1 = 0.24968 + 0.24961 * v + (0.80008 + 1.23328 * v) * zeta + (0.49599 + 3.17316 * v) * zeta * zeta;
     const double a3 = 0.25149 + 0.21474 * v + (-0.83249 + 1.41498 * v) * zeta + (0.85181 - 4.90094 * v) * zeta * zeta;
     const double t2 = 0.49990 + 0.46159 * v * zeta + 4.26169 * v * zeta * zeta + 1.75601 * v * std::pow(zeta, 3) +
                       8.57843 * v * v * zeta - 108.644 * v * v * zeta * zeta + 336.989 * v * v * std::pow(zeta, 3);
     const std::vector<Impulse> fit = {{0, a1}, {t2 * td, 1 - a1 - a3}, {td, a3}};
-    const std::vector<Impulse> ei = ShaperImpulses(Shaper("ei", zeta, v));
+    const std::vector<Impulse> ei = ShaperImpulses(InsensitiveShaper("ei", zeta, v));
     for (std::size_t j = 0; j < 3; ++j) {
       EXPECT_NEAR(ei[j].amplitude, fit[j].amplitude, 1e-3) << zeta;
-      EXPECT_NEAR(ei[j].time_s * kF, fit[j].time_s * kF, 5e-3) << zeta;
+      EXPECT_NEAR(ei[j].time_s * kInsensitiveF, fit[j].time_s * kInsensitiveF, 5e-3) << zeta;
     }
     EXPECT_GT(std::abs(Residual(fit, 1.0, zeta) - v), 0.003 * v) << zeta;
     EXPECT_NEAR(Residual(ei, 1.0, zeta), v, 1e-12 * v) << zeta;
@@ -248,16 +248,16 @@ TEST(ExtraInsensitive, AgreesWithSinghosesCurveFits) {
                                                 {0.23775, -0.73297, 0.46885, -2.08650},
                                                 {0.11244, -0.45439, 0.96382, -1.46000}};
   for (double zeta : {0.02, 0.05, 0.1, 0.2}) {
-    const std::vector<Impulse> two = ShaperImpulses(Shaper("ei_2hump", zeta, v));
+    const std::vector<Impulse> two = ShaperImpulses(InsensitiveShaper("ei_2hump", zeta, v));
     for (std::size_t j = 0; j < 4; ++j) {
       EXPECT_NEAR(two[j].amplitude, Poly(a2h[j], zeta), 1.5e-3) << zeta << " " << j;
-      EXPECT_NEAR(two[j].time_s * kF, Poly(t2h[j], zeta), 3e-3) << zeta << " " << j;
+      EXPECT_NEAR(two[j].time_s * kInsensitiveF, Poly(t2h[j], zeta), 3e-3) << zeta << " " << j;
     }
     if (zeta > 0.05) continue;
-    const std::vector<Impulse> three = ShaperImpulses(Shaper("ei_3hump", zeta, v));
+    const std::vector<Impulse> three = ShaperImpulses(InsensitiveShaper("ei_3hump", zeta, v));
     for (std::size_t j = 0; j < 5; ++j) {
       EXPECT_NEAR(three[j].amplitude, Poly(a3h[j], zeta), 1e-3) << zeta << " " << j;
-      EXPECT_NEAR(three[j].time_s * kF, Poly(t3h[j], zeta), 4e-3) << zeta << " " << j;
+      EXPECT_NEAR(three[j].time_s * kInsensitiveF, Poly(t3h[j], zeta), 4e-3) << zeta << " " << j;
     }
   }
 }
@@ -268,17 +268,17 @@ using testing::FieldOf;
 // (at V 5% the continuation reaches zeta 0.52 for ei, 0.23 for the 3-hump EI, and finds no
 // solution beyond), before any design is used.
 TEST(ExtraInsensitive, UnreachableDampingIsRefused) {
-  EXPECT_EQ(FieldOf(Shaper("ei", 0.5)), "(valid)");
-  EXPECT_EQ(FieldOf(Shaper("ei", 0.6)), "design_damping_ratio");
-  EXPECT_EQ(FieldOf(Shaper("ei_3hump", 0.2)), "(valid)");
-  EXPECT_EQ(FieldOf(Shaper("ei_3hump", 0.3)), "design_damping_ratio");
-  EXPECT_THROW(ShaperImpulses(Shaper("ei_2hump", 0.6)), ValidationError);
+  EXPECT_EQ(FieldOf(InsensitiveShaper("ei", 0.5)), "(valid)");
+  EXPECT_EQ(FieldOf(InsensitiveShaper("ei", 0.6)), "design_damping_ratio");
+  EXPECT_EQ(FieldOf(InsensitiveShaper("ei_3hump", 0.2)), "(valid)");
+  EXPECT_EQ(FieldOf(InsensitiveShaper("ei_3hump", 0.3)), "design_damping_ratio");
+  EXPECT_THROW(ShaperImpulses(InsensitiveShaper("ei_2hump", 0.6)), ValidationError);
 }
 
 // --- the modified-ZV family ------------------------------------------------------------
 
 PatternConfig Family(int n, double spacing, double zeta = 0.0) {
-  PatternConfig config = Shaper("mzv_n", zeta);
+  PatternConfig config = InsensitiveShaper("mzv_n", zeta);
   config.impulse_count = n;
   config.impulse_spacing_periods = spacing;
   return config;
@@ -299,9 +299,9 @@ TEST(ModifiedZvFamily, ContainsMzvZvdAndZvdd) {
   EXPECT_EQ(PatternConfig().impulse_count, 3);
   EXPECT_EQ(PatternConfig().impulse_spacing_periods, 0.375);
   for (double zeta : {0.0, 0.05, 0.1}) {
-    ExpectSameImpulses(ShaperImpulses(Shaper("mzv_n", zeta)), ShaperImpulses(Shaper("mzv", zeta)), "mzv");
-    ExpectSameImpulses(ShaperImpulses(Family(3, 0.5, zeta)), ShaperImpulses(Shaper("zvd", zeta)), "zvd");
-    ExpectSameImpulses(ShaperImpulses(Family(4, 0.5, zeta)), ShaperImpulses(Shaper("zvdd", zeta)), "zvdd");
+    ExpectSameImpulses(ShaperImpulses(InsensitiveShaper("mzv_n", zeta)), ShaperImpulses(InsensitiveShaper("mzv", zeta)), "mzv");
+    ExpectSameImpulses(ShaperImpulses(Family(3, 0.5, zeta)), ShaperImpulses(InsensitiveShaper("zvd", zeta)), "zvd");
+    ExpectSameImpulses(ShaperImpulses(Family(4, 0.5, zeta)), ShaperImpulses(InsensitiveShaper("zvdd", zeta)), "zvdd");
   }
 }
 
@@ -319,7 +319,7 @@ TEST(ModifiedZvFamily, ZerosAtItsDesignRatios) {
         sum += impulses[j].amplitude;
         EXPECT_GT(impulses[j].amplitude, 0.0);
         EXPECT_NEAR(impulses[j].amplitude, impulses[n - 1 - j].amplitude, 1e-14);
-        EXPECT_NEAR(impulses[j].time_s, j * s / kF, 1e-15);
+        EXPECT_NEAR(impulses[j].time_s, j * s / kInsensitiveF, 1e-15);
       }
       EXPECT_NEAR(sum, 1.0, 1e-14);
       const double last = 1 + (1 / s - 2);
@@ -334,7 +334,7 @@ TEST(ModifiedZvFamily, ZerosAtItsDesignRatios) {
       for (double zeta : {0.05, 0.1}) {
         const std::vector<Impulse> damped = ShaperImpulses(Family(n, s, zeta));
         EXPECT_LT(Residual(damped, 1.0, zeta), 1e-12) << n << " " << s << " " << zeta;
-        EXPECT_NEAR(damped.back().time_s, (n - 1) * s / (kF * std::sqrt(1 - zeta * zeta)), 1e-15);
+        EXPECT_NEAR(damped.back().time_s, (n - 1) * s / (kInsensitiveF * std::sqrt(1 - zeta * zeta)), 1e-15);
       }
     }
   }
@@ -350,13 +350,13 @@ TEST(ModifiedZvFamily, KeyValidation) {
   EXPECT_EQ(FieldOf(Family(2, 0.375)), "impulse_count");
   EXPECT_EQ(FieldOf(Family(17, 0.375)), "impulse_count");
   for (double s : {0.25, 0.2, 0.51, std::nan("")}) EXPECT_EQ(FieldOf(Family(4, s)), "impulse_spacing_periods") << s;
-  PatternConfig zvdd = Shaper("zvdd");
+  PatternConfig zvdd = InsensitiveShaper("zvdd");
   zvdd.frequencies_hz = {20, 25, 30, 35, 40, 45, 50, 55};
   EXPECT_EQ(FieldOf(zvdd), "(valid)");
   PatternConfig many = Family(16, 0.375);
   many.frequencies_hz = {20, 25, 30, 35, 40};
   EXPECT_EQ(FieldOf(many), "frequencies_hz");
-  PatternConfig three = Shaper("ei_3hump");
+  PatternConfig three = InsensitiveShaper("ei_3hump");
   three.frequencies_hz = {20, 25, 30, 35, 40, 45};
   EXPECT_EQ(FieldOf(three), "(valid)");
   three.frequencies_hz.push_back(50);

@@ -1,5 +1,6 @@
 // Oracles: kinematics of piecewise-constant acceleration, the patent's para. 49-50 rules,
 // and the vibration phasor of the grid command computed here from its accelerations.
+#include "common/math_constants.h"
 #include "controller/linear_acc_dec.h"
 
 #include <cmath>
@@ -13,7 +14,6 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 StepPattern Pattern(const std::string& method, PatternMode mode = PatternMode::kBoth) {
   PatternConfig config;
@@ -25,7 +25,7 @@ StepPattern Pattern(const std::string& method, PatternMode mode = PatternMode::k
 
 // Residual vibration (fraction of static) an undamped mode at `frequency_hz` keeps after
 // the grid command: w |integral a(t) e^{iwt} dt| / max|a|, accelerations held per period.
-double GridResidual(const CommandTrajectory& c, double frequency_hz) {
+double AccDecGridResidual(const CommandTrajectory& c, double frequency_hz) {
   const double w = 2 * kPi * frequency_hz;
   std::complex<double> sum = 0.0;
   for (std::size_t k = 1; k <= c.num_ticks(); ++k) {
@@ -111,7 +111,7 @@ TEST_P(GridRealizationTest, KeepsDistanceRestAndTheVibrationZero) {
   const bool shortened = c.distance_m < 0.05;
   EXPECT_LE(command.MaxAbsAccel(), 0.5 / 0.3 * (shortened ? 1.02 : 1 + 1e-12));
   if (c.mode == PatternMode::kBoth) {
-    EXPECT_LT(GridResidual(command, 25.0), 1e-9);
+    EXPECT_LT(AccDecGridResidual(command, 25.0), 1e-9);
   }
 }
 

@@ -12,7 +12,7 @@
 namespace shapebench::controller {
 namespace {
 
-StepPattern Pattern(const std::string& method) {
+StepPattern TablePattern(const std::string& method) {
   PatternConfig c;
   c.method = method;
   c.mode = PatternMode::kBoth;
@@ -22,7 +22,7 @@ StepPattern Pattern(const std::string& method) {
 // Tests para. 61's example: method 1 at 25 Hz on a 1 ms period is alpha_0 = alpha_20 =
 // 0.5 and every other coefficient 0.
 TEST(ProfileTableTest, MethodOneAtTwentyFiveHertzIsTwoHalves) {
-  const std::vector<double> table = ProfileTableFromPattern(Pattern("1"), 0.001, 25.0);
+  const std::vector<double> table = ProfileTableFromPattern(TablePattern("1"), 0.001, 25.0);
   ASSERT_EQ(table.size(), 21u);
   for (std::size_t n = 0; n < table.size(); ++n) {
     EXPECT_DOUBLE_EQ(table[n], n == 0 || n == 20 ? 0.5 : 0.0) << "alpha_" << n;
@@ -34,7 +34,7 @@ TEST(ProfileTableTest, MethodOneAtTwentyFiveHertzIsTwoHalves) {
 // between ticks): residual below 1e-9 of an unshaped step's.
 TEST(ProfileTableTest, PatentTablesKeepTheirZero) {
   for (const char* method : {"1", "2", "3", "4"}) {
-    const std::vector<double> table = ProfileTableFromPattern(Pattern(method), 0.001, 25.0);
+    const std::vector<double> table = ProfileTableFromPattern(TablePattern(method), 0.001, 25.0);
     EXPECT_NEAR(std::accumulate(table.begin(), table.end(), 0.0), 1.0, 1e-12);
     EXPECT_LE(table.size(), 64u);
     std::vector<Impulse> impulses;
@@ -62,7 +62,7 @@ TEST(ProfileTableTest, FiltersConserveTheDistance) {
   const double total = std::accumulate(pulses.begin(), pulses.end(), 0.0);
   std::vector<double> uneven = {0.1, 0.0, 0.3, 0.05, 0.25, 0.3};
   for (const std::vector<double>& table :
-       {MovingAverageTable(0.05, 0.001), ProfileTableFromPattern(Pattern("2"), 0.001, 25.0),
+       {MovingAverageTable(0.05, 0.001), ProfileTableFromPattern(TablePattern("2"), 0.001, 25.0),
         uneven}) {
     for (double tau : {0.0, 1.0 / 30.0}) {
       PulseFilter filter{table, tau};

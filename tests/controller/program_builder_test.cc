@@ -15,7 +15,7 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kTolM = 1e-12;
+constexpr double kBuilderTolM = 1e-12;
 
 // A block of words; the i-th word sits at column 1 + 10 i, so errors can name it.
 Block B(std::initializer_list<std::pair<char, double>> words, int line = 1) {
@@ -50,7 +50,7 @@ ProgramError ErrorOf(const std::vector<Block>& blocks) {
   return ProgramError(0, 0, -1, "");
 }
 
-void ExpectError(const ProgramError& error, int line, int column, int word_index,
+void ExpectBuildError(const ProgramError& error, int line, int column, int word_index,
                  const std::string& message_part) {
   EXPECT_EQ(error.line(), line) << error.what();
   EXPECT_EQ(error.column(), column) << error.what();
@@ -59,10 +59,10 @@ void ExpectError(const ProgramError& error, int line, int column, int word_index
 }
 
 // Position in mm, compared in metres.
-void ExpectMm(const Eigen::Vector3d& actual_m, double x_mm, double y_mm, double z_mm) {
-  EXPECT_NEAR(actual_m.x(), x_mm * 1e-3, kTolM);
-  EXPECT_NEAR(actual_m.y(), y_mm * 1e-3, kTolM);
-  EXPECT_NEAR(actual_m.z(), z_mm * 1e-3, kTolM);
+void ExpectBuiltMm(const Eigen::Vector3d& actual_m, double x_mm, double y_mm, double z_mm) {
+  EXPECT_NEAR(actual_m.x(), x_mm * 1e-3, kBuilderTolM);
+  EXPECT_NEAR(actual_m.y(), y_mm * 1e-3, kBuilderTolM);
+  EXPECT_NEAR(actual_m.z(), z_mm * 1e-3, kBuilderTolM);
 }
 
 // Tests that the power-up state is G1, G17, G90 and no feed: coordinates alone move linearly.
@@ -77,8 +77,8 @@ TEST(ProgramBuilderTest, PowerUpStateIsG1G17G90WithoutFeed) {
   ASSERT_EQ(program.blocks.size(), 1u);
   const ProgramBlock& block = program.blocks[0];
   EXPECT_EQ(block.kind, MotionKind::kLinear);
-  ExpectMm(block.start_m, 0, 0, 0);
-  ExpectMm(block.end_m, 10, -5, 0);
+  ExpectBuiltMm(block.start_m, 0, 0, 0);
+  ExpectBuiltMm(block.end_m, 10, -5, 0);
   EXPECT_EQ(block.plane, Plane::kXY);
   EXPECT_TRUE(std::isnan(block.feed_m_s));
   EXPECT_EQ(block.source_line, 7);
@@ -91,7 +91,7 @@ TEST(ProgramBuilderTest, StartPositionAndUnprogrammedAxes) {
   EXPECT_EQ(program.start_m, start);
   ASSERT_EQ(program.blocks.size(), 1u);
   EXPECT_EQ(program.blocks[0].start_m, start);
-  ExpectMm(program.blocks[0].end_m, 100, 50, 300);
+  ExpectBuiltMm(program.blocks[0].end_m, 100, 50, 300);
 }
 
 // Tests that G91 adds to the position, stays in force, and G90 returns to absolute.
@@ -101,10 +101,10 @@ TEST(ProgramBuilderTest, AbsoluteAndIncrementalAreModal) {
                                  B({{'G', 90}, {'X', 0}}),              // (0, 5, -2)
                                  B({{'Y', 7}})});                       // (0, 7, -2)
   ASSERT_EQ(program.blocks.size(), 4u);
-  ExpectMm(program.blocks[0].end_m, 10, 5, 0);
-  ExpectMm(program.blocks[1].end_m, 20, 5, -2);
-  ExpectMm(program.blocks[2].end_m, 0, 5, -2);
-  ExpectMm(program.blocks[3].end_m, 0, 7, -2);
+  ExpectBuiltMm(program.blocks[0].end_m, 10, 5, 0);
+  ExpectBuiltMm(program.blocks[1].end_m, 20, 5, -2);
+  ExpectBuiltMm(program.blocks[2].end_m, 0, 5, -2);
+  ExpectBuiltMm(program.blocks[3].end_m, 0, 7, -2);
   // Each block starts where the previous one ended, bit for bit.
   for (std::size_t i = 1; i < program.blocks.size(); ++i) {
     EXPECT_EQ(program.blocks[i].start_m, program.blocks[i - 1].end_m);
@@ -159,9 +159,9 @@ TEST(ProgramBuilderTest, ArcByIJInG17) {
   const ProgramBlock& arc = program.blocks[1];
   EXPECT_EQ(arc.kind, MotionKind::kArcCcw);
   EXPECT_EQ(arc.plane, Plane::kXY);
-  ExpectMm(arc.start_m, 10, 0, 0);
-  ExpectMm(arc.end_m, 0, 10, 0);
-  ExpectMm(arc.center_m, 0, 0, 0);
+  ExpectBuiltMm(arc.start_m, 10, 0, 0);
+  ExpectBuiltMm(arc.end_m, 0, 10, 0);
+  ExpectBuiltMm(arc.center_m, 0, 0, 0);
 }
 
 // Tests that G18 takes K (Z) and I (X) as the centre, with the arc in the ZX plane.
@@ -173,13 +173,13 @@ TEST(ProgramBuilderTest, ArcByKIInG18) {
   const ProgramBlock& arc = program.blocks[0];
   EXPECT_EQ(arc.kind, MotionKind::kArcCw);
   EXPECT_EQ(arc.plane, Plane::kZX);
-  ExpectMm(arc.end_m, 10, 0, 10);
-  ExpectMm(arc.center_m, 10, 0, 0);
+  ExpectBuiltMm(arc.end_m, 10, 0, 10);
+  ExpectBuiltMm(arc.center_m, 10, 0, 0);
   // K moves the centre along Z.
   const Program shifted =
       Build({B({{'G', 18}, {'G', 3}, {'X', 0}, {'Z', 10}, {'K', 5}})});  // radii 5, 5
   ASSERT_EQ(shifted.blocks.size(), 1u);
-  ExpectMm(shifted.blocks[0].center_m, 0, 0, 5);
+  ExpectBuiltMm(shifted.blocks[0].center_m, 0, 0, 5);
 }
 
 // Tests that G19 takes J (Y) and K (Z) as the centre, with the arc in the YZ plane.
@@ -188,11 +188,11 @@ TEST(ProgramBuilderTest, ArcByJKInG19) {
   const Program program = Build({B({{'G', 19}, {'G', 3}, {'Y', 10}, {'Z', 10}, {'K', 10}})});
   ASSERT_EQ(program.blocks.size(), 1u);
   EXPECT_EQ(program.blocks[0].plane, Plane::kYZ);
-  ExpectMm(program.blocks[0].center_m, 0, 0, 10);
+  ExpectBuiltMm(program.blocks[0].center_m, 0, 0, 10);
   // J moves the centre along Y: centre (y 5, z 0), end (y 10, z 0).
   const Program by_j = Build({B({{'G', 19}, {'G', 2}, {'Y', 10}, {'J', 5}})});
   ASSERT_EQ(by_j.blocks.size(), 1u);
-  ExpectMm(by_j.blocks[0].center_m, 0, 5, 0);
+  ExpectBuiltMm(by_j.blocks[0].center_m, 0, 5, 0);
 }
 
 // Tests the R centre on a 3-4-5 triangle: chord (0,0)-(6,0), R 5, centre at +-4 from the
@@ -209,8 +209,8 @@ TEST(ProgramBuilderTest, RCentreCwCcwShortLong) {
     ASSERT_EQ(program.blocks.size(), 1u);
     SCOPED_TRACE("G" + std::to_string(c.g) + " R" + std::to_string(c.r));
     EXPECT_EQ(program.blocks[0].kind, c.g == 2 ? MotionKind::kArcCw : MotionKind::kArcCcw);
-    ExpectMm(program.blocks[0].center_m, 3, c.centre_y_mm, 0);
-    ExpectMm(program.blocks[0].end_m, 6, 0, 0);
+    ExpectBuiltMm(program.blocks[0].center_m, 3, c.centre_y_mm, 0);
+    ExpectBuiltMm(program.blocks[0].end_m, 6, 0, 0);
   }
 }
 
@@ -223,10 +223,10 @@ TEST(ProgramBuilderTest, RCentreOnDiagonalChord) {
     EXPECT_EQ(program.blocks.size(), 1u);
     return program.blocks.at(0).center_m;
   };
-  ExpectMm(centre(2, 10), 10, 0, 0);
-  ExpectMm(centre(3, 10), 0, 10, 0);
-  ExpectMm(centre(2, -10), 0, 10, 0);
-  ExpectMm(centre(3, -10), 10, 0, 0);
+  ExpectBuiltMm(centre(2, 10), 10, 0, 0);
+  ExpectBuiltMm(centre(3, 10), 0, 10, 0);
+  ExpectBuiltMm(centre(2, -10), 0, 10, 0);
+  ExpectBuiltMm(centre(3, -10), 10, 0, 0);
 }
 
 // Tests that R follows the plane's orientation in G18 and G19 (CW seen from +Y and +X).
@@ -235,22 +235,22 @@ TEST(ProgramBuilderTest, RCentreInG18AndG19) {
   // the chord direction +Z, i.e. x = -4 (z x x = y points at the viewer).
   const Program zx = Build({B({{'G', 18}, {'G', 2}, {'Z', 6}, {'R', 5}})});
   ASSERT_EQ(zx.blocks.size(), 1u);
-  ExpectMm(zx.blocks[0].center_m, -4, 0, 3);
+  ExpectBuiltMm(zx.blocks[0].center_m, -4, 0, 3);
   // G19: plane axes (Y, Z). From (y 0, z 0) to (y 6, z 0), R5 CCW: centre at the left, z 4.
   const Program yz = Build({B({{'G', 19}, {'G', 3}, {'Y', 6}, {'R', 5}})});
   ASSERT_EQ(yz.blocks.size(), 1u);
-  ExpectMm(yz.blocks[0].center_m, 0, 3, 4);
+  ExpectBuiltMm(yz.blocks[0].center_m, 0, 3, 4);
 }
 
 // Tests that R of exactly half the chord (a half circle) puts the centre at the midpoint.
 TEST(ProgramBuilderTest, RHalfCircleCentreIsMidpoint) {
   const Program program = Build({B({{'G', 2}, {'X', 10}, {'R', 5}})});
   ASSERT_EQ(program.blocks.size(), 1u);
-  ExpectMm(program.blocks[0].center_m, 5, 0, 0);
+  ExpectBuiltMm(program.blocks[0].center_m, 5, 0, 0);
   // Within the 1e-3 mm tolerance below half the chord: still the midpoint.
   const Program short_r = Build({B({{'G', 2}, {'X', 10}, {'R', 4.9995}})});
   ASSERT_EQ(short_r.blocks.size(), 1u);
-  ExpectMm(short_r.blocks[0].center_m, 5, 0, 0);
+  ExpectBuiltMm(short_r.blocks[0].center_m, 5, 0, 0);
 }
 
 // Tests that an I/J arc whose end is its start is a full circle, end exactly the start.
@@ -260,9 +260,9 @@ TEST(ProgramBuilderTest, FullCircleByIJ) {
                                  B({{'G', 2}, {'X', 0.0000005}, {'I', 10}})});  // 0.5 nm off
   ASSERT_EQ(program.blocks.size(), 3u);
   EXPECT_EQ(program.blocks[0].kind, MotionKind::kArcCw);
-  ExpectMm(program.blocks[0].center_m, 10, 0, 0);
+  ExpectBuiltMm(program.blocks[0].center_m, 10, 0, 0);
   EXPECT_EQ(program.blocks[0].end_m, program.blocks[0].start_m);
-  ExpectMm(program.blocks[1].center_m, 0, -7, 0);
+  ExpectBuiltMm(program.blocks[1].center_m, 0, -7, 0);
   EXPECT_EQ(program.blocks[1].end_m, program.blocks[1].start_m);
   EXPECT_EQ(program.blocks[2].end_m, program.blocks[2].start_m);  // snapped to the start
 }
@@ -274,13 +274,13 @@ TEST(ProgramBuilderTest, Helix) {
       Build({B({{'X', 10}}), B({{'G', 3}, {'X', -10}, {'Y', 0}, {'Z', 4}, {'I', -10}})});
   ASSERT_EQ(program.blocks.size(), 2u);
   const ProgramBlock& helix = program.blocks[1];
-  ExpectMm(helix.end_m, -10, 0, 4);
-  ExpectMm(helix.center_m, 0, 0, 0);
+  ExpectBuiltMm(helix.end_m, -10, 0, 4);
+  ExpectBuiltMm(helix.center_m, 0, 0, 0);
   // A full helical turn: end equals start in the plane only.
   const Program turn = Build({B({{'G', 2}, {'Z', -3}, {'I', 5}})});
   ASSERT_EQ(turn.blocks.size(), 1u);
-  ExpectMm(turn.blocks[0].end_m, 0, 0, -3);
-  ExpectMm(turn.blocks[0].center_m, 5, 0, 0);
+  ExpectBuiltMm(turn.blocks[0].end_m, 0, 0, -3);
+  ExpectBuiltMm(turn.blocks[0].center_m, 5, 0, 0);
 }
 
 // Tests that G4 dwells P milliseconds or X seconds, in place, and is one-shot.
@@ -294,14 +294,14 @@ TEST(ProgramBuilderTest, DwellByPAndX) {
   const ProgramBlock& p = program.blocks[1];
   EXPECT_EQ(p.kind, MotionKind::kDwell);
   EXPECT_DOUBLE_EQ(p.dwell_s, 0.5);
-  ExpectMm(p.start_m, 5, 0, 0);
-  ExpectMm(p.end_m, 5, 0, 0);
+  ExpectBuiltMm(p.start_m, 5, 0, 0);
+  ExpectBuiltMm(p.end_m, 5, 0, 0);
   EXPECT_DOUBLE_EQ(p.feed_m_s, 0.01);
   EXPECT_EQ(program.blocks[2].kind, MotionKind::kDwell);
   EXPECT_DOUBLE_EQ(program.blocks[2].dwell_s, 1.5);
-  ExpectMm(program.blocks[2].end_m, 5, 0, 0);
+  ExpectBuiltMm(program.blocks[2].end_m, 5, 0, 0);
   EXPECT_EQ(program.blocks[3].kind, MotionKind::kLinear);
-  ExpectMm(program.blocks[3].end_m, 6, 0, 0);
+  ExpectBuiltMm(program.blocks[3].end_m, 6, 0, 0);
   EXPECT_DOUBLE_EQ(program.blocks[4].dwell_s, 0.0);
 }
 
@@ -318,9 +318,9 @@ TEST(ProgramBuilderTest, DwellTakesTheModalWordsOfItsBlock) {
   EXPECT_EQ(dwell.plane, Plane::kZX);
   EXPECT_DOUBLE_EQ(dwell.feed_m_s, 0.02);
   EXPECT_EQ(dwell.source_line, 3);
-  ExpectMm(dwell.start_m, 5, 2, 0);
-  ExpectMm(dwell.end_m, 5, 2, 0);
-  ExpectMm(dwell.center_m, 5, 2, 0);
+  ExpectBuiltMm(dwell.start_m, 5, 2, 0);
+  ExpectBuiltMm(dwell.end_m, 5, 2, 0);
+  ExpectBuiltMm(dwell.center_m, 5, 2, 0);
   EXPECT_EQ(builder.plane(), Plane::kZX);
   EXPECT_DOUBLE_EQ(builder.feed_m_s(), 0.02);
   EXPECT_EQ(builder.motion(), MotionKind::kLinear);
@@ -331,94 +331,94 @@ TEST(ProgramBuilderTest, DwellTakesTheModalWordsOfItsBlock) {
 TEST(ProgramBuilderTest, ArcRadiusTolerance) {
   // Centre (10, 0): end (20.0009, 0) has radius 10.0009.
   EXPECT_NO_THROW(Build({B({{'G', 2}, {'X', 20.0009}, {'I', 10}})}));
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 20.0011}, {'I', 10}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 20.0011}, {'I', 10}})}), 1, 21, 2,
               "arc end point is not on the circle: start radius 10 mm, end radius 10.0011 mm");
   // Radius 2000 mm: bound 0.002 mm.
   EXPECT_NO_THROW(Build({B({{'G', 2}, {'X', 4000.0015}, {'I', 2000}})}));
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 4000.0025}, {'I', 2000}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 4000.0025}, {'I', 2000}})}), 1, 21, 2,
               "allowed: at most 0.002 mm");
 }
 
 // Tests that K in G17 (and J in G18, I in G19) is refused at that word.
 TEST(ProgramBuilderTest, CentreWordOutsideThePlane) {
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'K', 5}}, 4)}), 4, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'K', 5}}, 4)}), 4, 21, 2,
               "'K5' is not a centre word of G17 (XY plane); allowed: I, J");
-  ExpectError(ErrorOf({B({{'G', 18}, {'G', 2}, {'X', 10}, {'J', 5}})}), 1, 31, 3,
+  ExpectBuildError(ErrorOf({B({{'G', 18}, {'G', 2}, {'X', 10}, {'J', 5}})}), 1, 31, 3,
               "allowed: K, I");
-  ExpectError(ErrorOf({B({{'G', 19}, {'G', 2}, {'Y', 10}, {'I', 5}})}), 1, 31, 3,
+  ExpectBuildError(ErrorOf({B({{'G', 19}, {'G', 2}, {'Y', 10}, {'I', 5}})}), 1, 31, 3,
               "allowed: J, K");
 }
 
 // Tests the arc errors: R with I, no centre, R of a full circle, R zero or too short,
 // zero radius by I/J, end off the circle.
 TEST(ProgramBuilderTest, ArcErrors) {
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'I', 5}, {'R', 5}})}), 1, 31, 3,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'I', 5}, {'R', 5}})}), 1, 31, 3,
               "I/J/K or as R, not both");
-  ExpectError(ErrorOf({B({{'G', 3}, {'X', 10}, {'Y', 5}})}), 1, 1, 0,
+  ExpectBuildError(ErrorOf({B({{'G', 3}, {'X', 10}, {'Y', 5}})}), 1, 1, 0,
               "an arc (G3) needs its centre: I/J/K offsets or a radius R");
   // Modal G2 from an earlier block: the block as a whole is wrong.
-  ExpectError(ErrorOf({B({{'G', 2}}), B({{'N', 5}, {'X', 10}}, 2)}), 2, 1, -1,
+  ExpectBuildError(ErrorOf({B({{'G', 2}}), B({{'N', 5}, {'X', 10}}, 2)}), 2, 1, -1,
               "an arc (G2) needs its centre");
-  ExpectError(ErrorOf({B({{'G', 2}, {'R', 5}})}), 1, 11, 1,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'R', 5}})}), 1, 11, 1,
               "R cannot describe a full circle (the end point is the start point); use I/J/K");
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'R', 0}})}), 1, 21, 2, "R must not be 0");
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'R', -4.99}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'R', 0}})}), 1, 21, 2, "R must not be 0");
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'R', -4.99}})}), 1, 21, 2,
               "'R-4.99' is shorter than half the chord (5 mm); allowed: |R| >= 5 mm");
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'I', 0}, {'J', 0}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'I', 0}, {'J', 0}})}), 1, 21, 2,
               "arc radius is 0");
   // Centre (5, 0) by I5; end (10, 1) has radius |(5, 1)| = 5.09902.
-  ExpectError(ErrorOf({B({{'G', 2}, {'X', 10}, {'Y', 1}, {'I', 5}})}), 1, 31, 3,
+  ExpectBuildError(ErrorOf({B({{'G', 2}, {'X', 10}, {'Y', 1}, {'I', 5}})}), 1, 31, 3,
               "arc end point is not on the circle: start radius 5 mm, end radius 5.09902 mm");
 }
 
 // Tests that I/J/K and R outside an arc are refused at the word.
 TEST(ProgramBuilderTest, CentreWordsOnlyInArcs) {
-  ExpectError(ErrorOf({B({{'G', 1}, {'X', 10}, {'I', 5}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 1}, {'X', 10}, {'I', 5}})}), 1, 21, 2,
               "'I5' belongs to an arc (G2/G3); the active motion is G1");
-  ExpectError(ErrorOf({B({{'G', 0}, {'X', 10}, {'R', 5}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 0}, {'X', 10}, {'R', 5}})}), 1, 21, 2,
               "the active motion is G0");
 }
 
 // Tests the G4 errors: no time, both P and X, negative, a motion word in the block.
 TEST(ProgramBuilderTest, DwellErrors) {
-  ExpectError(ErrorOf({B({{'G', 4}})}), 1, 1, 0, "G4 needs its dwell time: P in ms");
-  ExpectError(ErrorOf({B({{'G', 4}, {'P', 5}, {'X', 1}})}), 1, 21, 2, "not both");
-  ExpectError(ErrorOf({B({{'G', 4}, {'P', -5}})}), 1, 11, 1, "dwell must be >= 0");
-  ExpectError(ErrorOf({B({{'G', 4}, {'X', -0.5}})}), 1, 11, 1, "dwell must be >= 0");
-  ExpectError(ErrorOf({B({{'G', 4}, {'P', 5}, {'Y', 1}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 4}})}), 1, 1, 0, "G4 needs its dwell time: P in ms");
+  ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', 5}, {'X', 1}})}), 1, 21, 2, "not both");
+  ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', -5}})}), 1, 11, 1, "dwell must be >= 0");
+  ExpectBuildError(ErrorOf({B({{'G', 4}, {'X', -0.5}})}), 1, 11, 1, "dwell must be >= 0");
+  ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', 5}, {'Y', 1}})}), 1, 21, 2,
               "'Y1' is not allowed in a G4 (dwell) block");
-  ExpectError(ErrorOf({B({{'G', 1}, {'G', 4}, {'P', 5}})}), 1, 1, 0,
+  ExpectBuildError(ErrorOf({B({{'G', 1}, {'G', 4}, {'P', 5}})}), 1, 1, 0,
               "G4 (dwell) cannot share a block with 'G1'");
-  ExpectError(ErrorOf({B({{'G', 1}, {'X', 5}, {'P', 5}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'G', 1}, {'X', 5}, {'P', 5}})}), 1, 21, 2,
               "P (dwell time in ms) is allowed only with G4");
 }
 
 // Tests the word errors: G20, unsupported G and letters, repeated words, two motion words,
 // two words of one modal group, non-integer G, F <= 0.
 TEST(ProgramBuilderTest, WordErrors) {
-  ExpectError(ErrorOf({B({{'G', 20}, {'X', 1}})}), 1, 1, 0,
+  ExpectBuildError(ErrorOf({B({{'G', 20}, {'X', 1}})}), 1, 1, 0,
               "inch input (G20) is not supported; allowed: G21");
-  ExpectError(ErrorOf({B({{'X', 1}, {'G', 41}})}), 1, 11, 1,
+  ExpectBuildError(ErrorOf({B({{'X', 1}, {'G', 41}})}), 1, 11, 1,
               "unsupported word 'G41'; allowed: G0-G4, G17-G19, G21, G90, G91, F, X, Y, Z, "
               "I, J, K, R, P, N");
-  ExpectError(ErrorOf({B({{'M', 3}})}), 1, 1, 0, "unsupported word 'M3'");
-  ExpectError(ErrorOf({B({{'X', 1}, {'Y', 2}, {'X', 3}})}), 1, 21, 2,
+  ExpectBuildError(ErrorOf({B({{'M', 3}})}), 1, 1, 0, "unsupported word 'M3'");
+  ExpectBuildError(ErrorOf({B({{'X', 1}, {'Y', 2}, {'X', 3}})}), 1, 21, 2,
               "word X repeated in one block ('X1' and 'X3')");
-  ExpectError(ErrorOf({B({{'G', 1}, {'G', 1}})}), 1, 11, 1, "word 'G1' repeated");
-  ExpectError(ErrorOf({B({{'G', 0}, {'G', 2}, {'X', 1}})}), 1, 11, 1,
+  ExpectBuildError(ErrorOf({B({{'G', 1}, {'G', 1}})}), 1, 11, 1, "word 'G1' repeated");
+  ExpectBuildError(ErrorOf({B({{'G', 0}, {'G', 2}, {'X', 1}})}), 1, 11, 1,
               "'G0' and 'G2' in one block; one motion word (G0-G3) per block");
-  ExpectError(ErrorOf({B({{'G', 90}, {'G', 91}})}), 1, 11, 1, "one of G90 (absolute)");
-  ExpectError(ErrorOf({B({{'G', 17}, {'G', 18}})}), 1, 11, 1, "one plane word");
-  ExpectError(ErrorOf({B({{'G', 1.5}})}), 1, 1, 0, "G takes an integer");
-  ExpectError(ErrorOf({B({{'X', 1}, {'F', 0}})}), 1, 11, 1, "F must be > 0 (mm/min)");
-  ExpectError(ErrorOf({B({{'F', -100}})}), 1, 1, 0, "F must be > 0");
+  ExpectBuildError(ErrorOf({B({{'G', 90}, {'G', 91}})}), 1, 11, 1, "one of G90 (absolute)");
+  ExpectBuildError(ErrorOf({B({{'G', 17}, {'G', 18}})}), 1, 11, 1, "one plane word");
+  ExpectBuildError(ErrorOf({B({{'G', 1.5}})}), 1, 1, 0, "G takes an integer");
+  ExpectBuildError(ErrorOf({B({{'X', 1}, {'F', 0}})}), 1, 11, 1, "F must be > 0 (mm/min)");
+  ExpectBuildError(ErrorOf({B({{'F', -100}})}), 1, 1, 0, "F must be > 0");
 }
 
 // Tests that a word's text as written is what the messages quote.
 TEST(ProgramBuilderTest, MessagesQuoteTheWrittenText) {
   Block block = B({{'G', 41}});
   block.words[0].text = "G041";
-  ExpectError(ErrorOf({block}), 1, 1, 0, "unsupported word 'G041'");
+  ExpectBuildError(ErrorOf({block}), 1, 1, 0, "unsupported word 'G041'");
 }
 
 // Tests that what() is "LINE:COL: message", or "LINE: message" without a column.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
 #include "controller/block_planner.h"
 #include "controller/controller.h"
 #include "controller/path_geometry.h"
@@ -12,7 +13,6 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 ProgramBlock Line(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double feed_mm_min,
                   MotionKind kind = MotionKind::kLinear) {
@@ -42,7 +42,7 @@ Program Make(std::vector<ProgramBlock> blocks) {
   return p;
 }
 
-ControllerConfig Config() {
+ControllerConfig PipelineConfig() {
   ControllerConfig c;
   c.feed_mm_min = 6000;
   c.accel_time_s = 0.06;  // 1.667 m/s^2
@@ -60,8 +60,8 @@ double SpeedAtPosition(const MultiAxisCommand& command, double s_m) {
 // junction and the same motion time as the single 100 mm block.
 TEST(BlockPlannerTest, CollinearBlocksDoNotStop) {
   const Eigen::Vector3d o(0, 0, 0), m(0.03, 0.04, 0), e(0.06, 0.08, 0);
-  const MultiAxisCommand two = GenerateProgramCommand(Config(), Make({Line(o, m, 6000), Line(m, e, 6000)}));
-  const MultiAxisCommand one = GenerateProgramCommand(Config(), Make({Line(o, e, 6000)}));
+  const MultiAxisCommand two = GenerateProgramCommand(PipelineConfig(), Make({Line(o, m, 6000), Line(m, e, 6000)}));
+  const MultiAxisCommand one = GenerateProgramCommand(PipelineConfig(), Make({Line(o, e, 6000)}));
   EXPECT_NEAR(SpeedAtPosition(two, 0.05), 0.1, 1e-12);
   EXPECT_EQ(two.num_ticks(), one.num_ticks());
   EXPECT_NEAR((two.Positions().back() - e).norm(), 0.0, 1e-12);
@@ -72,7 +72,7 @@ TEST(BlockPlannerTest, CollinearBlocksDoNotStop) {
 TEST(BlockPlannerTest, CornerRuleSetsTheJunctionSpeed) {
   const Eigen::Vector3d o(0, 0, 0), c(0, 0.05, 0), e(0.05, 0.05, 0);
   const Program corner = Make({Line(o, c, 6000), Line(c, e, 6000)});
-  ControllerConfig config = Config();
+  ControllerConfig config = PipelineConfig();
   const MultiAxisCommand stop = GenerateProgramCommand(config, corner);
   double at_corner = 1e9;
   for (std::size_t k = 0; k < stop.path_position_m.size(); ++k) {
@@ -109,7 +109,7 @@ TEST(BlockPlannerTest, TangentArcFeedChangeAndRapid) {
   arc.feed_m_s = 0.05;
   ProgramBlock slow = Line({0.05 + r, r, 0}, {0.05 + r, 0.05, 0}, 1500);
   const Program program = Make({Line({0, 0, 0}, {0.05, 0, 0}, 3000), arc, slow});
-  const MultiAxisCommand command = GenerateProgramCommand(Config(), program);
+  const MultiAxisCommand command = GenerateProgramCommand(PipelineConfig(), program);
   // Line -> arc: no stop. On the arc the axes run along chords: |chord| / period is
   // below the path speed by theta^2 / 24 = 1.04e-6 relative (theta = v dt / r = 0.005).
   EXPECT_NEAR(SpeedAtPosition(command, 0.055), 0.05 * (1 - 0.005 * 0.005 / 24), 1e-12);
@@ -117,7 +117,7 @@ TEST(BlockPlannerTest, TangentArcFeedChangeAndRapid) {
   EXPECT_NEAR(SpeedAtPosition(command, arc_end + 1e-4), 0.025, 1e-9);
   EXPECT_NEAR((command.Positions().back() - slow.end_m).norm(), 0.0, 1e-12);
 
-  ControllerConfig config = Config();
+  ControllerConfig config = PipelineConfig();
   config.rapid_feed_mm_min = 12000;
   config.accel_time_s = 0.06;
   const MultiAxisCommand rapid = GenerateProgramCommand(
@@ -135,8 +135,8 @@ TEST(BlockPlannerTest, DwellHolds) {
   dwell.dwell_s = 0.25;
   const Program with = Make({Line({0, 0, 0}, {0.01, 0, 0}, 6000), dwell, Line({0.01, 0, 0}, {0.02, 0, 0}, 6000)});
   const Program without = Make({Line({0, 0, 0}, {0.01, 0, 0}, 6000), Line({0.01, 0, 0}, {0.01, 0.01, 0}, 6000)});
-  const MultiAxisCommand a = GenerateProgramCommand(Config(), with);
-  const MultiAxisCommand b = GenerateProgramCommand(Config(), without);
+  const MultiAxisCommand a = GenerateProgramCommand(PipelineConfig(), with);
+  const MultiAxisCommand b = GenerateProgramCommand(PipelineConfig(), without);
   EXPECT_EQ(a.num_ticks(), b.num_ticks() + 250);
   std::size_t longest_rest = 0, run = 0;
   for (std::size_t k = 0; k <= a.num_ticks(); ++k) {
@@ -149,7 +149,7 @@ TEST(BlockPlannerTest, DwellHolds) {
 // Tests that every realization of post-interpolation acc/dec moves the axes by exactly
 // the programmed displacement (1e-12 m), for programs with lines, arcs and corners.
 TEST(ProgramPipelineTest, NoMotionIsLost) {
-  ControllerConfig config = Config();
+  ControllerConfig config = PipelineConfig();
   config.corner_velocity_change_mm_min = 300;
   const Program program = Make({Line({0, 0, 0}, {0.02, 0.0, 0}, 6000), Circle(0.02, 3000),
                                 Line({0.02, 0, 0}, {0.03, -0.01, 0.005}, 6000),
@@ -181,7 +181,7 @@ TEST(ProgramPipelineTest, NoMotionIsLost) {
 // Tests that the profile_table realization of method 1 gives the stepped realization's
 // acceleration (a/2 for T/2, then a) on a single move, shifted by nothing at the start.
 TEST(ProgramPipelineTest, TableRealizationMatchesSteps) {
-  ControllerConfig c = Config();
+  ControllerConfig c = PipelineConfig();
   c.feed_mm_min = 30000;
   c.accel_time_s = 0.3;
   c.pattern.method = "1";
@@ -231,7 +231,7 @@ namespace {
 // Tests the arc feed clamp: on a small arc the path speed is at most sqrt(a r), so the
 // centripetal acceleration stays within the acc/dec's acceleration.
 TEST(BlockPlannerTest, ArcFeedIsClampedByItsRadius) {
-  ControllerConfig c = Config();  // a = 0.1 / 0.06 = 1.667 m/s^2
+  ControllerConfig c = PipelineConfig();  // a = 0.1 / 0.06 = 1.667 m/s^2
   const Program program = Make({Circle(0.005, 30000)});
   const MultiAxisCommand command = GenerateProgramCommand(c, program);
   double top = 0;

@@ -18,18 +18,18 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kF = 25.0;
+constexpr double kRegistryF = 25.0;
 
 // A valid config for `entry` at 25 Hz (custom: a two-impulse sequence).
 PatternConfig ConfigOf(const ShaperEntry& entry) {
   PatternConfig config;
   config.method = entry.key;
-  config.frequency_hz = kF;
+  config.frequency_hz = kRegistryF;
   if (entry.kind == ShaperKind::kCustom) config.impulses = {{0.0, 0.25}, {0.01, 0.75}};
   return config;
 }
 
-double AmplitudeSum(const std::vector<Impulse>& impulses) {
+double SumOfAmplitudes(const std::vector<Impulse>& impulses) {
   double sum = 0.0;
   for (const Impulse& i : impulses) sum += i.amplitude;
   return sum;
@@ -51,7 +51,7 @@ TEST(ShaperRegistry, EveryEntryIsWellFormed) {
       config.frequencies_hz = frequencies;
       const std::vector<Impulse> impulses = ShaperImpulses(config);
       ASSERT_FALSE(impulses.empty()) << entry->key;
-      EXPECT_NEAR(AmplitudeSum(impulses), 1.0, 1e-12) << entry->key;
+      EXPECT_NEAR(SumOfAmplitudes(impulses), 1.0, 1e-12) << entry->key;
       EXPECT_EQ(impulses.front().time_s, 0.0) << entry->key;
       for (std::size_t j = 1; j < impulses.size(); ++j) {
         EXPECT_GT(impulses[j].time_s, impulses[j - 1].time_s) << entry->key;

@@ -1,5 +1,6 @@
 // Oracles: the patent's own closed forms (paras. 38-45) and the phase-plane condition
 // that a pattern leaves no vibration: sum_j dA_j exp(i w t_j) = 0 at the design w.
+#include "common/math_constants.h"
 #include "controller/vibration_suppression_pattern.h"
 
 #include <cmath>
@@ -13,7 +14,6 @@
 namespace shapebench::controller {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kT = 0.040;  // 25 Hz
 
 PatternConfig Config(const std::string& method) {

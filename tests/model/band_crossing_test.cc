@@ -4,6 +4,7 @@
 // walking those peaks, and past it |y| falls monotonically to the next zero of the cosine,
 // where the crossing is bisected. Tolerance 1e-12 s: the search resolves the crossing to
 // 1e-13 of the period (40 ms here), the oracle's bisection to 1e-16 s.
+#include "common/math_constants.h"
 #include "model/band_crossing.h"
 
 #include <cmath>
@@ -14,7 +15,6 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct DampedCosine {
   double amplitude, zeta, w, phi;

@@ -2,6 +2,7 @@
 // against the closed-form compliance computed here from the modes' numbers, the gain
 // shorthand against its coupled spelling, the servo drive against the gain form's servo,
 // the modal analysis and validation.
+#include "common/math_constants.h"
 #include "model/coupled_modes.h"
 
 #include <cmath>
@@ -13,14 +14,11 @@
 
 #include "common/validation_error.h"
 #include "model/multi_axis_machine.h"
+#include "tests/support/axes.h"
 
 namespace shapebench::model {
 namespace {
 
-constexpr int kX = 0;
-constexpr int kY = 1;
-constexpr int kZ = 2;
-constexpr double kPi = 3.14159265358979323846;
 
 ModalMode Coupled(double frequency_hz, double damping_ratio, AxisVector participation, AxisVector shape) {
   ModalMode mode;
@@ -69,7 +67,7 @@ Eigen::Matrix3d TwoModesCompliance() {
   return c;
 }
 
-DriveConfig Servo(double velocity_loop_hz) {
+DriveConfig CoupledServo(double velocity_loop_hz) {
   DriveConfig drive;
   drive.type = DriveType::kServo;
   drive.servo.velocity_loop_hz = velocity_loop_hz;
@@ -87,7 +85,7 @@ TEST(CoupledModes, StaticGainIsTheClosedFormCompliance) {
   const Eigen::Matrix3d c = TwoModesCompliance();
   ASSERT_GT(c(kX, kY), 3e-7);  // a Y acceleration deflects X: the case at hand
   EXPECT_NEAR(ModalCompliance(*TwoModes().CoupledModes(), kY)(kX, kY), c(kX, kY), 1e-12 * c.maxCoeff());
-  for (const DriveConfig& drive : {DriveConfig{}, Servo(0.0), Servo(150.0)}) {
+  for (const DriveConfig& drive : {DriveConfig{}, CoupledServo(0.0), CoupledServo(150.0)}) {
     SCOPED_TRACE(drive.type == DriveType::kKinematic ? "kinematic" : "servo");
     const MachinePlant built = BuildMachinePlant(TwoModes(), drive);
     const Eigen::MatrixXd whole = built.plant.StaticGain();
@@ -162,8 +160,8 @@ TEST(CoupledModes, ServoDriveMatchesTheGainFormsServo) {
                                                  Coupled(70.0, 0.05, {0.0, 1.0, 0.0}, {0.0, -0.2, 0.0})});
   for (const double loop_hz : {0.0, 150.0}) {
     SCOPED_TRACE(loop_hz);
-    const LinearPlant g = BuildMachinePlant(gain, Servo(loop_hz)).plant;
-    const LinearPlant c = BuildMachinePlant(coupled, Servo(loop_hz)).plant;
+    const LinearPlant g = BuildMachinePlant(gain, CoupledServo(loop_hz)).plant;
+    const LinearPlant c = BuildMachinePlant(coupled, CoupledServo(loop_hz)).plant;
     for (const double hz : {1.0, 10.0, 25.0, 40.0, 70.0, 200.0}) {
       const double w = 2.0 * kPi * hz;
       for (const int row : {kDeflectionRow + kY, kToolErrorRow + kY}) {

@@ -9,8 +9,8 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kPeriodS = 0.001;
-constexpr int kSubsteps = 4;
+constexpr double kCrossCheckPeriodS = 0.001;
+constexpr int kCrossCheckSubsteps = 4;
 
 LinearPlant OneMode(double frequency_hz, double damping_ratio, double gain) {
   MachineConfig machine;
@@ -26,7 +26,7 @@ TEST(CvodeCrossCheck, DeviationFollowsTheTolerance) {
   double last = 0.0;
   for (double rtol : {1e-10, 1e-8, 1e-6}) {
     config.rtol = rtol;
-    const CrossCheckResult r = CrossCheckCvode(OneMode(25.0, 0.0, 1.0), config, kPeriodS, kSubsteps, 1.7, 0.5);
+    const CrossCheckResult r = CrossCheckCvode(OneMode(25.0, 0.0, 1.0), config, kCrossCheckPeriodS, kCrossCheckSubsteps, 1.7, 0.5);
     EXPECT_TRUE(r.solver_failure.empty());
     EXPECT_GT(r.deviation, last) << rtol;
     EXPECT_LT(r.deviation, 1000 * rtol) << rtol;
@@ -35,7 +35,7 @@ TEST(CvodeCrossCheck, DeviationFollowsTheTolerance) {
     EXPECT_TRUE(std::isinf(r.memory_s));
     EXPECT_DOUBLE_EQ(r.Predicted(0.8), r.deviation * 10.0);
   }
-  const CrossCheckResult damped = CrossCheckCvode(OneMode(25.0, 0.05, 1.0), config, kPeriodS, kSubsteps, 1.7, 0.5);
+  const CrossCheckResult damped = CrossCheckCvode(OneMode(25.0, 0.05, 1.0), config, kCrossCheckPeriodS, kCrossCheckSubsteps, 1.7, 0.5);
   const double memory_s = 1.0 / (0.05 * 2.0 * M_PI * 25.0);
   EXPECT_NEAR(damped.memory_s, memory_s, 1e-12);
   EXPECT_DOUBLE_EQ(damped.Predicted(100.0), damped.deviation * memory_s / 0.08);
@@ -46,10 +46,10 @@ TEST(CvodeCrossCheck, DeviationFollowsTheTolerance) {
 TEST(CvodeCrossCheck, CacheIsScaleFree) {
   IntegratorConfig config;
   const LinearPlant plant = OneMode(31.0, 0.02, 1.0);
-  const CrossCheckResult unit = CrossCheckCvode(plant, config, kPeriodS, kSubsteps, 1.0, 0.25);
-  const CrossCheckResult cached = CachedCrossCheckCvode(plant, config, kPeriodS, kSubsteps, 4.0, 1.0);
+  const CrossCheckResult unit = CrossCheckCvode(plant, config, kCrossCheckPeriodS, kCrossCheckSubsteps, 1.0, 0.25);
+  const CrossCheckResult cached = CachedCrossCheckCvode(plant, config, kCrossCheckPeriodS, kCrossCheckSubsteps, 4.0, 1.0);
   EXPECT_EQ(cached.deviation, unit.deviation);
-  const CrossCheckResult scaled = CrossCheckCvode(plant, config, kPeriodS, kSubsteps, 4.0, 1.0);
+  const CrossCheckResult scaled = CrossCheckCvode(plant, config, kCrossCheckPeriodS, kCrossCheckSubsteps, 4.0, 1.0);
   EXPECT_NEAR(scaled.deviation, unit.deviation, 1e-3 * unit.deviation) << "equal up to rounding";
 }
 
@@ -59,7 +59,7 @@ TEST(CvodeCrossCheck, CacheIsScaleFree) {
 TEST(CvodeCrossCheck, SolverFailureIsNoVerdict) {
   IntegratorConfig config;
   config.max_num_steps = 1;
-  const CrossCheckResult r = CrossCheckCvode(OneMode(25.0, 0.02, 1.0), config, kPeriodS, kSubsteps, 1.0, 0.0);
+  const CrossCheckResult r = CrossCheckCvode(OneMode(25.0, 0.02, 1.0), config, kCrossCheckPeriodS, kCrossCheckSubsteps, 1.0, 0.0);
   EXPECT_NE(r.solver_failure.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.solver_failure;
   EXPECT_FALSE(r.Passed(1.0));
   EXPECT_NE(CrossCheckMessage(r, config, 1.0).find("accuracy on this plant is unknown"), std::string::npos);

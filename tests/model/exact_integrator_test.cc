@@ -1,4 +1,5 @@
 // The exact (matrix-exponential) integrator against closed-form responses.
+#include "common/math_constants.h"
 #include "model/exact_integrator.h"
 
 #include <cmath>
@@ -11,7 +12,6 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // Response from rest of q'' + 2 z w q' + w^2 q = -a (a held from t = 0), t >= 0.
 double StepResponse(double a, double w, double zeta, double t) {

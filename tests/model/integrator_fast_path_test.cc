@@ -19,7 +19,7 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kPeriodS = 0.001;
+constexpr double kFastPathPeriodS = 0.001;
 
 MachineConfig Modes(double frequency_hz, double zeta) {
   MachineConfig machine;
@@ -95,7 +95,7 @@ TEST(IntegratorAuto, ResolvesToExactForLinearPlants) {
   EXPECT_EQ(ResolveMethod(IntegratorMethod::kExact, plant), IntegratorMethod::kExact);
   IntegratorConfig config;
   config.method = IntegratorMethod::kAuto;
-  auto integrator = MakeIntegrator(plant, config, kPeriodS, 4, 1.0);
+  auto integrator = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.0);
   EXPECT_NE(dynamic_cast<ExactIntegrator*>(integrator.get()), nullptr);
   // A servo axis with a lumped structure is linear too.
   MultiAxisMachineConfig machine;
@@ -112,8 +112,8 @@ TEST(IntegratorAuto, ResolvesToExactForLinearPlants) {
 TEST(ExactIntegratorFastPath, PeriodProductsMatchTheSubstepRecursion) {
   for (const MachineConfig& machine : {SingleMode(25.0), Modes(25.0, 0.02)}) {
     const LinearPlant plant = BuildPlant(machine);
-    ExactIntegrator stepwise(plant, kPeriodS, 5);
-    ExactIntegrator periodwise(plant, kPeriodS, 5);
+    ExactIntegrator stepwise(plant, kFastPathPeriodS, 5);
+    ExactIntegrator periodwise(plant, kFastPathPeriodS, 5);
     const std::vector<double> a = Stepwise(stepwise, Sequence());
     const std::vector<double> b = Periodwise(periodwise, Sequence());
     EXPECT_LE(MaxDifference(a, b), 1e-12 * MaxAbs(a));
@@ -125,8 +125,8 @@ TEST(ExactIntegratorFastPath, PeriodProductsMatchTheSubstepRecursion) {
   many.form = ModalMachineConfig{
       {{20.0, 0.01, 1.0}, {45.0, 0.02, 0.5}, {70.0, 0.0, -0.3}, {110.0, 0.03, 0.2}, {150.0, 0.0, 0.1}}};
   const LinearPlant plant = BuildPlant(many);
-  ExactIntegrator stepwise(plant, kPeriodS, 5);
-  ExactIntegrator periodwise(plant, kPeriodS, 5);
+  ExactIntegrator stepwise(plant, kFastPathPeriodS, 5);
+  ExactIntegrator periodwise(plant, kFastPathPeriodS, 5);
   EXPECT_EQ(Stepwise(stepwise, Sequence()), Periodwise(periodwise, Sequence()));
 }
 
@@ -135,15 +135,15 @@ TEST(ExactIntegratorFastPath, PeriodProductsMatchTheSubstepRecursion) {
 // agree with the full outputs.
 TEST(ExactIntegratorFastPath, SteppedStatesAndSelectedRows) {
   const LinearPlant plant = BuildPlant(SingleMode(25.0));
-  ExactIntegrator full(plant, kPeriodS, 4);
+  ExactIntegrator full(plant, kFastPathPeriodS, 4);
   EXPECT_EQ(full.num_stepped_states(), 2);  // q, q' (not the drive velocity)
   // A machine: one modelled axis (Y) of three; X and Z rows are 0 whatever the input.
   MultiAxisMachineConfig machine;
   const MachinePlant machine_plant = BuildMachinePlant(machine, DriveConfig{});
   IntegratorConfig config;
   config.method = IntegratorMethod::kExact;
-  auto all = MakeIntegrator(machine_plant.plant, config, kPeriodS, 4, 1.0);
-  auto some = MakeIntegrator(machine_plant.plant, config, kPeriodS, 4, 1.0);
+  auto all = MakeIntegrator(machine_plant.plant, config, kFastPathPeriodS, 4, 1.0);
+  auto some = MakeIntegrator(machine_plant.plant, config, kFastPathPeriodS, 4, 1.0);
   for (int row = 0; row < 6; ++row) {
     EXPECT_EQ(all->OutputRowIsZero(row), row % 3 != 1) << row;
   }
@@ -185,10 +185,10 @@ TEST(CvodeFastPath, AcrossHeldTicksTracksTheExactSolution) {
   config.rtol = 1e-8;
   auto exact_config = config;
   exact_config.method = IntegratorMethod::kExact;
-  auto exact = MakeIntegrator(plant, exact_config, kPeriodS, 4, 1.667);
-  auto across = MakeIntegrator(plant, config, kPeriodS, 4, 1.667);
+  auto exact = MakeIntegrator(plant, exact_config, kFastPathPeriodS, 4, 1.667);
+  auto across = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
   config.tuning.input_mode = CvodeInputMode::kStopEveryTick;
-  auto stopping = MakeIntegrator(plant, config, kPeriodS, 4, 1.667);
+  auto stopping = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
   const std::vector<double> reference = Stepwise(*exact, Sequence());
   const std::vector<double> a = Periodwise(*across, Sequence());
   const std::vector<double> b = Periodwise(*stopping, Sequence());
@@ -206,7 +206,7 @@ TEST(CvodeFastPath, ReusedMemoryGivesTheSameRun) {
     IntegratorConfig fresh_config;
     fresh_config.lmm = lmm;
     fresh_config.tuning.reuse_memory = false;
-    CvodeIntegrator fresh(plant, fresh_config, kPeriodS, 4, 1.667);
+    CvodeIntegrator fresh(plant, fresh_config, kFastPathPeriodS, 4, 1.667);
     EXPECT_FALSE(fresh.reused_memory());
     const std::vector<double> reference = Periodwise(fresh, Sequence());
     IntegratorConfig pooled_config = fresh_config;
@@ -215,10 +215,10 @@ TEST(CvodeFastPath, ReusedMemoryGivesTheSameRun) {
       // Leaves its memory in the pool, after a different run (other tolerances, inputs).
       IntegratorConfig other = pooled_config;
       other.rtol = 1e-5;
-      CvodeIntegrator first(plant, other, kPeriodS, 4, 0.3);
+      CvodeIntegrator first(plant, other, kFastPathPeriodS, 4, 0.3);
       Periodwise(first, std::vector<double>(50, 0.7));
     }
-    CvodeIntegrator reused(plant, pooled_config, kPeriodS, 4, 1.667);
+    CvodeIntegrator reused(plant, pooled_config, kFastPathPeriodS, 4, 1.667);
     EXPECT_TRUE(reused.reused_memory());
     EXPECT_EQ(Periodwise(reused, Sequence()), reference);
     EXPECT_EQ(reused.Stats().steps, fresh.Stats().steps);
@@ -234,11 +234,11 @@ TEST(CvodeFastPath, VectorKernelsGiveTheSameRun) {
   IntegratorConfig config;
   std::vector<double> ours;
   {
-    CvodeIntegrator optimized(plant, config, kPeriodS, 4, 1.667);
+    CvodeIntegrator optimized(plant, config, kFastPathPeriodS, 4, 1.667);
     ours = Periodwise(optimized, Sequence());
   }
   config.tuning.optimized_vector_ops = false;
-  CvodeIntegrator packaged(plant, config, kPeriodS, 4, 1.667);
+  CvodeIntegrator packaged(plant, config, kFastPathPeriodS, 4, 1.667);
   EXPECT_FALSE(packaged.reused_memory());  // the optimised one's memory is not taken
   EXPECT_EQ(Periodwise(packaged, Sequence()), ours);
 }
@@ -254,9 +254,9 @@ TEST(CvodeFastPath, HermiteOutputMatchesCvodesInterpolation) {
   IntegratorConfig config;
   config.rtol = 1e-8;
   config.tuning.output = CvodeOutput::kCvodeInterpolation;
-  CvodeIntegrator cvode_output(plant, config, kPeriodS, 4, 1.667);
+  CvodeIntegrator cvode_output(plant, config, kFastPathPeriodS, 4, 1.667);
   config.tuning.output = CvodeOutput::kHermite;
-  CvodeIntegrator hermite(plant, config, kPeriodS, 4, 1.667);
+  CvodeIntegrator hermite(plant, config, kFastPathPeriodS, 4, 1.667);
   const std::vector<double> reference = Periodwise(cvode_output, Sequence());
   const std::vector<double> ours = Periodwise(hermite, Sequence());
   const double difference = MaxDifference(ours, reference) / MaxAbs(reference);
@@ -281,9 +281,9 @@ TEST(CvodeFastPath, LongStepsFallBackToCvodesInterpolation) {
   IntegratorConfig config;
   config.rtol = 1e-8;
   config.method = IntegratorMethod::kExact;
-  auto exact = MakeIntegrator(plant, config, kPeriodS, 4, 1.667);
+  auto exact = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
   config.method = IntegratorMethod::kCvode;
-  CvodeIntegrator hermite(plant, config, kPeriodS, 4, 1.667);
+  CvodeIntegrator hermite(plant, config, kFastPathPeriodS, 4, 1.667);
   const std::vector<double> reference = Stepwise(*exact, accel);
   const std::vector<double> ours = Periodwise(hermite, accel);
   EXPECT_LE(MaxDifference(ours, reference), 1e-6 * MaxAbs(reference));
@@ -299,7 +299,7 @@ TEST(CvodeFastPath, EveryTuningChoiceTracksTheExactSolution) {
   const LinearPlant plant = BuildPlant(Modes(25.0, 0.02));
   IntegratorConfig exact_config;
   exact_config.method = IntegratorMethod::kExact;
-  auto exact = MakeIntegrator(plant, exact_config, kPeriodS, 4, 1.667);
+  auto exact = MakeIntegrator(plant, exact_config, kFastPathPeriodS, 4, 1.667);
   const std::vector<double> reference = Stepwise(*exact, Sequence());
   std::vector<CvodeTuning> choices(10);
   choices[1].input_mode = CvodeInputMode::kRestartEveryTick;
@@ -314,7 +314,7 @@ TEST(CvodeFastPath, EveryTuningChoiceTracksTheExactSolution) {
   for (std::size_t i = 0; i < choices.size(); ++i) {
     IntegratorConfig config;
     config.tuning = choices[i];
-    auto cvode = MakeIntegrator(plant, config, kPeriodS, 4, 1.667);
+    auto cvode = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
     EXPECT_LE(MaxDifference(Periodwise(*cvode, Sequence()), reference), 1e-5 * MaxAbs(reference)) << i;
   }
 }

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/lumped_matrices.h"
 #include "model/machine.h"
@@ -18,7 +19,6 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 // A bed on its mounts carrying a column on the drive and a head on the column (the moving
 // column's chain, lighter and softer so the eigenvalues are well conditioned), no dashpots.

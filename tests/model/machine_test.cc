@@ -1,4 +1,5 @@
 // Machine models: validation, plants and modal analysis against hand-derived closed forms.
+#include "common/math_constants.h"
 #include "model/machine.h"
 
 #include <cmath>
@@ -13,7 +14,6 @@
 namespace shapebench::model {
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
 double Omega(double hz) { return kTwoPi * hz; }
 

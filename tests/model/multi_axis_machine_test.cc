@@ -10,15 +10,13 @@
 
 #include "common/validation_error.h"
 #include "model/integrator.h"
+#include "tests/support/axes.h"
 
 namespace shapebench::model {
 namespace {
 
-constexpr int kX = 0;
-constexpr int kY = 1;
-constexpr int kZ = 2;
 
-MachineConfig Modal(std::vector<ModalMode> modes) {
+MachineConfig AxisModal(std::vector<ModalMode> modes) {
   return MachineConfig{ModalMachineConfig{std::move(modes)}};
 }
 
@@ -38,8 +36,8 @@ MultiAxisMachineConfig ThreeAxes() {
   MultiAxisMachineConfig machine;
   machine.single_form = false;
   machine.axes[kX] = LumpedColumn();
-  machine.axes[kY] = Modal({{25.0, 0.03, 1.0}, {70.0, 0.05, -0.2}});
-  machine.axes[kZ] = Modal({{90.0, 0.02, 1.0}});
+  machine.axes[kY] = AxisModal({{25.0, 0.03, 1.0}, {70.0, 0.05, -0.2}});
+  machine.axes[kZ] = AxisModal({{90.0, 0.02, 1.0}});
   return machine;
 }
 
@@ -139,7 +137,7 @@ TEST(MultiAxisMachine, BlockDiagonalAssembly) {
 // rigid altogether.
 TEST(MultiAxisMachine, RigidAxes) {
   MultiAxisMachineConfig machine;
-  machine.axes[kY] = Modal({{25.0, 0.0, 1.0}});
+  machine.axes[kY] = AxisModal({{25.0, 0.0, 1.0}});
   const MachinePlant kinematic = BuildMachinePlant(machine, DriveConfig{});
   EXPECT_EQ(kinematic.plant.num_states(), 2);
   EXPECT_TRUE(kinematic.plant.B_accel.col(kX).isZero());
@@ -167,7 +165,7 @@ TEST(MultiAxisMachine, RigidAxes) {
 // are left out of the integration.
 TEST(MultiAxisMachine, StatelessAxesLeaveIntegrationUnchanged) {
   MultiAxisMachineConfig machine;
-  machine.axes[kY] = Modal({{25.0, 0.02, 1.0}, {70.0, 0.05, -0.4}});
+  machine.axes[kY] = AxisModal({{25.0, 0.02, 1.0}, {70.0, 0.05, -0.4}});
   const MachinePlant built = BuildMachinePlant(machine, DriveConfig{});
   const LinearPlant single = BuildPlant(*machine.axes[kY]);
   for (const IntegratorMethod method : {IntegratorMethod::kCvode, IntegratorMethod::kExact}) {

@@ -1,6 +1,7 @@
 // The servo drive (model/servo_drive.h) against closed forms: the first-order lag of the
 // ideal inner loops, the v / Kp following error at constant speed, the static force
 // balance of the velocity loop, and the rigid limit of a stiff structure.
+#include "common/math_constants.h"
 #include "model/servo_drive.h"
 
 #include <cmath>
@@ -13,13 +14,11 @@
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/multi_axis_machine.h"
+#include "tests/support/axes.h"
 
 namespace shapebench::model {
 namespace {
 
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
-constexpr int kX = 0;
-constexpr int kY = 1;
 
 // The Y chain of configs/machines/moving_column.yaml (25.00 Hz, 4.799 um per m/s^2).
 MachineConfig MovingColumnY() {

@@ -1,0 +1,143 @@
+// --report FILE.html (bench/output/html_report.h) through the CLI and its pieces.
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bench/output/html_report.h"
+#include "bench_test_support.h"
+#include "tests/support/bench_test_support.h"
+
+namespace shapebench::bench {
+namespace {
+
+using testing::CliResult;
+using testing::ReadText;
+using testing::RunCli;
+using testing::ScratchDir;
+
+
+std::size_t Count(const std::string& text, const std::string& part) {
+  std::size_t count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+  return count;
+}
+
+// Tests that markup, quotes and ampersands become entities and a stray byte no raw byte.
+TEST(HtmlReport, EscapesMarkupQuotesAndBadBytes) {
+  EXPECT_EQ(HtmlEscape("<script>alert('x&y')</script>"),
+            "&lt;script&gt;alert(&#39;x&amp;y&#39;)&lt;/script&gt;");
+  EXPECT_EQ(HtmlEscape("a=\"b\""), "a=&quot;b&quot;");
+  EXPECT_EQ(HtmlEscape("µm"), "µm");  // UTF-8 kept
+  EXPECT_EQ(HtmlEscape(std::string("x\xff\x01y")), "x\xef\xbf\xbd\xef\xbf\xbdy");
+}
+
+// Tests that lengths read in µm below a millimetre and mm above, times in ms below a second.
+TEST(HtmlReport, ShowsEngineeringUnits) {
+  EXPECT_EQ(EngineeringValue(8.3388e-6, "m"), (std::pair<std::string, std::string>{"8.3388", "µm"}));
+  EXPECT_EQ(EngineeringValue(0.2, "m"), (std::pair<std::string, std::string>{"200", "mm"}));
+  EXPECT_EQ(EngineeringValue(0.72, "s"), (std::pair<std::string, std::string>{"720", "ms"}));
+  EXPECT_EQ(EngineeringValue(1.5, "s"), (std::pair<std::string, std::string>{"1.5", "s"}));
+  EXPECT_EQ(EngineeringValue(1.0425, "1").second, "");
+  EXPECT_EQ(EngineeringValue(NAN, "m").first, "n/a");
+  EXPECT_EQ(EngineeringValue(1.0, "bool").first, "yes");
+}
+
+// Tests that `run --report` of a scenario named <script> shows the name as text: no tag
+// of it anywhere (title, headings, the plot's SVG), and the page is one file with no
+// script and nothing fetched.
+TEST(HtmlReport, RunReportEscapesAHostileName) {
+  ScratchDir dir;
+  const std::string page = dir.File("report.html");
+  const CliResult r = RunCli({"run", "configs/demo.yaml", "--set", "name=<script>alert(1)</script><b", "--report",
+                              page},
+                             kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = ReadText(page);
+  EXPECT_EQ(Count(html, "<script"), 0u);
+  EXPECT_EQ(Count(html, "<b<"), 0u);
+  EXPECT_GE(Count(html, "&lt;script&gt;alert(1)&lt;/script&gt;&lt;b"), 2u);  // <title> and <h1>
+  EXPECT_EQ(Count(html, "<svg"), 1u);
+  EXPECT_NE(html.find("<td>peak_ratio</td>"), std::string::npos);
+  EXPECT_NE(html.find("Effective scenario"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org"));  // only SVG's namespaces
+  EXPECT_EQ(html.find("src="), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+}
+
+// Tests that `check --report` shows each check's verdict: PASS when it holds, FAIL with
+// its bound when an override tightens it, and the exit code is check's as without it.
+TEST(HtmlReport, CheckReportShowsPassAndFail) {
+  ScratchDir dir;
+  const CliResult pass = RunCli({"check", "configs/scenarios/method1.yaml", "--report", dir.File("pass.html")},
+                                kSourceDir);
+  ASSERT_EQ(pass.exit_code, 0) << pass.err;
+  const std::string passed = ReadText(dir.File("pass.html"));
+  EXPECT_NE(passed.find("<span class=\"pass\">PASS</span> peak_ratio"), std::string::npos);
+  EXPECT_EQ(passed.find("class=\"fail\""), std::string::npos);
+
+  const CliResult fail = RunCli({"check", "configs/scenarios/method1.yaml", "--set", "checks.peak_ratio.max=0.5",
+                                 "--report", dir.File("fail.html")},
+                                kSourceDir);
+  EXPECT_EQ(fail.exit_code, 1) << fail.err;
+  const std::string failed = ReadText(dir.File("fail.html"));
+  EXPECT_TRUE(std::regex_search(failed, std::regex("<span class=\"fail\">FAIL</span> peak_ratio = [0-9.]+ \\(max 0\\.5\\)")));
+  EXPECT_NE(failed.find("<p class=\"subtitle\">FAIL: "), std::string::npos);
+}
+
+// Tests that `sweep --report` has the ratio plot against the numeric key and every point's
+// row in the results table.
+TEST(HtmlReport, SweepReportHasPlotAndTable) {
+  ScratchDir dir;
+  const CliResult r = RunCli({"sweep", "configs/sweeps/natural_period.yaml", "--jobs", "2", "--out",
+                              dir.File("out"), "--report", dir.File("sweep.html")},
+                             kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = ReadText(dir.File("sweep.html"));
+  EXPECT_EQ(Count(html, "<svg"), 1u);
+  EXPECT_NE(html.find("<h2>Ratios against machine.modes[0].frequency_hz</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<th>residual_ratio</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>motion_time_s [ms]</th>"), std::string::npos);
+  EXPECT_EQ(Count(html, "<tr>"), 1u + 603u);  // the header and 3 x 201 points
+}
+
+// Tests that `compare --report` shows both sides' metrics and the overlaid plot.
+TEST(HtmlReport, CompareReportHasBothSides) {
+  ScratchDir dir;
+  const CliResult r = RunCli({"compare", "configs/demo.yaml", "--candidate-set", "controller.pattern.method=none",
+                              "--gate", "peak_ratio=0.05", "--report", dir.File("compare.html")},
+                             kSourceDir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // the unshaped candidate fails the gate
+  const std::string html = ReadText(dir.File("compare.html"));
+  EXPECT_NE(html.find("<th>baseline</th><th>candidate</th>"), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"fail\">FAIL</span> gate peak_ratio=0.05"), std::string::npos);
+  EXPECT_EQ(Count(html, "<svg"), 1u);
+  EXPECT_NE(html.find("Candidate scenario: configs/demo.yaml --set controller.pattern.method=none"),
+            std::string::npos);
+}
+
+// Tests that an unwritable --report fails with exit 2 before anything runs, leaving nothing.
+TEST(HtmlReport, UnwritablePathFailsFirst) {
+  ScratchDir dir;
+  const CliResult missing =
+      RunCli({"run", "configs/demo.yaml", "--report", dir.File("no/such/dir/r.html")}, kSourceDir);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("error: --report " + dir.File("no/such/dir/r.html") + ": cannot write there: "),
+            std::string::npos)
+      << missing.err;
+  EXPECT_EQ(missing.out, "");  // no metrics table: nothing ran
+  const CliResult directory = RunCli({"check", "configs/scenarios/method1.yaml", "--report", dir.path().string()},
+                                     kSourceDir);
+  EXPECT_EQ(directory.exit_code, 2);
+  EXPECT_EQ(directory.out, "");
+  const CliResult sweep = RunCli({"compare", "configs/sweeps/natural_period.yaml", "--candidate-set", "a=1",
+                                  "--report", dir.File("c.html")},
+                                 kSourceDir);
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_NE(sweep.err.find("two scenarios only"), std::string::npos) << sweep.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.File("c.html")));
+}
+
+}  // namespace
+}  // namespace shapebench::bench

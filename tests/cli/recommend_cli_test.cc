@@ -1,0 +1,194 @@
+// `shapebench recommend` through the built CLI: bad logs and options exit 2 naming
+// FILE:LINE:COL and the column, --json parses with its fields, --out writes its files,
+// --validate runs the scenario with and without the recommendation.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/output/gnuplot.h"
+#include "bench_test_support.h"
+#include "tests/support/accel_log_oracle.h"
+#include "tests/support/bench_test_support.h"
+
+namespace shapebench::bench {
+namespace {
+
+using testing::CliResult;
+using testing::RunCli;
+using testing::ScratchDir;
+
+const char* kExampleLog = "configs/measurements/accel_x.csv";
+
+bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A header and `n` samples at `rate_hz`.
+std::string Samples(int n, double rate_hz) {
+  std::string text = "#time,accel_x,accel_y,accel_z\n";
+  for (int k = 0; k < n; ++k) text += std::to_string(k / rate_hz) + "," + std::to_string(k % 7) + ",0,9810\n";
+  return text;
+}
+
+struct BadLog {
+  std::string text;
+  std::string where;    // ":LINE:COL: column: "
+  std::string message;  // a part of the message
+};
+
+// Tests that every kind of bad log exits 2 with "error: FILE:LINE:COL: column: ..."
+// naming what is wrong.
+TEST(RecommendCli, BadLogsExit2NamingLineAndColumn) {
+  const std::string header = "#time,accel_x,accel_y,accel_z\n";
+  const std::vector<BadLog> cases = {
+      {"", ":1:1: header: ", "empty file"},
+      {"\n\n", ":1:1: header: ", "empty file"},
+      {"0.0,1,2,3\n", ":1:1: header: ", "expected the header #time,accel_x,accel_y,accel_z"},
+      {"#time,accel_x,accel_y,accel_w\n", ":1:23: header: ", "unknown column 'accel_w'"},
+      {"#time,accel_x,accel_y\n", ":1:1: header: ", "missing column 'accel_z'"},
+      {"#time,accel_x,accel_x,accel_z\n", ":1:15: header: ", "named twice"},
+      {header, ":2:1: time: ", "no samples after the header"},
+      {header + "0.0,1,abc,3\n", ":2:7: accel_y: ", "not a number: 'abc'"},
+      {header + "0.0,nan,0,0\n", ":2:5: accel_x: ", "not finite"},
+      {header + "0.0,1,2,inf\n", ":2:9: accel_z: ", "not finite"},
+      {header + "0.0,1,2,1e999\n", ":2:9: accel_z: ", "not finite"},
+      {header + "0.0,1,2\n", ":2:8: accel_z: ", "expected 4 fields"},
+      {header + "0.0,1,2,3,4\n", ":2:11: header: ", "expected 4 fields"},
+      {header + "0.5,1,2,3\n# a comment\n0.5,1,2,3\n", ":4:1: time: ", "is not after the previous sample's 0.5 s (line 2)"},
+      {Samples(100, 3200.0), ":101:1: time: ", "too few samples for the PSD: 100 samples"},
+      {Samples(3000, 300.0), ":3001:1: time: ", "sample rate 300 Hz"},
+  };
+  ScratchDir dir;
+  for (const BadLog& bad : cases) {
+    const std::string path = dir.Write("log.csv", bad.text);
+    const CliResult r = RunCli({"recommend", path}, kSourceDir);
+    EXPECT_EQ(r.exit_code, 2) << bad.text.substr(0, 80);
+    EXPECT_TRUE(Has(r.err, "error: " + path + bad.where)) << r.err;
+    EXPECT_TRUE(Has(r.err, bad.message)) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+}
+
+// Tests that bad options exit 2 naming the option, and a missing file names the file.
+TEST(RecommendCli, BadOptionsExit2) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--axis", "w"}, "--axis: expected x, y, z or all"},
+      {{"--damping-ratio", "1.5"}, "--damping-ratio: must be in [0, 1)"},
+      {{"--feed-mm-min", "0"}, "--feed-mm-min: must be a finite feed > 0"},
+      {{"--accel-mm-s2", "-1"}, "--accel-mm-s2: must be a finite acceleration > 0"},
+  };
+  for (const auto& [options, message] : cases) {
+    std::vector<std::string> args = {"recommend", kExampleLog};
+    args.insert(args.end(), options.begin(), options.end());
+    const CliResult r = RunCli(args, kSourceDir);
+    EXPECT_EQ(r.exit_code, 2) << message;
+    EXPECT_TRUE(Has(r.err, message)) << r.err;
+  }
+  const CliResult missing = RunCli({"recommend", "no/such.csv"}, kSourceDir);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_TRUE(Has(missing.err, "error: no/such.csv: cannot read")) << missing.err;
+}
+
+// Tests that --json prints one object that nlohmann parses: every fitted method with
+// method, frequency_hz, remaining_vibration, duration_s, added_time_s and smoothing_m, the
+// recommendation with the same fields and its rule; and that --out adds recommend.json
+// (the same document), psd.csv and a complete recommend.png, their wrote lines on stderr.
+TEST(RecommendCli, JsonParsesWithTheListedFieldsAndOutWritesFiles) {
+  ScratchDir dir;
+  const std::string out = dir.File("rec");
+  const CliResult r = RunCli({"recommend", kExampleLog, "--axis", "x", "--json", "--out", out}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(json["shapers"].is_array());
+  EXPECT_GE(json["shapers"].size(), 13u);
+  for (const auto& shaper : json["shapers"]) {
+    for (const char* field :
+         {"method", "frequency_hz", "remaining_vibration", "duration_s", "added_time_s", "smoothing_m"}) {
+      EXPECT_TRUE(shaper.contains(field)) << field;
+    }
+    EXPECT_GE(shaper["frequency_hz"].get<double>(), 5.0);
+    EXPECT_LE(shaper["frequency_hz"].get<double>(), 200.0);
+    EXPECT_GE(shaper["remaining_vibration"].get<double>(), 0.0);
+    EXPECT_LE(shaper["remaining_vibration"].get<double>(), 1.0);
+  }
+  const auto& recommended = json["recommended"];
+  EXPECT_TRUE(recommended["method"].is_string());
+  EXPECT_TRUE(recommended["frequency_hz"].is_number());
+  EXPECT_TRUE(recommended["smoothing_m"].is_number());
+  EXPECT_TRUE(recommended["rule"].is_string());
+  EXPECT_EQ(json["axis"], "x");
+  EXPECT_EQ(json["psd"]["segment_samples"], 2048);
+  EXPECT_EQ(json["skipped"][0]["method"], "custom");
+  EXPECT_EQ(nlohmann::json::parse(testing::ReadText(out + "/recommend.json")), json);
+  EXPECT_TRUE(Has(testing::ReadText(out + "/psd.csv"), "frequency_hz,psd,vibration_1,"));
+  EXPECT_EQ(PngDefect(out + "/recommend.png"), "");
+  EXPECT_EQ(r.err, "wrote " + out + "/recommend.json\nwrote " + out + "/psd.csv\nwrote " + out + "/recommend.png\n");
+}
+
+// Tests the text report: a row per method, the recommendation marked and named with its
+// rule, custom skipped.
+TEST(RecommendCli, TableMarksTheRecommendation) {
+  const CliResult r = RunCli({"recommend", kExampleLog}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(Has(r.out, "recommend configs/measurements/accel_x.csv (axis all)\n")) << r.out;
+  EXPECT_TRUE(Has(r.out, "2048-sample segments (1.5625 Hz bins)")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\nrecommended: ")) << r.out;
+  EXPECT_TRUE(Has(r.out, "the least smoothing of the methods whose remaining vibration is at most 1.1 x")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\n* ")) << r.out;
+  EXPECT_TRUE(Has(r.out, "skipped: custom")) << r.out;
+}
+
+// Tests that a damping ratio beyond a shaper's branch skips that shaper with the reason
+// (ei_3hump's ends at 0.23 for a 5% tolerance) and fits the others.
+TEST(RecommendCli, ShaperWithoutADesignAtTheDampingIsSkipped) {
+  const CliResult r = RunCli({"recommend", kExampleLog, "--damping-ratio", "0.3", "--json"}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  bool skipped = false;
+  for (const auto& s : json["skipped"]) {
+    if (s["method"] == "ei_3hump") skipped = Has(s["reason"].get<std::string>(), "design_damping_ratio");
+  }
+  EXPECT_TRUE(skipped) << json["skipped"].dump();
+  for (const auto& s : json["shapers"]) EXPECT_NE(s["method"], "ei_3hump");
+}
+
+// Tests that --validate runs the scenario with the log's two modes on its driven axis
+// (within 2% of the synthetic log's 37 and 61 Hz), unshaped and with the recommendation,
+// and that the recommendation leaves under a fifth of the unshaped residual vibration
+// (the log's modes are what it was fitted to).
+TEST(RecommendCli, ValidateRunsTheScenarioWithTheLogsModes) {
+  const CliResult r = RunCli({"recommend", kExampleLog, "--validate", "configs/demo.yaml", "--json"}, kSourceDir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  const auto& v = json["validate"];
+  ASSERT_EQ(v["modes"].size(), 2u);
+  EXPECT_NEAR(v["modes"][0]["frequency_hz"].get<double>(), 37.0, 0.02 * 37.0);
+  EXPECT_NEAR(v["modes"][1]["frequency_hz"].get<double>(), 61.0, 0.02 * 61.0);
+  EXPECT_EQ(v["axis"], "y");
+  // The machine keeps its static deflection: the demo's own (1e-9 relative: the runs
+  // find it numerically).
+  const CliResult demo = RunCli({"run", "configs/demo.yaml", "--json"}, kSourceDir);
+  const double demo_static = nlohmann::json::parse(demo.out)["static_displacement_m"].get<double>();
+  for (const char* run : {"none", "recommended"}) {
+    EXPECT_NEAR(v[run]["static_displacement_m"].get<double>(), demo_static, 1e-9 * demo_static) << run;
+  }
+  EXPECT_LT(v["recommended"]["residual_ratio"].get<double>(), 0.2 * v["none"]["residual_ratio"].get<double>());
+  EXPECT_EQ(v["recommended"]["pattern_frequency_hz"], json["recommended"]["frequency_hz"]);
+  const CliResult text = RunCli({"recommend", kExampleLog, "--validate", "configs/demo.yaml"}, kSourceDir);
+  EXPECT_TRUE(Has(text.out, "\nvalidate configs/demo.yaml: axis y modelled by the log's modes")) << text.out;
+  EXPECT_TRUE(Has(text.out, "  residual_ratio  ")) << text.out;
+  const CliResult missing = RunCli({"recommend", kExampleLog, "--validate", "no/such.yaml"}, kSourceDir);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_TRUE(Has(missing.err, "no/such.yaml")) << missing.err;
+  // A rigid driven axis has no static deflection for the log's modes to share.
+  ScratchDir dir;
+  const std::string rigid =
+      dir.Write("rigid.yaml", "machine: {axes: {}}\ncontroller: {feed_mm_min: 6000, accel_time_s: 0.1}\n"
+                              "move: {distance_mm: 50}\n");
+  const CliResult refused = RunCli({"recommend", kExampleLog, "--validate", rigid}, kSourceDir);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_TRUE(Has(refused.err, "error: " + rigid + ": machine: the driven axis y has no static deflection")) << refused.err;
+}
+
+}  // namespace
+}  // namespace shapebench::bench

@@ -1,0 +1,190 @@
+// Shared helpers of the bench tests: scratch directories, fixture paths, and running
+// the built CLI (SHAPEBENCH_BINARY) as a child process.
+#pragma once
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/config/config_error.h"
+#include "common/csv.h"
+
+namespace shapebench::bench {
+
+// The repository's top: the CLI runs from there, fixtures are read below it.
+inline const std::string kSourceDir = SHAPEBENCH_SOURCE_DIR;
+
+}  // namespace shapebench::bench
+
+namespace shapebench::bench::testing {
+
+// AddressSanitizer reserves terabytes of address space for its shadow memory, so a child
+// run under an address-space limit (RLIMIT_AS, prlimit --as) cannot start in the
+// sanitizer build (make test-sanitize). There the memory bound is ASan's own: an RSS
+// limit in ASAN_OPTIONS (hard_rss_limit_mb), which ends the child like the limit would.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kUnderAddressSanitizer = true;
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
+
+// In a child about to exec the CLI: bound its memory to `bytes` (see kUnderAddressSanitizer).
+inline void LimitChildMemory(unsigned long bytes) {
+  if (kUnderAddressSanitizer) {
+    const char* old = std::getenv("ASAN_OPTIONS");
+    const std::string options = std::string(old != nullptr ? old : "") + ":hard_rss_limit_mb=" +
+                                std::to_string(bytes >> 20);
+    setenv("ASAN_OPTIONS", options.c_str(), 1);
+  } else {
+    const rlimit limit{bytes, bytes};
+    setrlimit(RLIMIT_AS, &limit);
+  }
+}
+
+// `args` followed by `more`: a command line and the options every case adds.
+inline std::vector<std::string> Args(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+// The ConfigError `read` throws (a failure when it throws none).
+template <typename Read>
+ConfigError ErrorOf(Read read) {
+  try {
+    read();
+  } catch (const ConfigError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no ConfigError";
+  return ConfigError("", 0, 0, "", "");
+}
+
+// Expects the error at FILE:LINE:COL with this key path and a message containing a part.
+inline void ExpectError(const ConfigError& error, const std::string& file, int line, int column,
+                        const std::string& key_path, const std::string& message_part) {
+  EXPECT_EQ(error.file(), file) << error.what();
+  EXPECT_EQ(error.line(), line) << error.what();
+  EXPECT_EQ(error.column(), column) << error.what();
+  EXPECT_EQ(error.key_path(), key_path) << error.what();
+  EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
+}
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "shapebench_test_XXXXXX").string();
+    path_ = mkdtemp(pattern.data());
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  std::string File(const std::string& name) const { return (path_ / name).string(); }
+  // Writes `text` to `name` (parent directories created) and returns its path.
+  std::string Write(const std::string& name, const std::string& text) const {
+    const std::filesystem::path file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file.string();
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::string DataPath(const std::string& name) {
+  return std::string(SHAPEBENCH_SOURCE_DIR) + "/tests/bench/data/" + name;
+}
+
+inline std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every record of a CSV file (results.csv and the like), failing the test if its last
+// row is torn (a partial line).
+inline std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  CsvReader reader(in);
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> fields;
+  while (reader.Next(&fields)) rows.push_back(fields);
+  EXPECT_FALSE(reader.torn()) << path;
+  return rows;
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string ShellQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr. `wrapper`, when
+// given, is shell text put before the binary (an environment assignment, `prlimit ...`).
+inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir,
+                        const std::string& wrapper = "") {
+  ScratchDir capture;
+  std::string command = "cd " + ShellQuoted(work_dir) + " && " + wrapper + ShellQuoted(SHAPEBENCH_BINARY);
+  for (const auto& arg : args) command += " " + ShellQuoted(arg);
+  command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
+  const int status = std::system(command.c_str());
+  CliResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadText(capture.File("out"));
+  result.err = ReadText(capture.File("err"));
+  return result;
+}
+
+// Starts the CLI as a child process in `work_dir` and returns its pid (the caller waits
+// for it or signals it). stdout goes to /dev/null, stderr to `err_file` (empty: /dev/null).
+inline pid_t SpawnCli(const std::vector<std::string>& args, const std::string& work_dir,
+                      const std::string& err_file = "") {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    const int err = err_file.empty() ? null : open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(null, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    if (chdir(work_dir.c_str()) != 0) _exit(127);
+    std::vector<char*> argv;
+    std::string binary = SHAPEBENCH_BINARY;
+    argv.push_back(binary.data());
+    std::vector<std::string> copies = args;
+    for (auto& arg : copies) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+}  // namespace shapebench::bench::testing
