@@ -15,13 +15,9 @@
 #include <string>
 #include <vector>
 
-namespace shapebench::bench {
+#include "bench/measured/uff58_units.h"
 
-// What the FRF's ordinate numerator measures: its power of (j w) over a receptance.
-enum class FrfResponse { kDisplacement = 0, kVelocity = 1, kAcceleration = 2 };
-// What it is divided by: an excitation force (an impact or shaker test) or a base
-// acceleration (transmissibility).
-enum class FrfExcitation { kForce, kAcceleration };
+namespace shapebench::bench {
 
 struct Uff58Record {
   int line = 0;  // the identifier line ("    58" or "    58b")

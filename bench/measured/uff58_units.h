@@ -7,9 +7,13 @@
 #include <optional>
 #include <string>
 
-#include "bench/measured/uff58_reader.h"
-
 namespace shapebench::bench {
+
+// What the FRF's ordinate numerator measures: its power of (j w) over a receptance.
+enum class FrfResponse { kDisplacement = 0, kVelocity = 1, kAcceleration = 2 };
+// What it is divided by: an excitation force (an impact or shaker test) or a base
+// acceleration (transmissibility).
+enum class FrfExcitation { kForce, kAcceleration };
 
 // Records 8-11: Format(I10,3I5,2(1X,20A1)).
 struct UffCharacteristics {

@@ -1,4 +1,5 @@
-// BuildPlant and AnalyzeModes for both machine forms (machine.h).
+// BuildPlant and AnalyzeModes for both machine forms (machine.h), on the helpers that build
+// on its config types (coupled_modes.h, lumped_matrices.h).
 #include "model/machine.h"
 
 #include <algorithm>
