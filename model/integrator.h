@@ -27,7 +27,7 @@ enum class CvodeLmm { kAdams, kBdf };
 enum class CrossCheckPolicy { kRefuse, kWarn, kOff };
 
 // How CvodeIntegrator drives CVODE. The defaults are the measured choices (docs/performance.md,
-// README "Performance"); the others exist to measure them against (benchmarks/).
+// "CVODE's choices at equal accuracy"); the others exist to measure them against (benchmarks/).
 enum class CvodeInputMode {
   // Integrate across ticks while the held acceleration stays the same (the master says for
   // how long, PlantIntegrator::AdvancePeriod); stop and restart only where it changes.
@@ -60,7 +60,7 @@ struct CvodeTuning {
   CvodeOutput output = CvodeOutput::kHermite;
   // The upper bound of the step-size ratios CVODE answers by keeping the step
   // (CVodeSetEtaFixedStepBounds; CVODE's own is 1.5): at 1.1 Adams grows its steps and
-  // order on an oscillating structure instead of staying at order 5 (README "Performance").
+  // order on an oscillating structure instead of staying at order 5 (docs/performance.md).
   double eta_max_fixed_step = 1.1;
   // shapebench's kernels for the serial vector operations (model/serial_vector_ops.h);
   // false: those of the libsundials package.
