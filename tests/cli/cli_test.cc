@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/scenario/metrics.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {

@@ -9,7 +9,6 @@
 
 #include "bench/output/gnuplot.h"
 #include "bench/scenario/metrics.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "common/csv.h"
 

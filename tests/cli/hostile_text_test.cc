@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include "bench/output/report.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "common/atomic_file.h"
 #include "common/format.h"

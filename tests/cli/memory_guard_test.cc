@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include "bench/run/run_scenario.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "common/validation_error.h"
 

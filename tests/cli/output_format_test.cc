@@ -18,7 +18,6 @@
 #include "bench/scenario/checks.h"
 #include "common/engineering_units.h"
 #include "bench/scenario/metrics.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "common/csv.h"
 

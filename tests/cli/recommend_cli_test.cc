@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/output/gnuplot.h"
-#include "bench_test_support.h"
 #include "tests/support/accel_log_oracle.h"
 #include "tests/support/bench_test_support.h"
 

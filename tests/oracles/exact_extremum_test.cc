@@ -16,7 +16,6 @@
 
 #include "bench/scenario/scenario_loader.h"
 #include "bench/run/run_scenario.h"
-#include "bench_test_support.h"
 #include "common/math_constants.h"
 #include "tests/support/bench_test_support.h"
 

@@ -12,7 +12,6 @@
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/sensitivity/sensitivity.h"
-#include "bench_test_support.h"
 #include "common/math_constants.h"
 #include "tests/support/bench_test_support.h"
 #include "controller/shaper_registry.h"

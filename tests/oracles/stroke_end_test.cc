@@ -7,7 +7,6 @@
 
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {

@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include "bench/measured/modal_file_reader.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {

@@ -14,7 +14,6 @@
 #include <gtest/gtest.h>
 
 #include "bench/output/gnuplot.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "common/atomic_file.h"
 

@@ -10,7 +10,6 @@
 #include "bench/scenario/scenario_loader.h"
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario.h"
-#include "bench_test_support.h"
 #include "common/math_constants.h"
 #include "tests/support/bench_test_support.h"
 #include "model/cvode_cross_check.h"

@@ -12,7 +12,6 @@
 #include "bench/scenario/scenario_loader.h"
 #include "bench/output/pattern_report.h"
 #include "bench/run/run_scenario.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "controller/shaper_registry.h"
 

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 #include "model/multi_axis_machine.h"
 

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include "bench/scenario/scenario_loader.h"
-#include "bench_test_support.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {
