@@ -10,7 +10,6 @@
 
 #include "bench/scenario/scenario_loader.h"
 #include "bench/measured/uff58_reader.h"
-#include "uff58_writer.h"
 #include "tests/support/bench_test_support.h"
 #include "tests/support/uff58_writer.h"
 

@@ -10,7 +10,6 @@
 
 #include "bench/measured/frf_identification.h"
 #include "bench/measured/uff58_units.h"
-#include "uff58_writer.h"
 #include "tests/support/bench_test_support.h"
 #include "tests/support/uff58_writer.h"
 
