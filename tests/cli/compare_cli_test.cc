@@ -42,7 +42,11 @@ TEST(CompareCli, GateFailsForTheWorseAndPassesForTheBetter) {
   EXPECT_NE(better.out.find("baseline   configs/demo.yaml --set controller.pattern.method=none\n"),
             std::string::npos)
       << better.out;
-  EXPECT_NE(better.out.find("motion_time_s            s      lower   0.7          0.74         +0.04"),
+  // The metric column is as wide as the longest metric name and two blanks.
+  std::size_t width = 0;
+  for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+  EXPECT_NE(better.out.find("motion_time_s" + std::string(width + 2 - 13, ' ') +
+                            "s      lower   0.7          0.74         +0.04"),
             std::string::npos)
       << better.out;
 

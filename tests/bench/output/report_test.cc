@@ -30,10 +30,16 @@ TEST(Report, MetricsTable) {
   std::ostringstream out;
   PrintMetricsTable(out, SomeMetrics());
   const std::string text = out.str();
-  EXPECT_NE(text.find("static_displacement_m    8.1 um\n"), std::string::npos) << text;  // engineering units
-  EXPECT_NE(text.find("peak_ratio               2\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("motion_time_s            1.05 s\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("settling_time_s          n/a\n"), std::string::npos) << text;
+  // The names padded to the longest metric name and two blanks.
+  std::size_t width = 0;
+  for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+  const auto row = [&](const std::string& name, const std::string& value) {
+    return name + std::string(width + 2 - name.size(), ' ') + value + "\n";
+  };
+  EXPECT_NE(text.find(row("static_displacement_m", "8.1 um")), std::string::npos) << text;  // engineering units
+  EXPECT_NE(text.find(row("peak_ratio", "2")), std::string::npos) << text;
+  EXPECT_NE(text.find(row("motion_time_s", "1.05 s")), std::string::npos) << text;
+  EXPECT_NE(text.find(row("settling_time_s", "n/a")), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'),
             static_cast<long>(Metrics{}.Named().size()));
 }
