@@ -52,7 +52,7 @@ Bounded RunBounded(const std::vector<std::string>& args, int seconds) {
     const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(null, STDOUT_FILENO);
     dup2(err, STDERR_FILENO);
-    if (chdir(kSourceDir) != 0) _exit(127);
+    if (chdir(kSourceDir.c_str()) != 0) _exit(127);
     std::string binary = SHAPEBENCH_BINARY;
     std::vector<std::string> copies = args;
     std::vector<char*> argv = {binary.data()};
