@@ -20,8 +20,6 @@
 namespace shapebench::controller {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 bool Finite(double v) { return std::isfinite(v); }
 
 bool TableRealization(const ControllerConfig& c) {
@@ -58,7 +56,7 @@ PulseFilter PostInterpFilter(const ControllerConfig& c) {
 void PostInterpConfig::validate() const {
   if (type == PostInterpType::kExponential && !(Finite(time_constant_s) && time_constant_s > 0.0)) {
     throw ValidationError("time_constant_s", "must be > 0 for exponential acc/dec (got " +
-                                                 Num(time_constant_s) + ")");
+                                                 FormatNumber(time_constant_s) + ")");
   }
   if (max_table_length < 1) {
     throw ValidationError("max_table_length", "must be >= 1 (got " + std::to_string(max_table_length) + ")");
@@ -72,7 +70,7 @@ void PostInterpConfig::validate() const {
     }
     if (!table.empty()) ValidateProfileTable(table, max_table_length);
     if (!(Finite(moving_average_s) && moving_average_s >= 0.0)) {
-      throw ValidationError("moving_average_s", "must be > 0 s (got " + Num(moving_average_s) + ")");
+      throw ValidationError("moving_average_s", "must be > 0 s (got " + FormatNumber(moving_average_s) + ")");
     }
   }
 }
@@ -83,21 +81,21 @@ double ControllerConfig::accel_m_s2() const {
 
 void ControllerConfig::validate() const {
   if (!(Finite(period_s) && period_s > 0.0 && period_s <= 1.0)) {
-    throw ValidationError("period_s", "must be in (0, 1] s (got " + Num(period_s) + ")");
+    throw ValidationError("period_s", "must be in (0, 1] s (got " + FormatNumber(period_s) + ")");
   }
   if (!(Finite(feed_mm_min) && feed_mm_min > 0.0)) {
-    throw ValidationError("feed_mm_min", "must be > 0 (got " + Num(feed_mm_min) + ")");
+    throw ValidationError("feed_mm_min", "must be > 0 (got " + FormatNumber(feed_mm_min) + ")");
   }
   if (!(Finite(accel_time_s) && accel_time_s >= 0.0)) {
-    throw ValidationError("accel_time_s", "must be >= 0 (0 = a feed step; got " + Num(accel_time_s) + ")");
+    throw ValidationError("accel_time_s", "must be >= 0 (0 = a feed step; got " + FormatNumber(accel_time_s) + ")");
   }
   if (!(Finite(rapid_feed_mm_min) && rapid_feed_mm_min > 0.0)) {
-    throw ValidationError("rapid_feed_mm_min", "must be > 0 (got " + Num(rapid_feed_mm_min) + ")");
+    throw ValidationError("rapid_feed_mm_min", "must be > 0 (got " + FormatNumber(rapid_feed_mm_min) + ")");
   }
   if (!(Finite(corner_velocity_change_mm_min) && corner_velocity_change_mm_min >= 0.0)) {
     throw ValidationError("corner_velocity_change_mm_min",
                           "must be >= 0 (0 stops at every corner; got " +
-                              Num(corner_velocity_change_mm_min) + ")");
+                              FormatNumber(corner_velocity_change_mm_min) + ")");
   }
   try {
     pattern.validate();
@@ -126,15 +124,15 @@ void ControllerConfig::validate() const {
   }
   if (stroke_end.minute_feed_mm_min > feed_mm_min) {
     throw ValidationError("stroke_end.minute_feed_mm_min",
-                          "must not exceed the feed (" + Num(feed_mm_min) + " mm/min; got " +
-                              Num(stroke_end.minute_feed_mm_min) + ")");
+                          "must not exceed the feed (" + FormatNumber(feed_mm_min) + " mm/min; got " +
+                              FormatNumber(stroke_end.minute_feed_mm_min) + ")");
   }
   if (post_interp.type == PostInterpType::kProfileTable && post_interp.table.empty()) {
     const long n = std::lround(post_interp.moving_average_s / period_s);
     if (n < 1 || n > post_interp.max_table_length) {
       throw ValidationError("post_interp.moving_average_s",
                             "gives " + std::to_string(n) + " coefficients at period_s " +
-                                Num(period_s) + "; allowed: 1 to max_table_length (" +
+                                FormatNumber(period_s) + "; allowed: 1 to max_table_length (" +
                                 std::to_string(post_interp.max_table_length) + ")");
     }
   }
@@ -149,7 +147,7 @@ void ControllerConfig::validate() const {
     if (static_cast<long>(length) > post_interp.max_table_length) {
       throw ValidationError("pattern.realization",
                             "the pattern's profile table needs " + std::to_string(length) +
-                                " coefficients at period_s " + Num(period_s) +
+                                " coefficients at period_s " + FormatNumber(period_s) +
                                 ", more than post_interp.max_table_length (" +
                                 std::to_string(post_interp.max_table_length) +
                                 "); allowed: a longer period, a larger max_table_length, or "
@@ -160,7 +158,7 @@ void ControllerConfig::validate() const {
 
 void MoveConfig::validate() const {
   if (!(Finite(distance_mm) && distance_mm != 0.0)) {
-    throw ValidationError("distance_mm", "must be a non-zero number of mm (got " + Num(distance_mm) + ")");
+    throw ValidationError("distance_mm", "must be a non-zero number of mm (got " + FormatNumber(distance_mm) + ")");
   }
 }
 
@@ -202,8 +200,8 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
     if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
       throw ValidationError(
           "controller.feed_mm_min",
-          "feed " + Num(controller.feed_mm_min) + " mm/min is too low for the shaper at one end of "
-          "the phase (pattern.mode start or end): it must be at least " + Num(lowest_speed * 60000.0) +
+          "feed " + FormatNumber(controller.feed_mm_min) + " mm/min is too low for the shaper at one end of "
+          "the phase (pattern.mode start or end): it must be at least " + FormatNumber(lowest_speed * 60000.0) +
               " mm/min so the unshaped end's step falls outside the shaper; allowed: a higher feed, "
               "a longer accel_time_s, or pattern.mode both");
     }
@@ -211,8 +209,8 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
     if (distance_m < shortest_m * (1.0 - 1e-12)) {
       throw ValidationError(
           "move.distance_mm",
-          "a move of " + Num(distance_m * 1e3) + " mm is too short for the shaper at one end of the "
-          "phase (pattern.mode start or end): it needs at least " + Num(shortest_m * 1e3) +
+          "a move of " + FormatNumber(distance_m * 1e3) + " mm is too short for the shaper at one end of the "
+          "phase (pattern.mode start or end): it needs at least " + FormatNumber(shortest_m * 1e3) +
               " mm; allowed: a longer move, a longer accel_time_s, or pattern.mode both");
     }
     return;
@@ -221,17 +219,17 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
     throw ValidationError(
         "controller.feed_mm_min",
-        "feed " + Num(controller.feed_mm_min) + " mm/min is too low for the pattern: after para. 50's "
+        "feed " + FormatNumber(controller.feed_mm_min) + " mm/min is too low for the pattern: after para. 50's "
         "shortening (steady acceleration, then step 2) the feed must be at least " +
-            Num(lowest_speed * 60000.0) + " mm/min, or step 1 is cut and nothing of the shaping is left; "
+            FormatNumber(lowest_speed * 60000.0) + " mm/min, or step 1 is cut and nothing of the shaping is left; "
             "allowed: a higher feed, a longer accel_time_s, or pattern.mode off");
   }
   const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
   if (distance_m < shortest_m * (1.0 - 1e-12)) {
     throw ValidationError(
         "move.distance_mm",
-        "a move of " + Num(distance_m * 1e3) + " mm is too short for the pattern: after para. 50's "
-        "shortening (steady acceleration, then step 2) it needs at least " + Num(shortest_m * 1e3) +
+        "a move of " + FormatNumber(distance_m * 1e3) + " mm is too short for the pattern: after para. 50's "
+        "shortening (steady acceleration, then step 2) it needs at least " + FormatNumber(shortest_m * 1e3) +
             " mm, or step 1 is cut and nothing of the shaping is left; allowed: a longer move, a "
             "longer accel_time_s, or pattern.mode off");
   }

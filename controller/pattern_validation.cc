@@ -13,8 +13,6 @@
 namespace shapebench::controller {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 bool Finite(double v) { return std::isfinite(v); }
 
 // The keys of the registry's entries of `kind` (or of `other`), in registry order.
@@ -45,12 +43,12 @@ void ValidateDampingRatios(const PatternConfig& config, const ShaperEntry& entry
     const double z = config.damping_ratios[i];
     const std::string field = "damping_ratios[" + std::to_string(i) + "]";
     if (!(Finite(z) && z >= 0.0 && z < 1.0)) {
-      throw ValidationError(field, "must be in [0, 1) (got " + Num(z) + ")");
+      throw ValidationError(field, "must be in [0, 1) (got " + FormatNumber(z) + ")");
     }
     if (z > 0.0 && entry.kind == ShaperKind::kPatentStep) {
       throw ValidationError(field, "the patent's methods (" +
                                        KeysOfKind(ShaperKind::kPatentStep, ShaperKind::kPatentStep) +
-                                       ") are designed for an undamped mode (got " + Num(z) + ")");
+                                       ") are designed for an undamped mode (got " + FormatNumber(z) + ")");
     }
   }
 }
@@ -78,18 +76,18 @@ void ValidateEntry(const PatternConfig& config, const ShaperEntry& entry) {
 void PatternConfig::validate() const {
   const ShaperEntry& entry = FindShaper(method);
   if (!(Finite(frequency_hz) && frequency_hz > 0.0)) {
-    throw ValidationError("frequency_hz", "must be a finite number > 0 (got " + Num(frequency_hz) + ")");
+    throw ValidationError("frequency_hz", "must be a finite number > 0 (got " + FormatNumber(frequency_hz) + ")");
   }
   for (std::size_t i = 0; i < frequencies_hz.size(); ++i) {
     const double f = frequencies_hz[i];
     if (!(Finite(f) && f > 0.0)) {
       throw ValidationError("frequencies_hz[" + std::to_string(i) + "]",
-                            "must be a finite number > 0 (got " + Num(f) + ")");
+                            "must be a finite number > 0 (got " + FormatNumber(f) + ")");
     }
   }
   const double z = design_damping_ratio;
   if (!(Finite(z) && z >= 0.0 && z < 1.0)) {
-    throw ValidationError("design_damping_ratio", "must be in [0, 1) (got " + Num(z) + ")");
+    throw ValidationError("design_damping_ratio", "must be in [0, 1) (got " + FormatNumber(z) + ")");
   }
   if (z > 0.0 && entry.kind == ShaperKind::kPatentStep) {
     throw ValidationError("design_damping_ratio",
@@ -97,13 +95,13 @@ void PatternConfig::validate() const {
                               KeysOfKind(ShaperKind::kImpulse, ShaperKind::kCustom) +
                               "); the patent's methods (" +
                               KeysOfKind(ShaperKind::kPatentStep, ShaperKind::kPatentStep) +
-                              ") are designed for an undamped mode (got " + Num(z) + ")");
+                              ") are designed for an undamped mode (got " + FormatNumber(z) + ")");
   }
   ValidateDampingRatios(*this, entry);
   const double v = vibration_tolerance;
   if (!(Finite(v) && v > 0.0 && v < 1.0)) {
     throw ValidationError("vibration_tolerance", "must be in (0, 1) (a fraction of the unshaped "
-                                                 "vibration; got " + Num(v) + ")");
+                                                 "vibration; got " + FormatNumber(v) + ")");
   }
   if (entry.kind != ShaperKind::kCustom && !impulses.empty()) {
     throw ValidationError("impulses", "is for method " + KeysOfKind(ShaperKind::kCustom, ShaperKind::kCustom) +
@@ -120,14 +118,14 @@ void PatternConfig::validate() const {
     if (count > kMaxConvolvedImpulses) {
       throw ValidationError(frequencies_hz.empty() ? "frequency_hz" : "frequencies_hz",
                             "the shaper convolved for " + std::to_string(frequencies.size()) +
-                                " frequencies would have " + Num(per_mode) + "^" +
-                                std::to_string(frequencies.size()) + " = " + Num(count) +
+                                " frequencies would have " + FormatNumber(per_mode) + "^" +
+                                std::to_string(frequencies.size()) + " = " + FormatNumber(count) +
                                 " impulses; allowed: at most 65536 (fewer frequencies or impulses)");
     }
   }
   if (!(Finite(step_resolution_s) && step_resolution_s >= 0.0)) {
     throw ValidationError("step_resolution_s", "must be >= 0 (0 keeps exact step times; got " +
-                                                   Num(step_resolution_s) + ")");
+                                                   FormatNumber(step_resolution_s) + ")");
   }
 }
 

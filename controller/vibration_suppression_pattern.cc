@@ -11,8 +11,6 @@
 namespace shapebench::controller {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 double Quantize(double duration_s, double resolution_s) {
   if (resolution_s <= 0.0) return duration_s;
   return std::round(duration_s / resolution_s) * resolution_s;
@@ -67,7 +65,7 @@ void ValidateMethod3(const PatternConfig& config) {
   const double k1 = config.k1;
   if (!(k1 >= 0.5 && k1 <= 1.0)) {
     throw ValidationError("k1", "must be in [0.5, 1] for method 3 (0.5 is method 1, 1 is method 2; got " +
-                                    Num(k1) + ")");
+                                    FormatNumber(k1) + ")");
   }
 }
 
@@ -78,8 +76,8 @@ void ValidateMethod4(const PatternConfig& config) {
   for (const double f : config.DesignFrequencies()) {
     const double period_s = 1.0 / f;
     if (!(t1_s >= 0.0 && t1_s <= period_s / 6.0 * (1 + 1e-12))) {
-      throw ValidationError("t1_s", "must be in [0, T/6] = [0, " + Num(period_s / 6.0) +
-                                        "] s for method 4 at " + Num(f) + " Hz (got " + Num(t1_s) + ")");
+      throw ValidationError("t1_s", "must be in [0, T/6] = [0, " + FormatNumber(period_s / 6.0) +
+                                        "] s for method 4 at " + FormatNumber(f) + " Hz (got " + FormatNumber(t1_s) + ")");
     }
   }
 }

@@ -9,8 +9,6 @@
 namespace shapebench::model {
 namespace {
 
-std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
-
 std::string ModelName(FrictionModel model) {
   for (const auto& [name, value] : FrictionConfig::ModelChoices()) {
     if (value == model) return name;
@@ -20,14 +18,14 @@ std::string ModelName(FrictionModel model) {
 
 void NonNegative(const char* field, double value, const char* meaning) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw ValidationError(field, std::string("must be finite and >= 0 (") + meaning + ")" + Got(value));
+    throw ValidationError(field, std::string("must be finite and >= 0 (") + meaning + ")" + FormatGot(value));
   }
 }
 
 void Positive(const char* field, double value, const char* meaning, FrictionModel model) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw ValidationError(field, std::string("must be finite and > 0 for model ") + ModelName(model) +
-                                     " (" + meaning + ")" + Got(value));
+                                     " (" + meaning + ")" + FormatGot(value));
   }
 }
 
@@ -35,7 +33,7 @@ void Positive(const char* field, double value, const char* meaning, FrictionMode
 void Unused(const char* field, double value, FrictionModel model, const char* used_by) {
   if (value != 0.0) {
     throw ValidationError(field, std::string("is not used by model ") + ModelName(model) + " (only by " +
-                                     used_by + "); remove it or choose that model" + Got(value));
+                                     used_by + "); remove it or choose that model" + FormatGot(value));
   }
 }
 
@@ -57,7 +55,7 @@ void FrictionConfig::validate() const {
     if (static_n < coulomb_n) {
       throw ValidationError("static_n", "must be >= coulomb_n (" + FormatNumber(coulomb_n) +
                                             "): the breakaway force is at least the sliding force" +
-                                            Got(static_n));
+                                            FormatGot(static_n));
     }
   }
   NonNegative("viscous_n_s_m", viscous_n_s_m, "N s/m, the viscous part sigma2");

@@ -10,11 +10,6 @@
 #include "common/validation_error.h"
 
 namespace shapebench::model {
-namespace {
-
-std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
-
-}  // namespace
 
 void PlantIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/,
                                     double* outputs) {
@@ -47,23 +42,23 @@ void IntegratorConfig::validate() const {
   // path; tighter than 1e-12 is below what CVODE can resolve in double precision over a
   // run's steps (docs/accuracy.md).
   if (!(rtol >= 1.0e-12 && rtol <= 1.0e-6)) {
-    throw ValidationError("rtol", "must be in [1e-12, 1e-6] (docs/accuracy.md)" + Got(rtol));
+    throw ValidationError("rtol", "must be in [1e-12, 1e-6] (docs/accuracy.md)" + FormatGot(rtol));
   }
   if (!(atol_scale > 0.0) || !std::isfinite(atol_scale)) {
-    throw ValidationError("atol_scale", "must be finite and > 0" + Got(atol_scale));
+    throw ValidationError("atol_scale", "must be finite and > 0" + FormatGot(atol_scale));
   }
   if (max_num_steps < 1) {
     throw ValidationError("max_num_steps",
-                          "must be >= 1" + Got(static_cast<double>(max_num_steps)));
+                          "must be >= 1" + FormatGot(static_cast<double>(max_num_steps)));
   }
   // CVODE reads a bound of 1 or less as "its default" (1.5): refused rather than surprising.
   if (!(tuning.eta_max_fixed_step > 1.0) || !std::isfinite(tuning.eta_max_fixed_step)) {
     throw ValidationError("tuning.eta_max_fixed_step",
-                          "must be finite and > 1" + Got(tuning.eta_max_fixed_step));
+                          "must be finite and > 1" + FormatGot(tuning.eta_max_fixed_step));
   }
   if (output_substeps < 0 || output_substeps > 1000) {
     throw ValidationError("output_substeps",
-                          "must be in [0, 1000] (0 = automatic)" + Got(output_substeps));
+                          "must be in [0, 1000] (0 = automatic)" + FormatGot(output_substeps));
   }
 }
 

@@ -16,8 +16,6 @@
 namespace shapebench::model {
 namespace {
 
-std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
-
 // "LIST[i].FIELD" as the field lists name them (common/field_list.h), "LIST[i]" for the
 // whole entry.
 template <typename Form, typename Entry>
@@ -92,7 +90,7 @@ void ValidateBodies(const LumpedMachineConfig& config,
     }
     if (!(body.mass_kg > 0.0) || !std::isfinite(body.mass_kg)) {
       throw ValidationError(Indexed(kBodies, i, &LumpedBody::mass_kg),
-                            "must be finite and > 0" + Got(body.mass_kg));
+                            "must be finite and > 0" + FormatGot(body.mass_kg));
     }
   }
 }
@@ -108,7 +106,7 @@ void ValidateNonlinearElement(const LumpedElement& e, size_t i) {
         throw ValidationError(Indexed(kElements, i, field),
                               "must be 0 in a friction element (\"" + e.name +
                                   "\" has friction:); put a spring or damper in an element of its own" +
-                                  Got(e.*field));
+                                  FormatGot(e.*field));
       }
     }
   }
@@ -121,12 +119,12 @@ void ValidateNonlinearElement(const LumpedElement& e, size_t i) {
     if (!(e.stiffness_n_m > 0.0)) {
       throw ValidationError(Indexed(kElements, i, &LumpedElement::stiffness_n_m),
                             "must be > 0 in an element with backlash_m (the contact stiffness "
-                            "outside the gap)" + Got(e.stiffness_n_m));
+                            "outside the gap)" + FormatGot(e.stiffness_n_m));
     }
     if (e.damping_n_s_m != 0.0) {
       throw ValidationError(Indexed(kElements, i, &LumpedElement::damping_n_s_m),
                             "must be 0 in an element with backlash_m (a dashpot would act inside "
-                            "the gap); put it in an element of its own" + Got(e.damping_n_s_m));
+                            "the gap); put it in an element of its own" + FormatGot(e.damping_n_s_m));
     }
   }
 }
@@ -144,7 +142,7 @@ void ValidateElements(const LumpedMachineConfig& config,
   auto check_coefficient = [&](size_t i, double LumpedElement::*field) {
     const double value = config.elements[i].*field;
     if (!(value >= 0.0) || !std::isfinite(value)) {
-      throw ValidationError(Indexed(kElements, i, field), "must be finite and >= 0" + Got(value));
+      throw ValidationError(Indexed(kElements, i, field), "must be finite and >= 0" + FormatGot(value));
     }
   };
   bool touches_driven = false;
@@ -209,7 +207,7 @@ void ValidateDamping(const LumpedMachineConfig& config) {
     const LumpedElement& e = config.elements[i];
     if (e.damping_n_s_m == 0.0) continue;
     throw ValidationError(Indexed(kElements, i, &LumpedElement::damping_n_s_m),
-                          "element \"" + e.name + "\" has a dashpot" + Got(e.damping_n_s_m) +
+                          "element \"" + e.name + "\" has a dashpot" + FormatGot(e.damping_n_s_m) +
                               " and the axis has '" + block +
                               "': damp the axis one way, set every damping_n_s_m to 0 or "
                               "remove '" + std::string(LumpedDamping::kKey) + "'");
@@ -218,7 +216,7 @@ void ValidateDamping(const LumpedMachineConfig& config) {
       for (double RayleighDamping::*field : {&RayleighDamping::alpha, &RayleighDamping::beta}) {
       const double value = damping.rayleigh.*field;
       if (!(value >= 0.0) || !std::isfinite(value)) {
-        throw ValidationError(block + "." + FieldName(field), "must be finite and >= 0" + Got(value));
+        throw ValidationError(block + "." + FieldName(field), "must be finite and >= 0" + FormatGot(value));
       }
     }
     return;
@@ -234,7 +232,7 @@ void ValidateDamping(const LumpedMachineConfig& config) {
     const double zeta = damping.modal[i];
     if (!(zeta >= 0.0 && zeta < 1.0)) {
       throw ValidationError(block + "[" + std::to_string(i) + "]",
-                            "must be in [0, 1) (underdamped)" + Got(zeta));
+                            "must be in [0, 1) (underdamped)" + FormatGot(zeta));
     }
   }
 }
@@ -255,12 +253,12 @@ void ValidateCoupling(const ModalMode& mode, size_t i) {
   if (mode.gain != 1.0) {
     throw ValidationError(gain, "is the one-axis shorthand of participation and shape (gain = "
                                 "shape_a x participation_a); give gain, or participation and "
-                                "shape" + Got(mode.gain));
+                                "shape" + FormatGot(mode.gain));
   }
   for (const auto& [name, vector] : {std::pair{participation, *mode.participation}, std::pair{shape, *mode.shape}}) {
     for (double AxisVector::*component : {&AxisVector::x, &AxisVector::y, &AxisVector::z}) {
       if (!std::isfinite(vector.*component)) {
-        throw ValidationError(name + "." + FieldName(component), "must be finite" + Got(vector.*component));
+        throw ValidationError(name + "." + FieldName(component), "must be finite" + FormatGot(vector.*component));
       }
     }
   }
@@ -274,14 +272,14 @@ void ModalMachineConfig::validate() const {
     const ModalMode& mode = modes[i];
     if (!(mode.frequency_hz > 0.0) || !std::isfinite(mode.frequency_hz)) {
       throw ValidationError(Indexed(kModes, i, &ModalMode::frequency_hz),
-                            "must be finite and > 0" + Got(mode.frequency_hz));
+                            "must be finite and > 0" + FormatGot(mode.frequency_hz));
     }
     if (!(mode.damping_ratio >= 0.0 && mode.damping_ratio < 1.0)) {
       throw ValidationError(Indexed(kModes, i, &ModalMode::damping_ratio),
-                            "must be in [0, 1) (underdamped)" + Got(mode.damping_ratio));
+                            "must be in [0, 1) (underdamped)" + FormatGot(mode.damping_ratio));
     }
     if (!std::isfinite(mode.gain)) {
-      throw ValidationError(Indexed(kModes, i, &ModalMode::gain), "must be finite" + Got(mode.gain));
+      throw ValidationError(Indexed(kModes, i, &ModalMode::gain), "must be finite" + FormatGot(mode.gain));
     }
     if (mode.coupled()) ValidateCoupling(mode, i);
   }

@@ -15,9 +15,6 @@
 namespace shapebench::model {
 namespace {
 
-std::string Got(double value) { return " (got " + FormatNumber(value) + ")"; }
-
-
 void CheckPlantShapes(const LinearPlant& plant) {
   const int n = plant.num_states();
   const bool ok = plant.A.cols() == n && plant.B_accel.rows() == n && plant.B_vel.rows() == n &&
@@ -138,21 +135,21 @@ std::unique_ptr<PlantIntegrator> MakeIntegrator(const LinearPlant& plant,
   config.validate();
   CheckPlantShapes(plant);
   if (!(period_s > 0.0) || !std::isfinite(period_s)) {
-    throw std::invalid_argument("MakeIntegrator: period_s must be finite and > 0" + Got(period_s));
+    throw std::invalid_argument("MakeIntegrator: period_s must be finite and > 0" + FormatGot(period_s));
   }
   if (substeps < 1) {
     throw std::invalid_argument(
         "MakeIntegrator: substeps must be >= 1 (resolve "
         "output_substeps = 0 before)" +
-        Got(substeps));
+        FormatGot(substeps));
   }
   if (!(scale_accel_m_s2 >= 0.0) || !std::isfinite(scale_accel_m_s2)) {
     throw std::invalid_argument("MakeIntegrator: scale_accel_m_s2 must be finite and >= 0" +
-                                Got(scale_accel_m_s2));
+                                FormatGot(scale_accel_m_s2));
   }
   if (!(scale_velocity_m_s >= 0.0) || !std::isfinite(scale_velocity_m_s)) {
     throw std::invalid_argument("MakeIntegrator: scale_velocity_m_s must be finite and >= 0" +
-                                Got(scale_velocity_m_s));
+                                FormatGot(scale_velocity_m_s));
   }
   std::vector<int> used = UsedInputs(plant);
   if (used.empty()) used.push_back(0);  // nothing drives the plant: keep one input anyway

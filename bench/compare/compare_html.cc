@@ -5,21 +5,18 @@
 #include <string>
 #include <vector>
 
+#include "common/format.h"
+
 namespace shapebench::bench {
 namespace {
-
-std::string Shown(double value, std::string_view unit) {
-  const auto [number, shown_unit] = EngineeringValue(value, unit);
-  return shown_unit.empty() ? number : number + " " + shown_unit;
-}
 
 HtmlTable ChangesTable(const ScenarioComparison& comparison) {
   HtmlTable table;
   table.header = {"metric", "baseline", "candidate", "change", "relative", "favours"};
   for (const MetricChange& change : comparison.changes) {
     const MetricInfo& info = *change.info;
-    table.rows.push_back({std::string(info.name), Shown(change.baseline, info.unit),
-                          Shown(change.candidate, info.unit), Shown(change.change, info.unit),
+    table.rows.push_back({std::string(info.name), EngineeringText(change.baseline, info.unit),
+                          EngineeringText(change.candidate, info.unit), EngineeringText(change.change, info.unit),
                           FormatPercent(change.relative_change), std::string(VerdictName(change.better))});
   }
   return table;

@@ -1,19 +1,12 @@
 // IdentifyFrfFile (bench/measured/frf_identification.h).
 #include "bench/measured/frf_identification.h"
 
-#include <sstream>
-
 #include "bench/config/config_error.h"
+#include "common/format.h"
 #include "common/validation_error.h"
 
 namespace shapebench::bench {
 namespace {
-
-std::string Hz(double f) {
-  std::ostringstream text;
-  text << f;
-  return text.str();
-}
 
 std::string RecordName(const Uff58Record& record) {
   return "the record at line " + std::to_string(record.line) + " (response " + std::to_string(record.response_node) +
@@ -63,12 +56,14 @@ void CheckBand(const Uff58File& file, const Uff58Record& first, const FrfSelecti
     if (f > 0.0 && f >= selection.min_frequency_hz && f <= selection.max_frequency_hz) ++lines;
   }
   if (lines >= 4) return;
-  const std::string band = "[" + Hz(selection.min_frequency_hz) + ", " + Hz(selection.max_frequency_hz) + "] Hz";
+  const std::string band =
+      "[" + FormatNumber(selection.min_frequency_hz, 6) + ", " + FormatNumber(selection.max_frequency_hz, 6) + "] Hz";
   throw ConfigError(file.file, first.record7_line, 1, "record 7",
                     (selection.band_source.empty() ? std::string("the records") : selection.band_source + ":") +
                         " " + std::to_string(lines) + " spectral line" + (lines == 1 ? "" : "s") +
                         " above 0 Hz in the band " + band + ", at least 4 are needed; the records' lines span " +
-                        Hz(first.frequency_hz.front()) + " to " + Hz(first.frequency_hz.back()) + " Hz");
+                        FormatNumber(first.frequency_hz.front(), 6) + " to " +
+                            FormatNumber(first.frequency_hz.back(), 6) + " Hz");
 }
 
 }  // namespace

@@ -20,18 +20,16 @@ constexpr double kToleranceFloor = 0.0005;
 // The reference move of added_time_s cruises this long at the feed when unshaped.
 constexpr double kReferenceCruiseS = 1.0;
 
-std::string Num(double value) { return FormatNumber(value); }
-
 // The keys of entry.parameters as the fit set them.
 std::string ParameterText(const controller::ShaperEntry& entry, const controller::PatternConfig& p) {
   std::string text;
   for (const std::string& key : entry.parameters) {
     std::string item;
-    if (key == "k1") item = "k1=" + Num(p.k1);
+    if (key == "k1") item = "k1=" + FormatNumber(p.k1);
     if (key == "t1_s") item = "t1=T/12";
-    if (key == "vibration_tolerance") item = "V=" + Num(p.vibration_tolerance);
+    if (key == "vibration_tolerance") item = "V=" + FormatNumber(p.vibration_tolerance);
     if (key == "impulse_count") item = "n=" + std::to_string(p.impulse_count);
-    if (key == "impulse_spacing_periods") item = "s=" + Num(p.impulse_spacing_periods);
+    if (key == "impulse_spacing_periods") item = "s=" + FormatNumber(p.impulse_spacing_periods);
     if (!item.empty()) text += (text.empty() ? "" : " ") + item;
   }
   return text;
@@ -102,13 +100,14 @@ std::optional<ShaperFit> FitMethod(const controller::ShaperEntry& entry, const s
 
 void ShaperFitOptions::validate() const {
   if (!(design_damping_ratio >= 0.0 && design_damping_ratio < 1.0)) {
-    throw ValidationError("--damping-ratio", "must be in [0, 1) (got " + Num(design_damping_ratio) + ")");
+    throw ValidationError("--damping-ratio", "must be in [0, 1) (got " + FormatNumber(design_damping_ratio) + ")");
   }
   if (!(feed_mm_min > 0.0 && std::isfinite(feed_mm_min))) {
-    throw ValidationError("--feed-mm-min", "must be a finite feed > 0 mm/min (got " + Num(feed_mm_min) + ")");
+    throw ValidationError("--feed-mm-min", "must be a finite feed > 0 mm/min (got " + FormatNumber(feed_mm_min) + ")");
   }
   if (!(accel_mm_s2 > 0.0 && std::isfinite(accel_mm_s2))) {
-    throw ValidationError("--accel-mm-s2", "must be a finite acceleration > 0 mm/s^2 (got " + Num(accel_mm_s2) + ")");
+    throw ValidationError("--accel-mm-s2",
+                          "must be a finite acceleration > 0 mm/s^2 (got " + FormatNumber(accel_mm_s2) + ")");
   }
 }
 

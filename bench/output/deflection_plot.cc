@@ -23,14 +23,14 @@ void WriteFrame(std::FILE* gnuplot, const std::string& output_path, const std::s
   std::fprintf(gnuplot, "set output %s\n", Quoted(output_path).c_str());
   std::fprintf(gnuplot, "set title %s\n", Quoted(title).c_str());
   std::fprintf(gnuplot, "set xlabel 'time [s]'\n");
-  std::fprintf(gnuplot, "set ylabel 'deflection [µm]'\n");
+  std::fprintf(gnuplot, "set ylabel 'deflection [um]'\n");
 }
 
 bool AllZero(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double d) { return d == 0.0; });
 }
 
-// The peak |deflection| marked with its value (µm, and peak_ratio: times the static
+// The peak |deflection| marked with its value (um, and peak_ratio: times the static
 // deflection), the end of the commanded motion labelled and the residual amplitude
 // (residual_ratio's numerator) written just after it.
 void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
@@ -44,9 +44,9 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
     char text[128];
     const double peak_um = trace.deflection_m[peak] * 1e6;
     if (std::isfinite(metrics.peak_ratio)) {
-      std::snprintf(text, sizeof text, "peak %.4g µm (%.3g× static)", peak_um, metrics.peak_ratio);
+      std::snprintf(text, sizeof text, "peak %.4g um (%.3g× static)", peak_um, metrics.peak_ratio);
     } else {
-      std::snprintf(text, sizeof text, "peak %.4g µm", peak_um);
+      std::snprintf(text, sizeof text, "peak %.4g um", peak_um);
     }
     std::fprintf(gnuplot, "set label %s at %.10g, %.10g offset 1, %s front point pt 7 ps 1 lc rgb '#d62728'\n",
                  Quoted(text).c_str(), trace.time_s[peak], peak_um, peak_um >= 0.0 ? "0.8" : "-0.8");
@@ -60,10 +60,10 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
                  Quoted(text).c_str(), metrics.motion_time_s, side);
     if (std::isfinite(metrics.residual_amplitude_m)) {
       if (std::isfinite(metrics.residual_ratio)) {
-        std::snprintf(text, sizeof text, "residual %.3g µm (ratio %.3g)", metrics.residual_amplitude_m * 1e6,
+        std::snprintf(text, sizeof text, "residual %.3g um (ratio %.3g)", metrics.residual_amplitude_m * 1e6,
                       metrics.residual_ratio);
       } else {
-        std::snprintf(text, sizeof text, "residual %.3g µm", metrics.residual_amplitude_m * 1e6);
+        std::snprintf(text, sizeof text, "residual %.3g um", metrics.residual_amplitude_m * 1e6);
       }
       std::fprintf(gnuplot, "set label %s at %.17g, graph 0.92 %s front tc rgb '#1f77b4'\n",
                    Quoted(text).c_str(), metrics.motion_time_s, side);
@@ -105,12 +105,12 @@ void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunRe
   std::fprintf(gnuplot, "EOD\n");
   std::fprintf(gnuplot,
                "plot $trace using 1:2 axes x1y1 with lines lw 1.5 lc rgb '#1f77b4' "
-               "title 'deflection [µm]', \\\n"
+               "title 'deflection [um]', \\\n"
                "     $trace using 1:3 axes x1y2 with lines lw 1 lc rgb '#ff7f0e' "
                "title 'command acceleration [m/s²]'");
   if (std::isfinite(static_um) && static_um > 0.0) {
     char band[64];
-    std::snprintf(band, sizeof band, "static band ±%.4g µm", static_um);
+    std::snprintf(band, sizeof band, "static band ±%.4g um", static_um);
     std::fprintf(gnuplot,
                  ", \\\n     %.17g axes x1y1 with lines dt 2 lc rgb '#444444' title %s, \\\n"
                  "     %.17g axes x1y1 with lines dt 2 lc rgb '#444444' notitle",
@@ -171,7 +171,7 @@ void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
   const auto static_um = [&](std::size_t r) { return runs[r].result->metrics.static_displacement_m * 1e6; };
   const auto band = [&](std::size_t r) {
     char text[64];
-    std::snprintf(text, sizeof text, "static band ±%.4g µm", static_um(r));
+    std::snprintf(text, sizeof text, "static band ±%.4g um", static_um(r));
     return std::string(text);
   };
   bool shared = true;

@@ -47,7 +47,7 @@ HtmlTable SweepTable(const SweepHtmlData& data) {
     std::string header = data.columns[c];
     if (info != nullptr && (info->unit == "m" || info->unit == "s")) {
       units[c] = std::string(info->unit);
-      header += info->unit == "m" ? " [µm]" : " [ms]";
+      header += info->unit == "m" ? " [um]" : " [ms]";
     }
     table.header.push_back(header);
   }
@@ -148,7 +148,7 @@ HtmlReport RunHtmlReport(const Scenario& scenario, const RunResult& result,
   report.sections.push_back(metrics);
   HtmlSection plot;
   plot.heading = "Deflection";
-  plot.note = "Deflection in µm and command acceleration in m/s² against time; the static band dashed, "
+  plot.note = "Deflection in um and command acceleration in m/s² against time; the static band dashed, "
               "the end of the commanded motion dotted.";
   plot.svg = DeflectionSvg(result, scenario);
   report.sections.push_back(plot);
@@ -207,7 +207,7 @@ HtmlReport SweepHtmlReport(const SweepHtmlData& data) {
   }
   HtmlSection table;
   table.heading = "Results";
-  table.note = "results.csv, lengths in µm and times in ms.";
+  table.note = "results.csv, lengths in um and times in ms.";
   if (data.rows.size() > kMaxTableRows) {
     table.note += " The first " + std::to_string(kMaxTableRows) + " of " + std::to_string(data.rows.size()) +
                   " rows (results.csv has them all).";

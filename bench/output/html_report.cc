@@ -9,6 +9,7 @@
 
 #include "bench/output/gnuplot.h"
 #include "common/atomic_file.h"
+#include "common/format.h"
 
 namespace shapebench::bench {
 namespace {
@@ -131,22 +132,6 @@ std::string RenderHtml(const HtmlReport& report) {
 void WriteHtmlReport(const std::string& path, const HtmlReport& report) {
   const std::string page = RenderHtml(report);
   WriteFileAtomically(path, [&](std::ostream& out) { out << page; });
-}
-
-std::pair<std::string, std::string> EngineeringValue(double value, std::string_view unit) {
-  if (std::isnan(value)) return {"n/a", ""};
-  if (unit == "bool") return {value != 0.0 ? "yes" : "no", ""};
-  if (unit == "count") return {FormatValue(value, 12), ""};
-  if (unit == "m") {
-    return std::abs(value) < 1e-3 ? std::pair{FormatValue(value * 1e6), std::string("µm")}
-                                  : std::pair{FormatValue(value * 1e3), std::string("mm")};
-  }
-  if (unit == "s") {
-    return std::abs(value) < 1.0 ? std::pair{FormatValue(value * 1e3), std::string("ms")}
-                                 : std::pair{FormatValue(value), std::string("s")};
-  }
-  if (unit == "Hz") return {FormatValue(value), "Hz"};
-  return {FormatValue(value), ""};
 }
 
 HtmlTable MetricsHtmlTable(const Metrics& metrics) {

@@ -56,10 +56,6 @@ std::string RenderHtml(const HtmlReport& report);
 // Writes the page atomically (WriteFileAtomically).
 void WriteHtmlReport(const std::string& path, const HtmlReport& report);
 
-// A metric in engineering units: lengths in µm below 1 mm, else mm; times in ms below
-// 1 s, else s; ratios plain; bools yes/no; NaN "n/a". Returns (number, unit).
-std::pair<std::string, std::string> EngineeringValue(double value, std::string_view unit);
-
 // Metric, value, unit, description for every metric in MetricTable() order.
 HtmlTable MetricsHtmlTable(const Metrics& metrics);
 

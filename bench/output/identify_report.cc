@@ -6,22 +6,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
-#include <sstream>
 #include <stdexcept>
 #include <typeinfo>
 
 #include "bench/output/gnuplot.h"
 #include "common/atomic_file.h"
+#include "common/format.h"
 #include "common/shown_text.h"
 
 namespace shapebench::bench {
 namespace {
-
-std::string Number(double value, int digits = 6) {
-  std::ostringstream text;
-  text << std::setprecision(digits) << value;
-  return text.str();
-}
 
 // The modal constant's unit: receptance x (rad/s)^2.
 const char* ConstantUnit(const IdentifiedFrfs& frfs) {
@@ -44,8 +38,8 @@ void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
   const model::ModalIdentification& id = frfs.identification;
   out << "identify " << TerminalSafe(frfs.file.file, false) << ": " << frfs.records.size() << " FRF record"
       << (frfs.records.size() == 1 ? "" : "s") << " (" << Axes(frfs) << "), "
-      << frfs.file.records[frfs.records.front()].units << ", " << Number(id.frequency_hz.front()) << " to "
-      << Number(id.frequency_hz.back()) << " Hz (" << id.frequency_hz.size() << " lines), orders 1 to "
+      << frfs.file.records[frfs.records.front()].units << ", " << FormatNumber(id.frequency_hz.front(), 6) << " to "
+      << FormatNumber(id.frequency_hz.back(), 6) << " Hz (" << id.frequency_hz.size() << " lines), orders 1 to "
       << id.max_order << "\n";
   out << "record  line  response  reference  fit_error_percent\n";
   for (std::size_t k = 0; k < frfs.records.size(); ++k) {
@@ -53,22 +47,23 @@ void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
     out << std::left << std::setw(8) << k + 1 << std::setw(6) << record.line << std::setw(10)
         << (std::to_string(record.response_node) + " " + DirectionName(record.response_direction)) << std::setw(11)
         << (std::to_string(record.reference_node) + " " + DirectionName(record.reference_direction))
-        << Number(id.fits[k].error_percent, 4) << "\n";
+        << FormatNumber(id.fits[k].error_percent, 4) << "\n";
   }
   out << "\nmode  frequency_hz  damping_ratio  stable_orders  record  modal_constant_re  modal_constant_im\n";
   for (std::size_t r = 0; r < id.modes.size(); ++r) {
     const model::IdentifiedMode& mode = id.modes[r];
     for (std::size_t k = 0; k < mode.modal_constants.size(); ++k) {
-      out << std::left << std::setw(6) << r + 1 << std::setw(14) << Number(mode.frequency_hz) << std::setw(15)
-          << Number(mode.damping_ratio, 4) << std::setw(15) << mode.stable_orders << std::setw(8) << k + 1
-          << std::setw(19) << Number(mode.modal_constants[k].real(), 5) << Number(mode.modal_constants[k].imag(), 5)
+      out << std::left << std::setw(6) << r + 1 << std::setw(14) << FormatNumber(mode.frequency_hz, 6) << std::setw(15)
+          << FormatNumber(mode.damping_ratio, 4) << std::setw(15) << mode.stable_orders << std::setw(8) << k + 1
+          << std::setw(19) << FormatNumber(mode.modal_constants[k].real(), 5)
+          << FormatNumber(mode.modal_constants[k].imag(), 5)
           << "\n";
     }
   }
   if (id.modes.empty()) out << "(no cluster of stable physical poles in the band)\n";
   out << "\nmodal constants R_r of the receptance, " << ConstantUnit(frfs) << "; gain (machine frf_file): "
       << (frfs.excitation == FrfExcitation::kForce ? "moving_mass_kg x Re R_r" : "-Re R_r") << "\n";
-  out << "fit error " << Number(id.fit_error_percent, 4)
+  out << "fit error " << FormatNumber(id.fit_error_percent, 4)
       << " % (||H_fit - H|| / ||H|| over the band, every record)\n";
   out.flush();
 }

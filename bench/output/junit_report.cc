@@ -1,11 +1,11 @@
 // WriteJUnit and XmlEscape (bench/output/report.h): the JUnit XML that CI systems read.
 #include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <string>
 
 #include "common/atomic_file.h"
 #include "bench/output/report.h"
+#include "common/format.h"
 
 namespace shapebench::bench {
 namespace {
@@ -35,12 +35,6 @@ std::size_t Utf8Length(const std::string& text, std::size_t i, bool* allowed) {
 
 // U+FFFD REPLACEMENT CHARACTER: what XML cannot carry is shown as replaced, not dropped.
 constexpr char kReplacement[] = "\xEF\xBF\xBD";
-
-std::string Seconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f", seconds);
-  return text;
-}
 
 // A stable name (CI tracks a testcase by it): "METRIC @ POINT"; a band check
 // "METRIC over KEY in [FROM, TO]", its worst value and place in the message and properties.
@@ -126,7 +120,7 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
   WriteFileAtomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     out << "<testsuites name=\"shapebench check\" tests=\"" << tests << "\" failures=\""
-        << failures << "\" errors=\"" << errors << "\" time=\"" << Seconds(time_s) << "\">\n";
+        << failures << "\" errors=\"" << errors << "\" time=\"" << FormatFixed(time_s, 3) << "\">\n";
     for (const auto& report : reports) {
       int suite_failures = 0;
       for (const auto& result : report.results) suite_failures += result.passed ? 0 : 1;
@@ -137,11 +131,11 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
       const std::string classname = XmlEscape("shapebench." + report.name);
       out << "  <testsuite name=\"" << XmlEscape(report.file) << "\" tests=\"" << suite_tests
           << "\" failures=\"" << suite_failures << "\" errors=\"" << suite_errors
-          << "\" time=\"" << Seconds(report.run_time_s)
+          << "\" time=\"" << FormatFixed(report.run_time_s, 3)
           << "\">\n";
       if (!report.error.empty()) {
         out << "    <testcase classname=\"" << classname << "\" name=\"run\" time=\""
-            << Seconds(report.run_time_s) << "\">\n"
+            << FormatFixed(report.run_time_s, 3) << "\">\n"
             << "      <error type=\"RunError\" message=\"" << XmlEscape(report.error) << "\">"
             << XmlEscape(report.error) << "</error>\n"
             << "    </testcase>\n";
@@ -157,7 +151,7 @@ void WriteJUnit(const std::string& path, const std::vector<ScenarioCheckReport>&
       for (const auto& result : report.results) {
         out << "    <testcase classname=\"" << classname << "\" name=\""
             << XmlEscape(TestcaseName(result)) << "\" time=\""
-            << Seconds(std::isfinite(result.run_time_s) ? result.run_time_s : 0.0) << "\"";
+            << FormatFixed(std::isfinite(result.run_time_s) ? result.run_time_s : 0.0, 3) << "\"";
         if (result.passed && !result.banded()) {
           out << "/>\n";
           continue;

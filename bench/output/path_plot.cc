@@ -86,7 +86,7 @@ void PathPlotScript(std::FILE* gnuplot, const std::string& output_path, const st
   std::fprintf(gnuplot, "set encoding utf8\n");
   std::fprintf(gnuplot, "set output %s\n", GnuplotQuoted(output_path).c_str());
   char title[160];
-  std::snprintf(title, sizeof title, "XY path, deviation from the programmed path x%g (max %.4g µm)",
+  std::snprintf(title, sizeof title, "XY path, deviation from the programmed path x%g (max %.4g um)",
                 gain, max_error * 1e6);
   // Two lines (a gnuplot string expression): the run's title is long on an 800 px page.
   std::fprintf(gnuplot, "set title %s.\"\\n\".%s\n", GnuplotQuoted(plot_title).c_str(),

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/format.h"
 #include "common/validation_error.h"
 #include "controller/profile_table.h"
 #include "controller/shaper_registry.h"
@@ -16,12 +17,6 @@ namespace shapebench::bench {
 namespace {
 
 using controller::PatternMode;
-
-std::string Num(double value, const char* format = "%.6g") {
-  char text[48];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 
 // The key, then what the registry entry says of it (ShaperEntry::summary), e.g.
 // "3 (K1 a for t1, (1-K1) a for t1; k1 = 0.675)".
@@ -33,7 +28,7 @@ std::string MethodText(const controller::PatternConfig& pattern) {
 
 std::string FrequencyList(const std::vector<double>& frequencies) {
   std::string text;
-  for (const double f : frequencies) text += (text.empty() ? "" : ", ") + Num(f);
+  for (const double f : frequencies) text += (text.empty() ? "" : ", ") + FormatNumber(f, 6);
   return text;
 }
 
@@ -49,8 +44,8 @@ std::string ModeText(PatternMode mode) {
 
 void PrintStep(std::ostream& out, const char* name, const controller::AccelStep& step,
                int index) {
-  out << "  ST" << index << " = " << Num(step.duration_s / 1e-4) << " (0.1 ms units) = "
-      << Num(step.duration_s, "%.9g") << " s   SR" << index << " = " << Num(step.ratio, "%.6f")
+  out << "  ST" << index << " = " << FormatNumber(step.duration_s / 1e-4, 6) << " (0.1 ms units) = "
+      << FormatNumber(step.duration_s, 9) << " s   SR" << index << " = " << FormatFixed(step.ratio, 6)
       << "   (" << name << ")\n";
 }
 
@@ -63,7 +58,7 @@ constexpr double kShownFraction = 1e-4;
 void PrintProfileTable(std::ostream& out, const std::vector<double>& table, double period_s) {
   double largest = 0.0;
   for (const double alpha : table) largest = std::max(largest, std::abs(alpha));
-  out << "  n      t_s            alpha_n   (listed: |alpha_n| >= " << Num(kShownFraction)
+  out << "  n      t_s            alpha_n   (listed: |alpha_n| >= " << FormatNumber(kShownFraction, 6)
       << " of the largest; alpha_n not listed are below it or 0)\n";
   std::size_t hidden = 0;
   double hidden_sum = 0.0;
@@ -82,9 +77,9 @@ void PrintProfileTable(std::ostream& out, const std::vector<double>& table, doub
     out << line;
   }
   if (hidden > 0) {
-    out << "  ... and " << hidden << " more below " << Num(kShownFraction)
-        << " of the largest (|alpha_n| <= " << Num(hidden_largest, "%.2g") << ", sum "
-        << Num(hidden_sum, "%.2g") << ")\n";
+    out << "  ... and " << hidden << " more below " << FormatNumber(kShownFraction, 6)
+        << " of the largest (|alpha_n| <= " << FormatNumber(hidden_largest, 2) << ", sum "
+        << FormatNumber(hidden_sum, 2) << ")\n";
   }
 }
 
@@ -135,8 +130,8 @@ void PrintPatternDesign(std::ostream& out, const controller::ControllerConfig& c
   const bool from_machine = frequencies.size() == 1 ? config.frequency_from_machine : config.frequencies_from_machine;
   const char* machine_note = from_machine ? ", the machine's participating mode" : "";
   if (frequencies.size() == 1) {
-    out << "  design frequency " << Num(frequencies.front()) << " Hz (T = "
-        << Num(1.0 / frequencies.front()) << " s" << machine_note << ")\n";
+    out << "  design frequency " << FormatNumber(frequencies.front(), 6) << " Hz (T = "
+        << FormatNumber(1.0 / frequencies.front(), 6) << " s" << machine_note << ")\n";
   } else {
     out << "  design frequencies " << FrequencyList(frequencies)
         << " Hz (one shaper per frequency, convolved" << (from_machine ? "; the machine's participating modes" : "")
@@ -146,15 +141,16 @@ void PrintPatternDesign(std::ostream& out, const controller::ControllerConfig& c
     out << "  design damping ratios " << FrequencyList(design.damping_ratios) << " (one per frequency"
         << (config.damping_from_machine ? ", the modes' own" : "") << ")\n";
   } else if (design.damping_ratio > 0.0) {
-    out << "  design damping ratio " << Num(design.damping_ratio)
+    out << "  design damping ratio " << FormatNumber(design.damping_ratio, 6)
         << (config.damping_from_machine ? " (the mode's own)" : "") << "\n";
   }
   out
-      << "  steady acceleration a = " << Num(steady_accel_m_s2) << " m/s^2 (feed "
-      << Num(controller.feed_mm_min) << " mm/min / accel_time_s " << Num(controller.accel_time_s)
+      << "  steady acceleration a = " << FormatNumber(steady_accel_m_s2, 6) << " m/s^2 (feed "
+      << FormatNumber(controller.feed_mm_min, 6) << " mm/min / accel_time_s "
+      << FormatNumber(controller.accel_time_s, 6)
       << ")\n";
   if (config.step_resolution_s > 0.0) {
-    out << "  step times rounded to " << Num(config.step_resolution_s) << " s\n";
+    out << "  step times rounded to " << FormatNumber(config.step_resolution_s, 6) << " s\n";
   }
 
 }
@@ -207,7 +203,7 @@ void PrintImpulsesAndTable(std::ostream& out, const controller::ControllerConfig
       << "    each shaped start and end put on the tick grid keeping its vibration phasor\n"
       << "  profile_table: the impulses as jerk coefficients convolved with the move pulses\n"
       << "    after interpolation (paras. 52-61); it shapes every start and end (mode both)\n"
-      << "\nprofile table on the " << Num(controller.period_s) << " s period grid "
+      << "\nprofile table on the " << FormatNumber(controller.period_s, 6) << " s period grid "
       << "(alpha_n at t = n * period_s; " << table.size()
       << " coefficients, at most post_interp.max_table_length = " << controller.post_interp.max_table_length
       << ")\n";
@@ -218,12 +214,12 @@ void PrintImpulsesAndTable(std::ostream& out, const controller::ControllerConfig
 void PrintDesignResiduals(std::ostream& out, const PatternData& data) {
   for (const PatternResidual& residual : data.residuals) {
     const double zeta = residual.damping_ratio;
-    out << "\nresidual vibration at " << Num(residual.frequency_hz) << " Hz ("
-        << (zeta > 0.0 ? "damping ratio " + Num(zeta) : std::string("undamped"))
+    out << "\nresidual vibration at " << FormatNumber(residual.frequency_hz, 6) << " Hz ("
+        << (zeta > 0.0 ? "damping ratio " + FormatNumber(zeta, 6) : std::string("undamped"))
         << "; fraction of an unshaped step's)\n"
-        << "  stepped (the step times as set)   " << Num(residual.stepped, "%.3e")
-        << "\n  profile_table (on the grid)      " << Num(residual.profile_table, "%.3e") << "\n"
-        << "  rounded to the nearest tick      " << Num(residual.rounded, "%.3e")
+        << "  stepped (the step times as set)   " << FormatScientific(residual.stepped, 3)
+        << "\n  profile_table (on the grid)      " << FormatScientific(residual.profile_table, 3) << "\n"
+        << "  rounded to the nearest tick      " << FormatScientific(residual.rounded, 3)
         << "   (for comparison: no correction)\n";
   }
 }
@@ -332,15 +328,17 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
   const std::vector<controller::Impulse>& impulses = data.impulses;
   const std::vector<double>& table = data.table;
   const bool table_in_use = config.realization == controller::PatternRealization::kProfileTable;
-  out << "  shaper duration             " << Num(controller::ShaperDuration(impulses))
-      << " s (continuous); " << Num(static_cast<double>(table.size() - 1) * controller.period_s)
+  out << "  shaper duration             " << FormatNumber(controller::ShaperDuration(impulses), 6)
+      << " s (continuous); " << FormatNumber(static_cast<double>(table.size() - 1) * controller.period_s, 6)
       << " s on the grid (the table's last coefficient)\n";
-  const std::string what = scenario.program ? "the scenario's program"
-                                            : "the scenario's move (" + Num(scenario.move.distance_mm) + " mm)";
+  const std::string what = scenario.program
+                               ? "the scenario's program"
+                               : "the scenario's move (" + FormatNumber(scenario.move.distance_mm, 6) + " mm)";
   const PatternMotionTimes times = MotionTimesWithAndWithoutPattern(scenario);
   if (times.why_not.empty()) {
-    out << "  motion time added           " << Num(times.shaped_s - times.unshaped_s) << " s (" << what
-        << ": " << Num(times.shaped_s) << " s shaped, " << Num(times.unshaped_s) << " s unshaped; realization "
+    out << "  motion time added           " << FormatNumber(times.shaped_s - times.unshaped_s, 6) << " s (" << what
+        << ": " << FormatNumber(times.shaped_s, 6) << " s shaped, " << FormatNumber(times.unshaped_s, 6)
+        << " s unshaped; realization "
         << (table_in_use ? "profile_table" : "stepped") << ", post_interp as set)\n";
   } else {
     out << "  motion time added           n/a (" << times.why_not << ")\n";
@@ -368,7 +366,7 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
     response += table[n] * std::polar(1.0, -v / kReferenceRadiusM * static_cast<double>(n) * controller.period_s);
   }
   const double steady_m = kReferenceRadiusM * (1.0 - std::abs(response));
-  out << "  contour error at the feed   (the programmed feed " << Num(v * 60000.0)
+  out << "  contour error at the feed   (the programmed feed " << FormatNumber(v * 60000.0, 6)
       << " mm/min, the highest of the program's, on an arc of reference radius 10 mm)\n";
   const bool per_axis = controller.post_interp.distribution == controller::Distribution::kPerAxis;
   auto row = [&](const std::string& name, bool in_use) {
@@ -378,10 +376,10 @@ void PrintPatternReport(std::ostream& out, const Scenario& scenario) {
   };
   out << row("stepped", !table_in_use)
       << "0: the shaper acts on the path speed before interpolation; the tool stays on the path\n"
-      << row("profile_table, per_axis", table_in_use && per_axis) << Num(radial_m * 1e6)
-      << " um radial (inward) = sigma^2 v^2 / (2 r), sigma = " << Num(std::sqrt(variance))
+      << row("profile_table, per_axis", table_in_use && per_axis) << FormatNumber(radial_m * 1e6, 6)
+      << " um radial (inward) = sigma^2 v^2 / (2 r), sigma = " << FormatNumber(std::sqrt(variance), 6)
       << " s the table's standard deviation\n"
-      << row("", false) << "(steady state on that circle, r (1 - |H(v/r)|): " << Num(steady_m * 1e6)
+      << row("", false) << "(steady state on that circle, r (1 - |H(v/r)|): " << FormatNumber(steady_m * 1e6, 6)
       << " um)\n"
       << row("profile_table, tangential", table_in_use && !per_axis)
       << "0 radial: seed 000's distribution keeps the tool on the interpolated path\n"

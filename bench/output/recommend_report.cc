@@ -10,7 +10,6 @@
 
 #include "bench/output/gnuplot.h"
 #include "bench/output/report.h"
-#include "common/engineering_units.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/format.h"
@@ -19,13 +18,7 @@
 namespace shapebench::bench {
 namespace {
 
-std::string Num(double value) { return FormatNumber(value); }
-
-std::string Percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f %%", 100.0 * fraction);
-  return text;
-}
+std::string Percent(double fraction) { return FormatFixed(100.0 * fraction, 2) + " %"; }
 
 double PeakHz(const AccelSpectrum& spectrum) {
   const auto peak = std::max_element(spectrum.psd.begin(), spectrum.psd.end());
@@ -75,7 +68,7 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
   const ValidationRuns& v = *report.validation;
   const ShaperFit& fit = report.recommended();
   out << "\nvalidate " << v.scenario << ": axis " << model::AxisName(v.axis)
-      << " modelled by the log's modes (its static deflection " << Num(v.static_deflection_per_accel_s2)
+      << " modelled by the log's modes (its static deflection " << FormatNumber(v.static_deflection_per_accel_s2)
       << " m per m/s^2 kept)\n";
   out << "  mode  frequency_hz  damping_ratio  share     gain\n";
   for (std::size_t m = 0; m < report.modes.size(); ++m) {
@@ -84,7 +77,7 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
                   report.modes[m].damping_ratio, report.modes[m].share, v.machine.modes[m].gain);
     out << line;
   }
-  const std::string shaped = fit.method + " " + Num(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
+  const std::string shaped = fit.method + " " + FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
   std::size_t width = 0;
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   auto cell = [](const MetricInfo& info, double value) -> std::string {
@@ -109,26 +102,27 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
   const UniformAccel& u = s.samples;
   const std::size_t n = u.accel_mm_s2[0].size();
   out << "recommend " << report.file << " (axis " << AccelAxisName(s.axis) << ")\n";
-  out << "samples    " << n << " at " << Num(u.sample_rate_hz) << " Hz ("
+  out << "samples    " << n << " at " << FormatNumber(u.sample_rate_hz) << " Hz ("
       << EngineeringText(static_cast<double>(n - 1) / u.sample_rate_hz, "s", 4) << "); "
       << (u.resampled ? "time stamps up to " + EngineeringText(u.max_offset_s, "s", 3) +
                             " off a uniform grid: resampled linearly"
                       : std::string("time stamps on a uniform grid"))
       << "\n";
   out << "psd        Welch, Hann window, " << s.full.segment_samples << "-sample segments ("
-      << Num(u.sample_rate_hz / s.full.segment_samples) << " Hz bins), 50% overlap, " << s.full.segments
-      << " segments; fit band " << Num(kFitMinHz) << "-" << Num(kFitMaxHz) << " Hz, peak at " << Num(PeakHz(s))
+      << FormatNumber(u.sample_rate_hz / s.full.segment_samples) << " Hz bins), 50% overlap, " << s.full.segments
+      << " segments; fit band " << FormatNumber(kFitMinHz) << "-" << FormatNumber(kFitMaxHz) << " Hz, peak at "
+      << FormatNumber(PeakHz(s))
       << " Hz\n";
-  out << "design     library shapers at damping ratio " << Num(report.options.design_damping_ratio)
+  out << "design     library shapers at damping ratio " << FormatNumber(report.options.design_damping_ratio)
       << " (methods 1-4 undamped); vibration: the worst at damping ratios";
-  for (const double z : report.options.test_damping_ratios) out << " " << Num(z);
-  out << "\nsmoothing  contour error on a circle at " << Num(report.options.feed_mm_min) << " mm/min and "
-      << Num(report.options.accel_mm_s2) << " mm/s^2 (radius "
+  for (const double z : report.options.test_damping_ratios) out << " " << FormatNumber(z);
+  out << "\nsmoothing  contour error on a circle at " << FormatNumber(report.options.feed_mm_min) << " mm/min and "
+      << FormatNumber(report.options.accel_mm_s2) << " mm/s^2 (radius "
       << EngineeringText(std::pow(report.options.feed_mm_min / 60000.0, 2) / (report.options.accel_mm_s2 * 1e-3), "m", 4)
       << "), each axis shaped\n\n";
   PrintFitTable(out, report);
   const ShaperFit& fit = report.recommended();
-  out << "\nrecommended: " << fit.method << " at " << Num(std::round(fit.frequency_hz * 10.0) / 10.0)
+  out << "\nrecommended: " << fit.method << " at " << FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0)
       << " Hz (remaining vibration " << Percent(fit.remaining_vibration) << ", smoothing "
       << EngineeringText(fit.smoothing_m, "m", 4) << "): " << RuleText(report.recommendation) << "\n";
   for (const SkippedShaper& skipped : report.recommendation.skipped) {
@@ -210,7 +204,7 @@ void WriteRecommendPlot(const std::string& path_png, const RecommendReport& repo
     const ShaperFit& best = report.recommended();
     const std::string title = "recommend: " + std::filesystem::path(report.file).filename().string() + ", axis " +
                               AccelAxisName(s.axis) + "; recommended " + best.method + " at " +
-                              Num(std::round(best.frequency_hz * 10.0) / 10.0) + " Hz";
+                              FormatNumber(std::round(best.frequency_hz * 10.0) / 10.0) + " Hz";
     std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(title).c_str());
     std::fprintf(gnuplot, "set xlabel 'frequency [Hz]'\nset ylabel 'PSD [(mm/s^2)^2/Hz]'\nset grid\n");
     std::fprintf(gnuplot, "set key outside right top title 'V(f) x PSD per method'\nset xrange [0:%g]\nset yrange [0:*]\n", kFitMaxHz);
@@ -227,7 +221,8 @@ void WriteRecommendPlot(const std::string& path_png, const RecommendReport& repo
       const ShaperFit& fit = r.fits[i];
       const bool chosen = i == r.recommended;
       const bool patent = controller::FindShaper(fit.method).kind == controller::ShaperKind::kPatentStep;
-      const std::string name = (patent ? "method " : "") + fit.method + " " + Num(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz: " +
+      const std::string name = (patent ? "method " : "") + fit.method + " " +
+                               FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz: " +
                                Percent(fit.remaining_vibration) + (chosen ? " (recommended)" : "");
       std::fprintf(gnuplot, ", \\\n     $data using 1:%zu with lines lw %g dt %d lc rgb '%s' title %s", i + 3,
                    chosen ? 3.0 : 1.2, chosen ? 1 : static_cast<int>(i / 10) + 1, kColours[i % 10],

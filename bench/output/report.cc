@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <iomanip>
 
-#include "common/engineering_units.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
+#include "common/format.h"
 
 namespace shapebench::bench {
 std::string MetricUnit(const std::string& name) {

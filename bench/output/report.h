@@ -17,7 +17,7 @@
 
 namespace shapebench::bench {
 
-// One aligned line per metric: name, value in engineering units (common/engineering_units.h:
+// One aligned line per metric: name, value in engineering units (common/format.h:
 // "7.99855 um", "12.5 ms"), "n/a" for NaN.
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
 
@@ -56,7 +56,7 @@ std::size_t TraceStride(std::size_t samples, long max_rows);
 // Deflection in um (y1) and command acceleration in m/s^2 (y2) over time, the static band
 // +/- static_displacement dashed; pngcairo 1000x600 via gnuplot. Throws
 // std::runtime_error when gnuplot is missing or fails.
-// The peak is marked (µm and peak_ratio), the residual amplitude labelled after the
+// The peak is marked (um and peak_ratio), the residual amplitude labelled after the
 // motion's end, which is marked and labelled too; `title` heads the plot (RunPlotTitle).
 void WriteDeflectionPlot(const std::string& path_png, const RunResult& result,
                          const Scenario& scenario, const std::string& title);

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string_view>
 
-#include "common/engineering_units.h"
+#include "common/format.h"
 
 namespace shapebench::bench {
 

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "bench/scenario/run_memory.h"
+#include "common/format.h"
 #include "common/math_constants.h"
 #include "common/shown_text.h"
 #include "common/validation_error.h"
@@ -19,11 +20,7 @@
 namespace shapebench::bench {
 namespace {
 
-std::string Seconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g s", seconds);
-  return text;
-}
+std::string Seconds(double seconds) { return FormatNumber(seconds, 4) + " s"; }
 
 model::MachinePlant BuildMachineAt(const Scenario& scenario) {
   try {

@@ -22,19 +22,17 @@ namespace {
 
 using controller::Impulse;
 
-std::string Num(double v) { return FormatNumber(v); }
-
 // Values this close above the level count as inside (EI touches V at r = 1).
 bool Inside(double value, double level) { return value <= level * (1.0 + 1e-9); }
 
 // How a label shows a PatternConfig key a shaper reads (ShaperEntry::parameters); keys
 // not listed (custom's impulses) are left out.
 std::string ParameterText(const std::string& key, const controller::PatternConfig& p) {
-  if (key == "vibration_tolerance") return " V=" + Num(p.vibration_tolerance);
-  if (key == "k1") return " k1=" + Num(p.k1);
-  if (key == "t1_s") return " t1=" + Num(p.t1_s);
+  if (key == "vibration_tolerance") return " V=" + FormatNumber(p.vibration_tolerance);
+  if (key == "k1") return " k1=" + FormatNumber(p.k1);
+  if (key == "t1_s") return " t1=" + FormatNumber(p.t1_s);
   if (key == "impulse_count") return " n=" + std::to_string(p.impulse_count);
-  if (key == "impulse_spacing_periods") return " s=" + Num(p.impulse_spacing_periods);
+  if (key == "impulse_spacing_periods") return " s=" + FormatNumber(p.impulse_spacing_periods);
   return "";
 }
 
@@ -42,12 +40,12 @@ std::string AutoLabel(const controller::PatternConfig& p) {
   const controller::ShaperEntry& entry = controller::FindShaper(p.method);
   std::string label = entry.kind == controller::ShaperKind::kPatentStep ? "method " + p.method : p.method;
   std::string frequencies;
-  for (const double f : p.DesignFrequencies()) frequencies += (frequencies.empty() ? "" : "+") + Num(f);
+  for (const double f : p.DesignFrequencies()) frequencies += (frequencies.empty() ? "" : "+") + FormatNumber(f);
   label += " " + frequencies + " Hz";
-  if (p.design_damping_ratio > 0.0) label += " zeta_d=" + Num(p.design_damping_ratio);
+  if (p.design_damping_ratio > 0.0) label += " zeta_d=" + FormatNumber(p.design_damping_ratio);
   if (!p.damping_ratios.empty()) {
     std::string ratios;
-    for (const double z : p.damping_ratios) ratios += (ratios.empty() ? "" : "+") + Num(z);
+    for (const double z : p.damping_ratios) ratios += (ratios.empty() ? "" : "+") + FormatNumber(z);
     label += " zeta_d=" + ratios;
   }
   for (const std::string& key : entry.parameters) label += ParameterText(key, p);
@@ -190,9 +188,9 @@ void ReadRatioRange(const NodeReader& ratio, SensitivitySpec* spec) {
     const auto child = ratio.Child(key);
     return (child ? *child : ratio).Error(message);
   };
-  if (!(spec->ratio_from > 0.0)) throw fail("from", "must be > 0 (got " + Num(spec->ratio_from) + ")");
+  if (!(spec->ratio_from > 0.0)) throw fail("from", "must be > 0 (got " + FormatNumber(spec->ratio_from) + ")");
   if (!(spec->ratio_to > spec->ratio_from)) {
-    throw fail("to", "must be above from (" + Num(spec->ratio_from) + "; got " + Num(spec->ratio_to) + ")");
+    throw fail("to", "must be above from (" + FormatNumber(spec->ratio_from) + "; got " + FormatNumber(spec->ratio_to) + ")");
   }
   if (spec->ratio_steps < 2 || spec->ratio_steps > 1000001) {
     throw fail("steps", "must be in [2, 1000001] (got " + std::to_string(spec->ratio_steps) + ")");
@@ -216,7 +214,7 @@ SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Overr
     spec.damping_ratios.clear();
     for (const NodeReader& value : damping->Elements()) {
       const double z = value.AsNumber();
-      if (!(z >= 0.0 && z < 1.0)) throw value.Error("must be in [0, 1) (got " + Num(z) + ")");
+      if (!(z >= 0.0 && z < 1.0)) throw value.Error("must be in [0, 1) (got " + FormatNumber(z) + ")");
       spec.damping_ratios.push_back(z);
     }
     if (spec.damping_ratios.empty()) throw damping->Error("expected at least one damping ratio, e.g. [0.0]");
@@ -225,13 +223,13 @@ SensitivitySpec LoadSensitivity(const std::string& path, const std::vector<Overr
     spec.level = level->AsNumber();
     if (!(spec.level > 0.0 && spec.level < 1.0)) {
       throw level->Error("must be in (0, 1), a fraction of the unshaped vibration (got " +
-                         Num(spec.level) + ")");
+                         FormatNumber(spec.level) + ")");
     }
   }
   if (const auto period = top.Child("period_s")) {
     const double period_s = period->AsNumber();
     if (!(period_s > 0.0 && period_s <= 1.0)) {
-      throw period->Error("must be in (0, 1] s (got " + Num(period_s) + ")");
+      throw period->Error("must be in (0, 1] s (got " + FormatNumber(period_s) + ")");
     }
     spec.period_s = period_s;
   }
@@ -278,8 +276,8 @@ SensitivityResult ComputeSensitivity(const SensitivitySpec& spec) {
 }
 
 std::string CurveName(const SensitivityCurve& curve, const SensitivityResult& result) {
-  std::string name = curve.label + " zeta=" + Num(curve.damping_ratio);
-  if (curve.realized && result.period_s) name += " table " + Num(*result.period_s) + " s";
+  std::string name = curve.label + " zeta=" + FormatNumber(curve.damping_ratio);
+  if (curve.realized && result.period_s) name += " table " + FormatNumber(*result.period_s) + " s";
   return name;
 }
 
@@ -299,19 +297,19 @@ void PrintSensitivityTable(std::ostream& out, const SensitivityResult& result) {
   std::size_t width = 6;
   for (const SensitivityCurve& c : result.curves) width = std::max(width, c.label.size());
   const bool two_levels = std::abs(result.level - 0.05) > 1e-12;
-  out << "residual vibration vs plant frequency / design frequency (" << Num(result.ratio.front())
-      << " to " << Num(result.ratio.back()) << ", " << result.ratio.size()
+  out << "residual vibration vs plant frequency / design frequency (" << FormatNumber(result.ratio.front())
+      << " to " << FormatNumber(result.ratio.back()) << ", " << result.ratio.size()
       << " points), % of an unshaped step's\n"
       << "band: width of the interval around ratio 1 where V <= the level [low, high]\n\n";
   char line[512];
   std::snprintf(line, sizeof line, "%-*s  %-10s  %-14s  %-10s  %-36s%s\n", static_cast<int>(width),
                 "shaper", "plant zeta", "grid", "V(1) %", "5% band width [low, high]",
-                two_levels ? (Num(result.level * 100.0) + "% band width [low, high]").c_str() : "");
+                two_levels ? (FormatNumber(result.level * 100.0) + "% band width [low, high]").c_str() : "");
   out << line;
   for (const SensitivityCurve& c : result.curves) {
-    const std::string grid = c.realized && result.period_s ? "table " + Num(*result.period_s) + " s" : "exact";
+    const std::string grid = c.realized && result.period_s ? "table " + FormatNumber(*result.period_s) + " s" : "exact";
     std::snprintf(line, sizeof line, "%-*s  %-10s  %-14s  %-10.4g  %-36s%s\n", static_cast<int>(width),
-                  c.label.c_str(), Num(c.damping_ratio).c_str(), grid.c_str(), c.at_design_percent,
+                  c.label.c_str(), FormatNumber(c.damping_ratio).c_str(), grid.c_str(), c.at_design_percent,
                   BandText(c.band_5).c_str(), two_levels ? BandText(c.band_level).c_str() : "");
     out << line;
   }
@@ -402,7 +400,7 @@ void WriteSensitivityPlot(const std::string& path_png, const SensitivityResult& 
     WriteCurveTerms(gnuplot, result);
     std::fprintf(gnuplot, "5 with lines lw 1.5 dt 3 lc rgb '#cc0000' title '5%% level'");
     if (std::abs(result.level - 0.05) > 1e-12) {
-      const std::string name = Num(result.level * 100.0) + "% level";
+      const std::string name = FormatNumber(result.level * 100.0) + "% level";
       std::fprintf(gnuplot, ", \\\n     %.17g with lines lw 1.5 dt 4 lc rgb '#444444' title %s",
                    result.level * 100.0, GnuplotQuoted(name).c_str());
     }

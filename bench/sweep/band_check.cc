@@ -2,22 +2,18 @@
 #include "bench/sweep/band_check.h"
 
 #include <cmath>
-#include <cstdio>
 #include <optional>
 
 #include "bench/config/config_document.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/scenario/structure_numbers.h"
 #include "bench/scenario/metrics.h"
+#include "common/format.h"
 #include "common/validation_error.h"
 
 namespace shapebench::bench {
 
-std::string BandValueText(double x) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
+std::string BandValueText(double x) { return FormatNumber(x, 17); }
 
 BandPointRunner::BandPointRunner(const Scenario& scenario, const std::vector<Override>& overrides,
                                  const Check& check)

@@ -17,9 +17,6 @@ constexpr double kMinKeptMass = 1e-3;
 constexpr std::uint64_t kPermutationStream = 1ULL << 32;
 constexpr std::uint64_t kShiftStream = 1ULL << 33;
 
-// The shortest text that reads back as exactly `value` (the hash stays exact).
-std::string Number(double value) { return ShortestDouble(value); }
-
 // A standard normal truncated to [za, zb] at level u. In the upper tail the CDF's levels
 // crowd against 1 and lose digits: there the mirror image is drawn from the lower tail.
 double TruncatedStandardNormal(double za, double zb, double u) {
@@ -80,17 +77,19 @@ double Distribution::KeptMass() const {
   return 0.0;
 }
 
+// Numbers as ShortestDouble: the shortest text that reads back as exactly the value (the
+// hash stays exact).
 std::string Distribution::Describe() const {
   std::string text;
   switch (kind) {
-    case Kind::kNormal: text = "normal{mean=" + Number(a) + ",sd=" + Number(b) + "}"; break;
-    case Kind::kUniform: text = "uniform{from=" + Number(a) + ",to=" + Number(b) + "}"; break;
-    case Kind::kLogNormal: text = "lognormal{median=" + Number(a) + ",sigma=" + Number(b) + "}"; break;
+    case Kind::kNormal: text = "normal{mean=" + ShortestDouble(a) + ",sd=" + ShortestDouble(b) + "}"; break;
+    case Kind::kUniform: text = "uniform{from=" + ShortestDouble(a) + ",to=" + ShortestDouble(b) + "}"; break;
+    case Kind::kLogNormal: text = "lognormal{median=" + ShortestDouble(a) + ",sigma=" + ShortestDouble(b) + "}"; break;
   }
   if (min || max) {
     text += "truncated{";
-    if (min) text += "min=" + Number(*min);
-    if (max) text += std::string(min ? "," : "") + "max=" + Number(*max);
+    if (min) text += "min=" + ShortestDouble(*min);
+    if (max) text += std::string(min ? "," : "") + "max=" + ShortestDouble(*max);
     text += "}";
   }
   return text;
@@ -135,7 +134,8 @@ Distribution ReadDistribution(const NodeReader& node) {
       dist.a = Param(*params, "from", "{from: A, to: B}");
       dist.b = Param(*params, "to", "{from: A, to: B}");
       if (!(dist.a < dist.b)) {
-        throw params->Child("to")->Error("must be above from (" + Number(dist.a) + "), got " + Number(dist.b));
+        throw params->Child("to")->Error("must be above from (" + ShortestDouble(dist.a) + "), got " +
+                                         ShortestDouble(dist.b));
       }
     } else {
       params->ExpectMap({"median", "sigma"});
@@ -157,7 +157,8 @@ Distribution ReadDistribution(const NodeReader& node) {
     if (const auto high = bounds->Child("max")) dist.max = high->AsNumber();
     if (!dist.min && !dist.max) throw bounds->Error("expected min: and/or max:");
     if (dist.min && dist.max && !(*dist.min < *dist.max)) {
-      throw bounds->Child("max")->Error("must be above min (" + Number(*dist.min) + "), got " + Number(*dist.max));
+      throw bounds->Child("max")->Error("must be above min (" + ShortestDouble(*dist.min) + "), got " +
+                                        ShortestDouble(*dist.max));
     }
     const double kept = dist.KeptMass();
     if (!(kept >= kMinKeptMass)) {

@@ -38,12 +38,12 @@ bool ParseNumber(const std::string& text, double* value) {
   return end == text.c_str() + text.size() && std::isfinite(*value);
 }
 
-// Metrics in metres are plotted in µm.
+// Metrics in metres are plotted in um (micrometres).
 double MetricScale(const std::string& metric) { return MetricUnit(metric) == "m" ? 1e6 : 1.0; }
 
 std::string MetricLabel(const std::string& metric) {
   const std::string unit = MetricUnit(metric);
-  if (unit == "m") return metric + " [µm]";
+  if (unit == "m") return metric + " [um]";
   if (!unit.empty()) return metric + " [" + unit + "]";
   if (EndsWith(metric, "_ratio")) return metric + " [× static deflection]";
   return metric;

@@ -11,8 +11,6 @@
 namespace shapebench::controller {
 namespace {
 
-std::string Num(double v) { return FormatNumber(v); }
-
 bool Finite(double v) { return std::isfinite(v); }
 
 void ValidateCustom(const PatternConfig& config) {
@@ -25,21 +23,21 @@ void ValidateCustom(const PatternConfig& config) {
     const Impulse& impulse = config.impulses[i];
     const std::string at = "impulses[" + std::to_string(i) + "]";
     if (!Finite(impulse.amplitude)) {
-      throw ValidationError(at + ".amplitude", "must be a finite number (got " + Num(impulse.amplitude) + ")");
+      throw ValidationError(at + ".amplitude", "must be a finite number (got " + FormatNumber(impulse.amplitude) + ")");
     }
     if (!(Finite(impulse.time_s) && impulse.time_s >= 0.0)) {
-      throw ValidationError(at + ".time_s", "must be >= 0 s (got " + Num(impulse.time_s) + ")");
+      throw ValidationError(at + ".time_s", "must be >= 0 s (got " + FormatNumber(impulse.time_s) + ")");
     }
     if (i > 0 && !(impulse.time_s > config.impulses[i - 1].time_s)) {
       throw ValidationError(at + ".time_s", "must be after the previous impulse's (" +
-                                                Num(config.impulses[i - 1].time_s) +
+                                                FormatNumber(config.impulses[i - 1].time_s) +
                                                 " s): times strictly ascending (got " +
-                                                Num(impulse.time_s) + ")");
+                                                FormatNumber(impulse.time_s) + ")");
     }
     total += impulse.amplitude;
   }
   if (std::abs(total - 1.0) > 1e-9) {
-    throw ValidationError("impulses", "the amplitudes must sum to 1 (unit DC gain; got " + Num(total) + ")");
+    throw ValidationError("impulses", "the amplitudes must sum to 1 (unit DC gain; got " + FormatNumber(total) + ")");
   }
 }
 

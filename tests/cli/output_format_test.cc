@@ -16,7 +16,7 @@
 
 #include "bench/output/report.h"
 #include "bench/scenario/checks.h"
-#include "common/engineering_units.h"
+#include "common/format.h"
 #include "bench/scenario/metrics.h"
 #include "tests/support/bench_test_support.h"
 #include "common/csv.h"

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/output/html_report.h"
+#include "common/format.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {
@@ -32,9 +33,11 @@ TEST(HtmlReport, EscapesMarkupQuotesAndBadBytes) {
   EXPECT_EQ(HtmlEscape(std::string("x\xff\x01y")), "x\xef\xbf\xbd\xef\xbf\xbdy");
 }
 
-// Tests that lengths read in µm below a millimetre and mm above, times in ms below a second.
+// Tests that lengths read in um below a millimetre and mm above, times in ms below a
+// second, as in the `run` table (one formatter, common/format.h); zero keeps the SI unit.
 TEST(HtmlReport, ShowsEngineeringUnits) {
-  EXPECT_EQ(EngineeringValue(8.3388e-6, "m"), (std::pair<std::string, std::string>{"8.3388", "µm"}));
+  EXPECT_EQ(EngineeringValue(8.3388e-6, "m"), (std::pair<std::string, std::string>{"8.3388", "um"}));
+  EXPECT_EQ(EngineeringValue(0.0, "m"), (std::pair<std::string, std::string>{"0", "m"}));
   EXPECT_EQ(EngineeringValue(0.2, "m"), (std::pair<std::string, std::string>{"200", "mm"}));
   EXPECT_EQ(EngineeringValue(0.72, "s"), (std::pair<std::string, std::string>{"720", "ms"}));
   EXPECT_EQ(EngineeringValue(1.5, "s"), (std::pair<std::string, std::string>{"1.5", "s"}));
