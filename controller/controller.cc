@@ -20,7 +20,6 @@
 namespace shapebench::controller {
 namespace {
 
-bool Finite(double v) { return std::isfinite(v); }
 
 bool TableRealization(const ControllerConfig& c) {
   return c.pattern.realization == PatternRealization::kProfileTable &&
@@ -54,7 +53,7 @@ PulseFilter PostInterpFilter(const ControllerConfig& c) {
 }  // namespace
 
 void PostInterpConfig::validate() const {
-  if (type == PostInterpType::kExponential && !(Finite(time_constant_s) && time_constant_s > 0.0)) {
+  if (type == PostInterpType::kExponential && !(std::isfinite(time_constant_s) && time_constant_s > 0.0)) {
     throw ValidationError("time_constant_s", "must be > 0 for exponential acc/dec (got " +
                                                  FormatNumber(time_constant_s) + ")");
   }
@@ -69,7 +68,7 @@ void PostInterpConfig::validate() const {
                             "set controller.pattern.realization: profile_table");
     }
     if (!table.empty()) ValidateProfileTable(table, max_table_length);
-    if (!(Finite(moving_average_s) && moving_average_s >= 0.0)) {
+    if (!(std::isfinite(moving_average_s) && moving_average_s >= 0.0)) {
       throw ValidationError("moving_average_s", "must be > 0 s (got " + FormatNumber(moving_average_s) + ")");
     }
   }
@@ -80,19 +79,19 @@ double ControllerConfig::accel_m_s2() const {
 }
 
 void ControllerConfig::validate() const {
-  if (!(Finite(period_s) && period_s > 0.0 && period_s <= 1.0)) {
+  if (!(std::isfinite(period_s) && period_s > 0.0 && period_s <= 1.0)) {
     throw ValidationError("period_s", "must be in (0, 1] s (got " + FormatNumber(period_s) + ")");
   }
-  if (!(Finite(feed_mm_min) && feed_mm_min > 0.0)) {
+  if (!(std::isfinite(feed_mm_min) && feed_mm_min > 0.0)) {
     throw ValidationError("feed_mm_min", "must be > 0 (got " + FormatNumber(feed_mm_min) + ")");
   }
-  if (!(Finite(accel_time_s) && accel_time_s >= 0.0)) {
+  if (!(std::isfinite(accel_time_s) && accel_time_s >= 0.0)) {
     throw ValidationError("accel_time_s", "must be >= 0 (0 = a feed step; got " + FormatNumber(accel_time_s) + ")");
   }
-  if (!(Finite(rapid_feed_mm_min) && rapid_feed_mm_min > 0.0)) {
+  if (!(std::isfinite(rapid_feed_mm_min) && rapid_feed_mm_min > 0.0)) {
     throw ValidationError("rapid_feed_mm_min", "must be > 0 (got " + FormatNumber(rapid_feed_mm_min) + ")");
   }
-  if (!(Finite(corner_velocity_change_mm_min) && corner_velocity_change_mm_min >= 0.0)) {
+  if (!(std::isfinite(corner_velocity_change_mm_min) && corner_velocity_change_mm_min >= 0.0)) {
     throw ValidationError("corner_velocity_change_mm_min",
                           "must be >= 0 (0 stops at every corner; got " +
                               FormatNumber(corner_velocity_change_mm_min) + ")");
@@ -157,7 +156,7 @@ void ControllerConfig::validate() const {
 }
 
 void MoveConfig::validate() const {
-  if (!(Finite(distance_mm) && distance_mm != 0.0)) {
+  if (!(std::isfinite(distance_mm) && distance_mm != 0.0)) {
     throw ValidationError("distance_mm", "must be a non-zero number of mm (got " + FormatNumber(distance_mm) + ")");
   }
 }

@@ -20,14 +20,6 @@ double Wrap(double angle) {
   return a;
 }
 
-void PlaneAxes(Plane plane, int* a0, int* a1, int* n) {
-  switch (plane) {
-    case Plane::kXY: *a0 = 0; *a1 = 1; *n = 2; return;
-    case Plane::kZX: *a0 = 2; *a1 = 0; *n = 1; return;
-    case Plane::kYZ: *a0 = 1; *a1 = 2; *n = 0; return;
-  }
-}
-
 PathElement MakeElement(const ProgramBlock& block, int index) {
   PathElement e;
   e.kind = block.kind;
@@ -45,7 +37,10 @@ PathElement MakeElement(const ProgramBlock& block, int index) {
     if (e.length_m > 0.0) e.direction = d / e.length_m;
     return e;
   }
-  PlaneAxes(block.plane, &e.axis0, &e.axis1, &e.normal);
+  const PlaneAxes axes = AxesOf(block.plane);
+  e.axis0 = axes.u;
+  e.axis1 = axes.v;
+  e.normal = axes.n;
   e.center_m = block.center_m;
   const double s0 = block.start_m(e.axis0) - block.center_m(e.axis0);
   const double s1 = block.start_m(e.axis1) - block.center_m(e.axis1);

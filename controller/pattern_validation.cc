@@ -13,7 +13,6 @@
 namespace shapebench::controller {
 namespace {
 
-bool Finite(double v) { return std::isfinite(v); }
 
 // The keys of the registry's entries of `kind` (or of `other`), in registry order.
 std::string KeysOfKind(ShaperKind kind, ShaperKind other) {
@@ -42,7 +41,7 @@ void ValidateDampingRatios(const PatternConfig& config, const ShaperEntry& entry
   for (std::size_t i = 0; i < config.damping_ratios.size(); ++i) {
     const double z = config.damping_ratios[i];
     const std::string field = "damping_ratios[" + std::to_string(i) + "]";
-    if (!(Finite(z) && z >= 0.0 && z < 1.0)) {
+    if (!(std::isfinite(z) && z >= 0.0 && z < 1.0)) {
       throw ValidationError(field, "must be in [0, 1) (got " + FormatNumber(z) + ")");
     }
     if (z > 0.0 && entry.kind == ShaperKind::kPatentStep) {
@@ -75,18 +74,18 @@ void ValidateEntry(const PatternConfig& config, const ShaperEntry& entry) {
 
 void PatternConfig::validate() const {
   const ShaperEntry& entry = FindShaper(method);
-  if (!(Finite(frequency_hz) && frequency_hz > 0.0)) {
+  if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
     throw ValidationError("frequency_hz", "must be a finite number > 0 (got " + FormatNumber(frequency_hz) + ")");
   }
   for (std::size_t i = 0; i < frequencies_hz.size(); ++i) {
     const double f = frequencies_hz[i];
-    if (!(Finite(f) && f > 0.0)) {
+    if (!(std::isfinite(f) && f > 0.0)) {
       throw ValidationError("frequencies_hz[" + std::to_string(i) + "]",
                             "must be a finite number > 0 (got " + FormatNumber(f) + ")");
     }
   }
   const double z = design_damping_ratio;
-  if (!(Finite(z) && z >= 0.0 && z < 1.0)) {
+  if (!(std::isfinite(z) && z >= 0.0 && z < 1.0)) {
     throw ValidationError("design_damping_ratio", "must be in [0, 1) (got " + FormatNumber(z) + ")");
   }
   if (z > 0.0 && entry.kind == ShaperKind::kPatentStep) {
@@ -99,7 +98,7 @@ void PatternConfig::validate() const {
   }
   ValidateDampingRatios(*this, entry);
   const double v = vibration_tolerance;
-  if (!(Finite(v) && v > 0.0 && v < 1.0)) {
+  if (!(std::isfinite(v) && v > 0.0 && v < 1.0)) {
     throw ValidationError("vibration_tolerance", "must be in (0, 1) (a fraction of the unshaped "
                                                  "vibration; got " + FormatNumber(v) + ")");
   }
@@ -123,7 +122,7 @@ void PatternConfig::validate() const {
                                 " impulses; allowed: at most 65536 (fewer frequencies or impulses)");
     }
   }
-  if (!(Finite(step_resolution_s) && step_resolution_s >= 0.0)) {
+  if (!(std::isfinite(step_resolution_s) && step_resolution_s >= 0.0)) {
     throw ValidationError("step_resolution_s", "must be >= 0 (0 keeps exact step times; got " +
                                                    FormatNumber(step_resolution_s) + ")");
   }

@@ -19,6 +19,20 @@ enum class MotionKind { kRapid, kLinear, kArcCw, kArcCcw, kDwell };  // G0 G1 G2
 // G19 YZ (y, z, x). CW/CCW are seen from the positive normal axis, as on Fanuc.
 enum class Plane { kXY, kZX, kYZ };
 
+// A plane's first (u), second (v) and normal (n) axis indices.
+struct PlaneAxes {
+  int u, v, n;
+};
+
+constexpr PlaneAxes AxesOf(Plane plane) {
+  switch (plane) {
+    case Plane::kZX: return {2, 0, 1};
+    case Plane::kYZ: return {1, 2, 0};
+    case Plane::kXY: break;
+  }
+  return {0, 1, 2};
+}
+
 struct ProgramBlock {
   MotionKind kind = MotionKind::kLinear;
   Eigen::Vector3d start_m = Eigen::Vector3d::Zero();

@@ -23,20 +23,6 @@ double RadiusTolerance(double radius_m) {
   return std::max(kRadiusToleranceM, kRadiusToleranceRelative * radius_m);
 }
 
-// The plane's first, second and normal axis.
-struct PlaneAxes {
-  int u, v, n;
-};
-
-PlaneAxes AxesOf(Plane plane) {
-  switch (plane) {
-    case Plane::kZX: return {2, 0, 1};
-    case Plane::kYZ: return {1, 2, 0};
-    case Plane::kXY: break;
-  }
-  return {0, 1, 2};
-}
-
 std::string PlaneName(Plane plane) {
   switch (plane) {
     case Plane::kZX: return "G18 (ZX plane)";

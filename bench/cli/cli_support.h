@@ -14,14 +14,10 @@
 #include "bench/output/html_report.h"
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario.h"
+#include "common/exit_codes.h"
 #include "common/fd_stream.h"
 
 namespace shapebench::bench::cli {
-
-constexpr int kExitOk = 0;
-constexpr int kExitCheckFailed = 1;
-constexpr int kExitBadInput = 2;
-constexpr int kExitSolverFailed = 3;
 
 // Text from the input as printed: its control characters visible, not obeyed by the terminal.
 std::string Safe(const std::string& text);

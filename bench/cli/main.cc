@@ -19,6 +19,8 @@
 namespace {
 
 using namespace shapebench::bench::cli;
+using shapebench::kExitBadInput;
+using shapebench::kExitOk;
 
 // The commands in the order `shapebench --help` lists them.
 constexpr Command (*kCommands[])(CLI::App*) = {

@@ -12,21 +12,22 @@
 #include "common/atomic_file.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
+#include "bench/output/json_number.h"
 
 namespace shapebench::bench {
 namespace {
 
 using Json = nlohmann::ordered_json;
-using Row = std::vector<std::string>;
+using TableRow = std::vector<std::string>;
 
 // Columns left-aligned, two spaces apart; the last one not padded.
-void PrintRows(std::ostream& out, const std::vector<Row>& rows) {
+void PrintRows(std::ostream& out, const std::vector<TableRow>& rows) {
   std::vector<std::size_t> widths;
-  for (const Row& row : rows) {
+  for (const TableRow& row : rows) {
     widths.resize(std::max(widths.size(), row.size()));
     for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
   }
-  for (const Row& row : rows) {
+  for (const TableRow& row : rows) {
     std::string line;
     for (std::size_t c = 0; c < row.size(); ++c) {
       line += row[c];
@@ -55,8 +56,6 @@ Json JsonValue(const MetricInfo& info, double value) {
   return value;
 }
 
-Json JsonNumber(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
 Json SideJson(const CompareSide& side) {
   Json overrides = Json::array();
   for (const Override& override : side.overrides)
@@ -80,7 +79,7 @@ Json PointJson(const PointChange& point) {
 
 void PrintSides(std::ostream& out, const CompareSide& baseline, const CompareSide& candidate,
                 const std::string& points = "") {
-  std::vector<Row> rows = {{"baseline", baseline.Label()}, {"candidate", candidate.Label()}};
+  std::vector<TableRow> rows = {{"baseline", baseline.Label()}, {"candidate", candidate.Label()}};
   if (!points.empty()) rows.push_back({"points", points});
   PrintRows(out, rows);
   out << "\n";
@@ -120,7 +119,7 @@ void WriteTextAndJson(const std::filesystem::path& dir, const Comparison& compar
 
 void PrintComparison(std::ostream& out, const ScenarioComparison& comparison) {
   PrintSides(out, comparison.baseline, comparison.candidate);
-  std::vector<Row> rows = {
+  std::vector<TableRow> rows = {
       {"metric", "unit", "better", "baseline", "candidate", "change", "relative", "favours"}};
   for (const MetricChange& change : comparison.changes) {
     const MetricInfo& info = *change.info;
@@ -172,11 +171,11 @@ void PrintComparison(std::ostream& out, const SweepComparison& comparison) {
               std::to_string(comparison.points - comparison.failed_points) + ")";
   }
   PrintSides(out, comparison.baseline, comparison.candidate, points);
-  std::vector<Row> rows = {{"metric", "unit", "better", "cand. better", "base. better", "same", "n/a",
+  std::vector<TableRow> rows = {{"metric", "unit", "better", "cand. better", "base. better", "same", "n/a",
                             "worst: baseline", "candidate", "change", "relative", "at"}};
   for (const SweepMetricSummary& summary : comparison.metrics) {
     const MetricInfo& info = *summary.info;
-    Row row = {std::string(info.name),
+    TableRow row = {std::string(info.name),
                std::string(info.unit),
                std::string(BetterName(info.better)),
                std::to_string(summary.candidate_better),

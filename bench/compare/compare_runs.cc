@@ -30,7 +30,7 @@ RunResult RunSide(const CompareSide& side, const Scenario& scenario) {
   }
 }
 
-Scenario LoadSide(CompareSide* side) {
+Scenario LoadScenarioSide(CompareSide* side) {
   try {
     Scenario scenario = LoadScenario(side->file, side->overrides);
     side->name = scenario.name;
@@ -104,8 +104,8 @@ bool ScenarioComparison::passed() const {
 ScenarioComparison CompareScenarios(const CompareRequest& request, const std::vector<Gate>& gates) {
   CompareSide baseline = BaselineSide(request);
   CompareSide candidate = CandidateSide(request);
-  Scenario baseline_scenario = LoadSide(&baseline);
-  Scenario candidate_scenario = LoadSide(&candidate);
+  Scenario baseline_scenario = LoadScenarioSide(&baseline);
+  Scenario candidate_scenario = LoadScenarioSide(&candidate);
   RunResult baseline_run = RunSide(baseline, baseline_scenario);
   RunResult candidate_run = RunSide(candidate, candidate_scenario);
   std::vector<MetricChange> changes = CompareMetrics(baseline_run.metrics, candidate_run.metrics);

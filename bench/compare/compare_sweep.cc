@@ -8,12 +8,11 @@
 #include "common/interrupt.h"
 #include "common/shown_text.h"
 #include "bench/sweep/point_loop.h"
+#include "common/exit_codes.h"
 
 namespace shapebench::bench {
 namespace {
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitSolverFailed = 3;
 
 std::string AxisName(const SweepAxis& axis) {
   std::string name;
@@ -36,7 +35,7 @@ std::string ValueDifference(const SweepValues& a, const SweepValues& b) {
   return "";
 }
 
-Sweep LoadSide(CompareSide* side) {
+Sweep LoadSweepSide(CompareSide* side) {
   try {
     Sweep sweep = LoadSweep(side->file, side->overrides);
     side->name = sweep.name;
@@ -183,8 +182,8 @@ ComparedSweeps LoadComparedSweeps(const CompareRequest& request) {
   ComparedSweeps sweeps;
   sweeps.baseline = BaselineSide(request);
   sweeps.candidate = CandidateSide(request);
-  sweeps.baseline_sweep = LoadSide(&sweeps.baseline);
-  sweeps.candidate_sweep = LoadSide(&sweeps.candidate);
+  sweeps.baseline_sweep = LoadSweepSide(&sweeps.baseline);
+  sweeps.candidate_sweep = LoadSweepSide(&sweeps.candidate);
   CheckSameGrid(sweeps.baseline_sweep, sweeps.candidate_sweep);
   return sweeps;
 }

@@ -19,13 +19,13 @@ namespace {
 constexpr char kHeader[] = "#time,accel_x,accel_y,accel_z";
 
 // One field of a line: its text without surrounding blanks, and where it starts (1-based).
-struct Field {
+struct LogField {
   std::string text;
   int column = 1;
 };
 
-std::vector<Field> SplitFields(const std::string& line, std::size_t from) {
-  std::vector<Field> fields;
+std::vector<LogField> SplitFields(const std::string& line, std::size_t from) {
+  std::vector<LogField> fields;
   std::size_t start = from;
   for (;;) {
     const std::size_t comma = line.find(',', start);
@@ -50,7 +50,7 @@ std::vector<int> ReadHeader(const std::string& line, int line_number, const std:
                       " (a line starting with '#', as Klipper's raw_data CSV has) before the samples");
   }
   std::vector<int> columns;
-  for (const Field& field : SplitFields(line, 1)) {
+  for (const LogField& field : SplitFields(line, 1)) {
     int which = -1;
     if (field.text == "time") which = 0;
     for (int axis = 0; axis < 3; ++axis) {
@@ -78,7 +78,7 @@ std::vector<int> ReadHeader(const std::string& line, int line_number, const std:
 
 std::string ColumnName(int which) { return which == 0 ? "time" : kAccelColumns[which - 1]; }
 
-double ReadNumber(const Field& field, int which, int line_number, const std::string& file) {
+double ReadNumber(const LogField& field, int which, int line_number, const std::string& file) {
   const std::string unit = which == 0 ? "s" : "mm/s^2";
   double value = 0.0;
   const char* first = field.text.data();
@@ -119,7 +119,7 @@ AccelLog ParseAccelLog(const std::string& text, const std::string& file) {
       continue;
     }
     if (line[0] == '#') continue;  // a comment
-    const std::vector<Field> fields = SplitFields(line, 0);
+    const std::vector<LogField> fields = SplitFields(line, 0);
     if (fields.size() != columns.size()) {
       const bool short_line = fields.size() < columns.size();
       const int column = short_line ? static_cast<int>(line.size()) + 1 : fields[columns.size()].column;

@@ -50,7 +50,7 @@ void CheckAlike(const Uff58File& file, const std::vector<std::size_t>& selected)
 }
 
 // Enough lines above 0 Hz inside the band: located at the first record's record 7.
-void CheckBand(const Uff58File& file, const Uff58Record& first, const FrfSelection& selection) {
+void CheckFrfBand(const Uff58File& file, const Uff58Record& first, const FrfSelection& selection) {
   int lines = 0;
   for (double f : first.frequency_hz) {
     if (f > 0.0 && f >= selection.min_frequency_hz && f <= selection.max_frequency_hz) ++lines;
@@ -82,7 +82,7 @@ IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& sele
   result.records = SelectRecords(result.file, selection.axis);
   CheckAlike(result.file, result.records);
   const Uff58Record& first = result.file.records[result.records.front()];
-  CheckBand(result.file, first, selection);
+  CheckFrfBand(result.file, first, selection);
   result.response = first.response;
   result.excitation = first.excitation;
   result.frequency_hz = first.frequency_hz;

@@ -61,13 +61,13 @@ std::string UnitNames(const ColumnSpec& spec) {
 
 // One field of a line: its text (trimmed, one pair of surrounding quotes removed) and
 // its 1-based column.
-struct Field {
+struct ModalField {
   std::string text;
   int column = 1;
 };
 
-std::vector<Field> SplitLine(const std::string& line) {
-  std::vector<Field> fields;
+std::vector<ModalField> SplitLine(const std::string& line) {
+  std::vector<ModalField> fields;
   std::size_t start = 0;
   while (true) {
     const std::size_t end = std::min(line.find(',', start), line.size());
@@ -149,8 +149,8 @@ class ModalFileParser {
     return ConfigError(file_, line.number, column, key, message);
   }
 
-  std::vector<Field> Fields(const Line& line, const char* what) const {
-    std::vector<Field> fields = SplitLine(line.text);
+  std::vector<ModalField> Fields(const Line& line, const char* what) const {
+    std::vector<ModalField> fields = SplitLine(line.text);
     if (fields.size() != kNumColumns) {
       throw Error(line, 1, what,
                   "has " + std::to_string(fields.size()) + " fields; expected " +
@@ -160,9 +160,9 @@ class ModalFileParser {
   }
 
   void ReadHeader(const Line& line) {
-    const std::vector<Field> fields = SplitLine(line.text);
+    const std::vector<ModalField> fields = SplitLine(line.text);
     std::array<bool, kNumColumns> seen{};
-    for (const Field& field : fields) {
+    for (const ModalField& field : fields) {
       int found = -1;
       for (int c = 0; c < kNumColumns; ++c) {
         if (field.text == Columns()[c].name) found = c;
@@ -186,7 +186,7 @@ class ModalFileParser {
   }
 
   void ReadUnits(const Line& line) {
-    const std::vector<Field> fields = Fields(line, "units");
+    const std::vector<ModalField> fields = Fields(line, "units");
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const ColumnSpec& spec = Columns()[order_[i]];
       bool known = false;
@@ -201,7 +201,7 @@ class ModalFileParser {
     }
   }
 
-  double Number(const Line& line, const Field& field, const ColumnSpec& spec) const {
+  double Number(const Line& line, const ModalField& field, const ColumnSpec& spec) const {
     errno = 0;
     const double value = IsNumberText(field.text) ? std::strtod(field.text.c_str(), nullptr) : NAN;
     if (!IsNumberText(field.text) || (errno == ERANGE && std::isinf(value))) {
@@ -213,7 +213,7 @@ class ModalFileParser {
   }
 
   model::ModalMode ReadMode(const Line& line) {
-    const std::vector<Field> fields = Fields(line, "mode");
+    const std::vector<ModalField> fields = Fields(line, "mode");
     std::array<double, kNumColumns> value{};
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const int c = order_[i];

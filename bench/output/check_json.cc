@@ -1,20 +1,17 @@
 // CheckReportsJson (bench/output/report.h): `check --json`.
 #include <cmath>
 
+#include "bench/output/json_number.h"
 #include "bench/output/report.h"
 
 namespace shapebench::bench {
 namespace {
 
-nlohmann::ordered_json Number(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
-
 nlohmann::ordered_json ResultJson(const CheckResult& result) {
   nlohmann::ordered_json json;
   json["metric"] = result.metric;
   if (!result.point.empty()) json["point"] = result.point;
-  json["value"] = Number(result.value);
+  json["value"] = JsonNumber(result.value);
   json["bound"] = result.bound;
   json["passed"] = result.passed;
   json["message"] = result.message;
@@ -22,14 +19,14 @@ nlohmann::ordered_json ResultJson(const CheckResult& result) {
     json["statistic"] = {{"name", result.statistic},
                          {"samples", result.samples},
                          {"passing", result.passing},
-                         {"interval_95", {Number(result.interval_low), Number(result.interval_high)}}};
+                         {"interval_95", {JsonNumber(result.interval_low), JsonNumber(result.interval_high)}}};
   }
   if (result.banded()) {
     json["band"] = {{"key", result.band_key},
-                    {"from", Number(result.band_from)},
-                    {"to", Number(result.band_to)},
-                    {"worst_value", Number(result.value)},
-                    {"worst_at", Number(result.worst_at)},
+                    {"from", JsonNumber(result.band_from)},
+                    {"to", JsonNumber(result.band_to)},
+                    {"worst_value", JsonNumber(result.value)},
+                    {"worst_at", JsonNumber(result.worst_at)},
                     {"runs", result.band_runs},
                     {"text", BandText(result)}};
   }

@@ -11,7 +11,6 @@
 namespace shapebench::bench {
 namespace {
 
-const auto& Quoted = GnuplotQuoted;
 
 // The page, the title and the axes' labels both deflection plots share.
 // `svg`: the HTML report's inline SVG (bench/output/html_report.h) instead of the PNG.
@@ -20,8 +19,8 @@ void WriteFrame(std::FILE* gnuplot, const std::string& output_path, const std::s
   std::fprintf(gnuplot, svg ? "set terminal svg size 1000,600 noenhanced font 'sans,10' background '#ffffff'\n"
                             : "set terminal pngcairo size 1000,600 noenhanced font 'sans,10'\n");
   std::fprintf(gnuplot, "set encoding utf8\n");
-  std::fprintf(gnuplot, "set output %s\n", Quoted(output_path).c_str());
-  std::fprintf(gnuplot, "set title %s\n", Quoted(title).c_str());
+  std::fprintf(gnuplot, "set output %s\n", GnuplotQuoted(output_path).c_str());
+  std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(title).c_str());
   std::fprintf(gnuplot, "set xlabel 'time [s]'\n");
   std::fprintf(gnuplot, "set ylabel 'deflection [um]'\n");
 }
@@ -49,7 +48,7 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
       std::snprintf(text, sizeof text, "peak %.4g um", peak_um);
     }
     std::fprintf(gnuplot, "set label %s at %.10g, %.10g offset 1, %s front point pt 7 ps 1 lc rgb '#d62728'\n",
-                 Quoted(text).c_str(), trace.time_s[peak], peak_um, peak_um >= 0.0 ? "0.8" : "-0.8");
+                 GnuplotQuoted(text).c_str(), trace.time_s[peak], peak_um, peak_um >= 0.0 ? "0.8" : "-0.8");
   }
   if (std::isfinite(metrics.motion_time_s)) {
     // On the side of the end line with the more room.
@@ -57,7 +56,7 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
     char text[160];
     std::snprintf(text, sizeof text, "motion end %.4g s", metrics.motion_time_s);
     std::fprintf(gnuplot, "set label %s at %.17g, graph 0.97 %s front tc rgb '#555555'\n",
-                 Quoted(text).c_str(), metrics.motion_time_s, side);
+                 GnuplotQuoted(text).c_str(), metrics.motion_time_s, side);
     if (std::isfinite(metrics.residual_amplitude_m)) {
       if (std::isfinite(metrics.residual_ratio)) {
         std::snprintf(text, sizeof text, "residual %.3g um (ratio %.3g)", metrics.residual_amplitude_m * 1e6,
@@ -66,7 +65,7 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
         std::snprintf(text, sizeof text, "residual %.3g um", metrics.residual_amplitude_m * 1e6);
       }
       std::fprintf(gnuplot, "set label %s at %.17g, graph 0.92 %s front tc rgb '#1f77b4'\n",
-                   Quoted(text).c_str(), metrics.motion_time_s, side);
+                   GnuplotQuoted(text).c_str(), metrics.motion_time_s, side);
     }
   }
 }
@@ -114,7 +113,7 @@ void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunRe
     std::fprintf(gnuplot,
                  ", \\\n     %.17g axes x1y1 with lines dt 2 lc rgb '#444444' title %s, \\\n"
                  "     %.17g axes x1y1 with lines dt 2 lc rgb '#444444' notitle",
-                 static_um, Quoted(band).c_str(), -static_um);
+                 static_um, GnuplotQuoted(band).c_str(), -static_um);
   }
   std::fprintf(gnuplot, "\nunset output\nquit\n");
 }
@@ -162,7 +161,7 @@ void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
   std::string plot;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     plot += (plot.empty() ? "plot " : ", \\\n     ") + std::string("$run") + std::to_string(r) +
-            " using 1:2 with lines lw 1.5 lc rgb '" + colour(r) + "' title " + Quoted(runs[r].title);
+            " using 1:2 with lines lw 1.5 lc rgb '" + colour(r) + "' title " + GnuplotQuoted(runs[r].title);
   }
   plot += ", \\\n     NaN with lines dt 3 lc rgb '#888888' "
           "title 'end of commanded motion (dotted, in the run''s colour)'";
@@ -183,7 +182,7 @@ void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
         std::string(" with lines dt 2 lw 1 lc rgb '") + (shared ? "#444444" : colour(r)) + "'";
     char line[128];
     std::snprintf(line, sizeof line, ", \\\n     %.17g", static_um(r));
-    plot += line + style + " title " + Quoted(title);
+    plot += line + style + " title " + GnuplotQuoted(title);
     std::snprintf(line, sizeof line, ", \\\n     %.17g", -static_um(r));
     plot += line + style + " notitle";
   }

@@ -3,22 +3,18 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/output/json_number.h"
 #include "model/coupled_modes.h"
 
 namespace shapebench::bench {
 namespace {
 
-// JSON has no NaN/inf: they become null, as in the metrics.
-nlohmann::ordered_json Number(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
-}
-
 nlohmann::ordered_json ModeJson(const model::ModeInfo& mode, const char* axis) {
   nlohmann::ordered_json entry = nlohmann::ordered_json::object();
   if (axis != nullptr) entry["axis"] = axis;
-  entry["frequency_hz"] = Number(mode.frequency_hz);
-  entry["damping_ratio"] = Number(mode.damping_ratio);
-  entry["participation"] = Number(mode.participation);
+  entry["frequency_hz"] = JsonNumber(mode.frequency_hz);
+  entry["damping_ratio"] = JsonNumber(mode.damping_ratio);
+  entry["participation"] = JsonNumber(mode.participation);
   return entry;
 }
 
@@ -54,12 +50,12 @@ nlohmann::ordered_json ModesJson(const std::vector<model::AxisModes>& axes, int 
   for (const model::AxisModes& axis : axes) {
     const char* name = model::AxisName(axis.axis);
     for (const auto& mode : axis.analysis.modes) modes.push_back(ModeJson(mode, name));
-    by_axis[name] = Number(axis.analysis.static_deflection_per_accel_s2);
+    by_axis[name] = JsonNumber(axis.analysis.static_deflection_per_accel_s2);
     if (axis.axis == driven_axis) driven_static = axis.analysis.static_deflection_per_accel_s2;
   }
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   json["modes"] = modes;
-  json["static_deflection_per_accel_s2"] = Number(driven_static);
+  json["static_deflection_per_accel_s2"] = JsonNumber(driven_static);
   json["static_deflection_per_accel_s2_by_axis"] = by_axis;
   return json;
 }
@@ -100,11 +96,11 @@ void AddModesCouplingJson(const model::MultiAxisMachineConfig& machine, nlohmann
   const Eigen::Matrix3d compliance = model::ModalCompliance(*coupled, machine.driven_axis);
   nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
   for (int b = 0; b < model::kNumAxes; ++b) {
-    matrix.push_back({Number(compliance(b, 0)), Number(compliance(b, 1)), Number(compliance(b, 2))});
+    matrix.push_back({JsonNumber(compliance(b, 0)), JsonNumber(compliance(b, 1)), JsonNumber(compliance(b, 2))});
   }
   auto vector = [](const Eigen::Vector3d& v) {
     nlohmann::ordered_json entry = nlohmann::ordered_json::object();
-    for (int a = 0; a < model::kNumAxes; ++a) entry[model::AxisName(a)] = Number(v(a));
+    for (int a = 0; a < model::kNumAxes; ++a) entry[model::AxisName(a)] = JsonNumber(v(a));
     return entry;
   };
   nlohmann::ordered_json coupling = nlohmann::ordered_json::array();
@@ -112,8 +108,8 @@ void AddModesCouplingJson(const model::MultiAxisMachineConfig& machine, nlohmann
     const model::ModalMode& mode = coupled->modes[i];
     nlohmann::ordered_json entry = nlohmann::ordered_json::object();
     entry["mode"] = i + 1;
-    entry["frequency_hz"] = Number(mode.frequency_hz);
-    entry["damping_ratio"] = Number(mode.damping_ratio);
+    entry["frequency_hz"] = JsonNumber(mode.frequency_hz);
+    entry["damping_ratio"] = JsonNumber(mode.damping_ratio);
     entry["participation"] = vector(model::ModeParticipation(mode, machine.driven_axis));
     entry["shape"] = vector(model::ModeShape(mode, machine.driven_axis));
     coupling.push_back(entry);
@@ -144,7 +140,7 @@ nlohmann::ordered_json ModesJson(const model::ModalAnalysis& analysis) {
   for (const auto& mode : analysis.modes) modes.push_back(ModeJson(mode, nullptr));
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   json["modes"] = modes;
-  json["static_deflection_per_accel_s2"] = Number(analysis.static_deflection_per_accel_s2);
+  json["static_deflection_per_accel_s2"] = JsonNumber(analysis.static_deflection_per_accel_s2);
   return json;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bench/config/field_reader.h"
+#include "bench/scenario/pattern_defaults.h"
 #include "controller/program_builder.h"
 #include "controller/shaper_registry.h"
 
@@ -19,16 +20,13 @@ constexpr char kMachine[] = "machine";
 
 bool IsMachine(const NodeReader& node) { return node.IsScalar() && node.node().Scalar() == kMachine; }
 
-// Guard rail (docs/reliability.md): the convolved shaper has the product of the shapers'
-// impulse counts (4^10 for ten ZVDDs: minutes and gigabytes to realize).
-constexpr std::size_t kMaxFrequencies = 8;
 
 std::vector<double> ReadFrequencyList(const NodeReader& list, const char* noun, const char* example) {
   std::vector<double> values;
   for (const NodeReader& f : list.Elements()) values.push_back(f.AsNumber());
   if (values.empty()) throw list.Error(std::string("expected at least one ") + noun + ", e.g. " + example);
-  if (values.size() > kMaxFrequencies) {
-    throw list.Error("at most " + std::to_string(kMaxFrequencies) + " design frequencies (got " +
+  if (values.size() > kMaxDesignFrequencies) {
+    throw list.Error("at most " + std::to_string(kMaxDesignFrequencies) + " design frequencies (got " +
                      std::to_string(values.size()) +
                      "): each multiplies the number of impulses of the shaper");
   }

@@ -11,9 +11,6 @@
 namespace shapebench::bench {
 namespace {
 
-// The limit of frequencies_hz (bench/scenario/controller_reader.cc).
-constexpr std::size_t kMaxFrequencies = 8;
-
 // Modes of different axes closer than this (relative) are one design frequency.
 constexpr double kSameFrequency = 1e-9;
 
@@ -99,11 +96,11 @@ void ResolvePatternDefaults(const DesignModes& modes, controller::PatternConfig*
     return;
   }
   if (pattern->frequencies_from_machine) {
-    if (found.size() > kMaxFrequencies) {
+    if (found.size() > kMaxDesignFrequencies) {
       throw ValidationError("frequencies_hz",
                             "the machine has " + std::to_string(found.size()) +
                                 " participating modes along the moved axes (" + modes.axes +
-                                "), more than the " + std::to_string(kMaxFrequencies) +
+                                "), more than the " + std::to_string(kMaxDesignFrequencies) +
                                 " design frequencies allowed: list the ones to shape for");
     }
     pattern->frequencies_hz.clear();

@@ -3,6 +3,7 @@
 // taken from the machine's modes that take part in the moves the program makes.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,11 @@
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
+
+// Guard rail (docs/reliability.md): the convolved shaper has the product of the shapers'
+// impulse counts (4^10 for ten ZVDDs: minutes and gigabytes to realize), so a pattern is
+// designed for at most this many frequencies, given or taken from the machine.
+constexpr std::size_t kMaxDesignFrequencies = 8;
 
 // The modes a pattern left to the machine is designed for.
 struct DesignModes {

@@ -20,6 +20,7 @@
 #include "bench/config/config_document.h"
 #include "bench/run/run_scenario.h"
 #include "common/csv.h"
+#include "common/ends_with.h"
 #include "bench/config/key_path.h"
 #include "bench/run/located_run.h"
 #include "bench/config/node_reader.h"
@@ -148,10 +149,6 @@ std::string FileBytes(const std::string& path) {
   return text;
 }
 
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 }  // namespace
 

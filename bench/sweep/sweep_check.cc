@@ -17,13 +17,11 @@
 #include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep_runner.h"
 #include "common/sample_math.h"
+#include "common/exit_codes.h"
 
 namespace shapebench::bench {
 namespace {
 
-constexpr int kExitCheckFailed = 1;
-constexpr int kExitBadInput = 2;
-constexpr int kExitSolverFailed = 3;
 
 struct CheckTally {
   std::uint64_t passed = 0;

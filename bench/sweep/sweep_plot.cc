@@ -17,7 +17,6 @@
 namespace shapebench::bench {
 namespace {
 
-const auto& Quoted = GnuplotQuoted;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A line plot marks its points up to this many along x.
@@ -26,10 +25,6 @@ constexpr std::size_t kMaxMarkedPoints = 300;
 const char* const kColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 bool ParseNumber(const std::string& text, double* value) {
   if (text.empty()) return false;
@@ -85,7 +80,7 @@ std::string IndexTics(const AxisValues& values) {
   const std::size_t stride = std::max<std::size_t>(1, (n + 9) / 10);
   std::string tics = "(";
   for (std::size_t i = 0; i < n; i += stride) {
-    tics += (i == 0 ? "" : ", ") + Quoted(values.texts[i]) + " " + std::to_string(i);
+    tics += (i == 0 ? "" : ", ") + GnuplotQuoted(values.texts[i]) + " " + std::to_string(i);
   }
   return tics + ")";
 }
@@ -195,8 +190,8 @@ std::pair<double, double> PaddedRange(double value, bool log) {
 void Preamble(std::FILE* gnuplot, const std::string& output_path, const std::string& title) {
   std::fprintf(gnuplot, "set terminal pngcairo size 1000,640 noenhanced font 'sans,10'\n");
   std::fprintf(gnuplot, "set encoding utf8\n");
-  std::fprintf(gnuplot, "set output %s\n", Quoted(output_path).c_str());
-  std::fprintf(gnuplot, "set title %s\n", Quoted(title).c_str());
+  std::fprintf(gnuplot, "set output %s\n", GnuplotQuoted(output_path).c_str());
+  std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(title).c_str());
   std::fprintf(gnuplot, "set grid\n");
 }
 
@@ -265,7 +260,7 @@ std::vector<std::string> LineSeriesTerms(std::FILE* gnuplot, const SweepLayout& 
     std::snprintf(term, sizeof term, "$s%zu using 1:2 with %s lw 1.5 lc rgb '%s' title ", s,
                   nx > kMaxMarkedPoints ? "lines" : "linespoints pt 7 ps 0.4",
                   kColors[s % (sizeof kColors / sizeof kColors[0])]);
-    terms.push_back(term + Quoted(title));
+    terms.push_back(term + GnuplotQuoted(title));
   }
   return terms;
 }
@@ -278,8 +273,8 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
            Title(layout, plot.metric + " vs " + plot.x +
                              (plot.series.empty() ? "" : ", one line per " + plot.series),
                  slice));
-  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.x)).c_str());
-  std::fprintf(gnuplot, "set ylabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
+  std::fprintf(gnuplot, "set xlabel %s\n", GnuplotQuoted(KeyLabel(plot.x)).c_str());
+  std::fprintf(gnuplot, "set ylabel %s\n", GnuplotQuoted(MetricLabel(plot.metric)).c_str());
   // The legend in rows under the plot, short samples: the plot keeps the page's width.
   const std::size_t entries = slice.y.texts.size() + (std::isfinite(level) ? 1 : 0);
   std::fprintf(gnuplot,
@@ -294,7 +289,7 @@ void LinePlotScript(std::FILE* gnuplot, const std::string& output_path, const Sw
   if (std::isfinite(level)) {
     char term[128];
     std::snprintf(term, sizeof term, "%.17g with lines dt 2 lw 1.5 lc rgb '#444444' title ", level);
-    terms.push_back(term + Quoted(level > 1.0 ? "5% above static" : "5% level"));
+    terms.push_back(term + GnuplotQuoted(level > 1.0 ? "5% above static" : "5% level"));
   }
   if (terms.empty()) terms.push_back("NaN notitle");
   std::fprintf(gnuplot, "plot ");
@@ -313,7 +308,7 @@ void CdfPlotScript(std::FILE* gnuplot, const std::string& output_path, const Swe
            Title(layout, "empirical CDF of " + plot.metric + " over " + std::to_string(nx) + " samples" +
                              (plot.series.empty() ? "" : ", one line per " + plot.series),
                  slice));
-  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
+  std::fprintf(gnuplot, "set xlabel %s\n", GnuplotQuoted(MetricLabel(plot.metric)).c_str());
   std::fprintf(gnuplot, "set ylabel 'fraction of samples at or below'\nset yrange [0:1.02]\n");
   std::fprintf(gnuplot, "set key bottom right box\n");
   std::vector<std::string> terms;
@@ -335,14 +330,14 @@ void CdfPlotScript(std::FILE* gnuplot, const std::string& output_path, const Swe
     char term[256];
     std::snprintf(term, sizeof term, "$s%zu using 1:2 with steps lw 1.5 lc rgb '%s' title ", s,
                   kColors[s % (sizeof kColors / sizeof kColors[0])]);
-    terms.push_back(term + Quoted(title));
+    terms.push_back(term + GnuplotQuoted(title));
   }
   for (const double limit : plot.limits) {
     std::fprintf(gnuplot, "set arrow from %.17g, graph 0 to %.17g, graph 1 nohead dt 2 lw 1.5 lc rgb '#444444'\n",
                  limit * MetricScale(plot.metric), limit * MetricScale(plot.metric));
     char term[128];
     std::snprintf(term, sizeof term, "NaN with lines dt 2 lw 1.5 lc rgb '#444444' title ");
-    terms.push_back(term + Quoted("limit " + ShortestDouble(limit)));
+    terms.push_back(term + GnuplotQuoted("limit " + ShortestDouble(limit)));
   }
   if (terms.empty()) terms.push_back("NaN notitle");
   std::fprintf(gnuplot, "plot ");
@@ -358,9 +353,9 @@ void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const Swe
   const bool log = ApplyLog(plot, &slice);
   Preamble(gnuplot, output_path,
            Title(layout, plot.metric + " over " + plot.heatmap_x + " and " + plot.heatmap_y, slice));
-  std::fprintf(gnuplot, "set xlabel %s\n", Quoted(KeyLabel(plot.heatmap_x)).c_str());
-  std::fprintf(gnuplot, "set ylabel %s\n", Quoted(KeyLabel(plot.heatmap_y)).c_str());
-  std::fprintf(gnuplot, "set cblabel %s\n", Quoted(MetricLabel(plot.metric)).c_str());
+  std::fprintf(gnuplot, "set xlabel %s\n", GnuplotQuoted(KeyLabel(plot.heatmap_x)).c_str());
+  std::fprintf(gnuplot, "set ylabel %s\n", GnuplotQuoted(KeyLabel(plot.heatmap_y)).c_str());
+  std::fprintf(gnuplot, "set cblabel %s\n", GnuplotQuoted(MetricLabel(plot.metric)).c_str());
   std::fprintf(gnuplot,
                "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21908d', "
                "0.75 '#5dc963', 1 '#fde725')\n");
@@ -413,7 +408,7 @@ void HeatMapScript(std::FILE* gnuplot, const std::string& output_path, const Swe
   std::fprintf(gnuplot, "plot $heat using 1:2:3 with image notitle");
   if (contour) {
     std::fprintf(gnuplot, ", \\\n     $contour using 1:2 with lines lw 2 lc rgb '#e31a1c' title %s",
-                 Quoted(level > 1.0 ? "5% above static" : "5% level").c_str());
+                 GnuplotQuoted(level > 1.0 ? "5% above static" : "5% level").c_str());
   }
   std::fprintf(gnuplot, "\nunset output\nquit\n");
 }

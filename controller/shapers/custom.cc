@@ -11,7 +11,6 @@
 namespace shapebench::controller {
 namespace {
 
-bool Finite(double v) { return std::isfinite(v); }
 
 void ValidateCustom(const PatternConfig& config) {
   if (config.impulses.empty()) {
@@ -22,10 +21,10 @@ void ValidateCustom(const PatternConfig& config) {
   for (std::size_t i = 0; i < config.impulses.size(); ++i) {
     const Impulse& impulse = config.impulses[i];
     const std::string at = "impulses[" + std::to_string(i) + "]";
-    if (!Finite(impulse.amplitude)) {
+    if (!std::isfinite(impulse.amplitude)) {
       throw ValidationError(at + ".amplitude", "must be a finite number (got " + FormatNumber(impulse.amplitude) + ")");
     }
-    if (!(Finite(impulse.time_s) && impulse.time_s >= 0.0)) {
+    if (!(std::isfinite(impulse.time_s) && impulse.time_s >= 0.0)) {
       throw ValidationError(at + ".time_s", "must be >= 0 s (got " + FormatNumber(impulse.time_s) + ")");
     }
     if (i > 0 && !(impulse.time_s > config.impulses[i - 1].time_s)) {
