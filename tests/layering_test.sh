@@ -25,15 +25,16 @@ allowed() {  # the include prefixes a file in room $1 may use
 bad=0
 checked=0
 for room in common model controller controller/shapers bench/config bench/measured bench/scenario bench/run bench/output bench/sensitivity bench/sweep bench/compare bench/cli; do
+  prefixes=$(allowed "$room")
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
     while IFS= read -r inc; do
       ok=0
-      for prefix in $(allowed "$room"); do
+      for prefix in $prefixes; do
         case $inc in "$prefix"*) ok=1 ;; esac
       done
       if [ $ok -eq 0 ]; then
-        echo "$file includes \"$inc\": room $room may include only: $(allowed "$room")"
+        echo "$file includes \"$inc\": room $room may include only: $prefixes"
         bad=1
       fi
     done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$file")
