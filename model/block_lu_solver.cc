@@ -12,6 +12,39 @@
 
 namespace shapebench::model {
 
+// (A named namespace, not the anonymous one: Factors below holds it.)
+namespace block_lu_detail {
+
+// Factor's result without its zeros, in Substitute's order: the nonzero multipliers of L
+// column by column, the nonzero entries of U above its diagonal row by row. The Newton
+// matrix of a lumped machine stays sparse through its LU (a position row is I and -gamma I;
+// a body's velocity row reaches its neighbours only), and CVODE solves several times per
+// factorisation.
+struct Compact {
+  std::vector<int> l_start;  // per column k: its multipliers l_index/l_value[l_start[k]..l_start[k+1])
+  std::vector<int> l_index;
+  std::vector<double> l_value;
+  std::vector<int> u_start;  // per row k, the same for U
+  std::vector<int> u_index;
+  std::vector<double> u_value;
+  std::vector<double> inverse_diagonal;
+  std::vector<int> pivot;
+
+  explicit Compact(int n)
+      : l_start(static_cast<std::size_t>(n + 1)),
+        l_index(static_cast<std::size_t>(n * n)),
+        l_value(static_cast<std::size_t>(n * n)),
+        u_start(static_cast<std::size_t>(n + 1)),
+        u_index(static_cast<std::size_t>(n * n)),
+        u_value(static_cast<std::size_t>(n * n)),
+        inverse_diagonal(static_cast<std::size_t>(n)),
+        pivot(static_cast<std::size_t>(n)) {}
+};
+
+}  // namespace block_lu_detail
+
+using block_lu_detail::Compact;
+
 namespace {
 
 // LU with partial pivoting of the n x n row-major `a` in place (L unit lower, U upper
@@ -40,31 +73,6 @@ bool Factor(double* a, int* pivot, int n) {
   return true;
 }
 
-// Factor's result without its zeros, in Substitute's order: the nonzero multipliers of L
-// column by column, the nonzero entries of U above its diagonal row by row. The Newton
-// matrix of a lumped machine stays sparse through its LU (a position row is I and -gamma I;
-// a body's velocity row reaches its neighbours only), and CVODE solves several times per
-// factorisation.
-struct Compact {
-  std::vector<int> l_start;  // per column k: its multipliers l_index/l_value[l_start[k]..l_start[k+1])
-  std::vector<int> l_index;
-  std::vector<double> l_value;
-  std::vector<int> u_start;  // per row k, the same for U
-  std::vector<int> u_index;
-  std::vector<double> u_value;
-  std::vector<double> inverse_diagonal;
-  std::vector<int> pivot;
-
-  explicit Compact(int n)
-      : l_start(static_cast<std::size_t>(n + 1)),
-        l_index(static_cast<std::size_t>(n * n)),
-        l_value(static_cast<std::size_t>(n * n)),
-        u_start(static_cast<std::size_t>(n + 1)),
-        u_index(static_cast<std::size_t>(n * n)),
-        u_value(static_cast<std::size_t>(n * n)),
-        inverse_diagonal(static_cast<std::size_t>(n)),
-        pivot(static_cast<std::size_t>(n)) {}
-};
 
 void Compress(const double* a, int n, Compact& c) {
   int l = 0;

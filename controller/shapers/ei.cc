@@ -118,7 +118,12 @@ std::vector<Impulse> Ei(double frequency_hz, double z, double v) {
 
 ShaperEntry Entry(const std::string& key, const std::string& name, const std::string& description,
                   int rank, Undamped undamped) {
-  ShaperEntry entry{key, name, description, ShaperKind::kImpulse, rank};
+  ShaperEntry entry;
+  entry.key = key;
+  entry.name = name;
+  entry.description = description;
+  entry.kind = ShaperKind::kImpulse;
+  entry.rank = rank;
   entry.design = [undamped, key](const PatternConfig& config, double frequency_hz) {
     const double z = config.design_damping_ratio;
     return Impulses(Design(undamped, key, z, config.vibration_tolerance), frequency_hz);

@@ -25,7 +25,12 @@ DampedMode Damped(double frequency_hz, double z) {
 
 ShaperEntry Entry(const std::string& key, const std::string& name, const std::string& description,
                   int rank, std::vector<Impulse> (*design)(const DampedMode& mode)) {
-  ShaperEntry entry{key, name, description, ShaperKind::kImpulse, rank};
+  ShaperEntry entry;
+  entry.key = key;
+  entry.name = name;
+  entry.description = description;
+  entry.kind = ShaperKind::kImpulse;
+  entry.rank = rank;
   entry.design = [design](const PatternConfig& config, double frequency_hz) {
     return design(Damped(frequency_hz, config.design_damping_ratio));
   };
