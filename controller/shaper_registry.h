@@ -20,6 +20,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "controller/grid_realization.h"
@@ -61,6 +62,18 @@ struct ShaperEntry {
   // Optional: what the `pattern` report prints after the key, in parentheses (""
   // prints the key alone); unset: the description.
   std::function<std::string(const PatternConfig& config)> summary;
+
+  // An entry with its names, kind and rank; the caller sets its design (or steps).
+  static ShaperEntry Named(std::string key, std::string name, std::string description, ShaperKind kind,
+                           int rank) {
+    ShaperEntry entry;
+    entry.key = std::move(key);
+    entry.name = std::move(name);
+    entry.description = std::move(description);
+    entry.kind = kind;
+    entry.rank = rank;
+    return entry;
+  }
 };
 
 // Adds a shaper (e.g. a test's) to the registry; throws std::invalid_argument when the

@@ -28,7 +28,7 @@
 #include "bench/measured/uff58_reader.h"
 #include "bench/measured/accel_log.h"
 #include "bench/measured/accel_spectrum.h"
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"
@@ -537,7 +537,7 @@ inline void AccelLogTarget(const std::string& bytes) {
     }
   }
   double shares = 0.0;
-  for (const bench::LogMode& mode : bench::IdentifyModes(spectrum.frequency_hz, spectrum.psd)) {
+  for (const bench::LogMode& mode : bench::PickPsdPeaks(spectrum.frequency_hz, spectrum.psd)) {
     if (!(mode.frequency_hz >= bench::kFitMinHz - 2.0 && mode.frequency_hz <= bench::kFitMaxHz + 2.0) ||
         !(mode.damping_ratio > 0.0 && mode.damping_ratio < 1.0)) {
       throw Violation{"a mode outside the band or with a damping ratio outside (0, 1)"};

@@ -9,7 +9,7 @@
 #include "bench/cli/commands.h"
 #include "bench/measured/accel_log.h"
 #include "bench/measured/accel_spectrum.h"
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/output/output_path.h"
 #include "bench/output/recommend_report.h"
@@ -52,7 +52,7 @@ RecommendReport ComputeRecommendation(const RecommendArgs& args) {
   report.spectrum = ComputeAccelSpectrum(log, axis);
   report.recommendation = RecommendShapers(report.spectrum.frequency_hz, report.spectrum.psd, report.options);
   if (!args.validate.empty()) {
-    report.modes = IdentifyModes(report.spectrum.frequency_hz, report.spectrum.psd);
+    report.modes = PickPsdPeaks(report.spectrum.frequency_hz, report.spectrum.psd);
     report.validation = RunValidation(args.validate, report.modes, report.recommended().pattern);
   }
   return report;

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/measured/accel_spectrum.h"
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/run/recommend_validation.h"
 

@@ -1,12 +1,12 @@
 // `recommend --validate SCENARIO`: the modes an accelerometer log shows
-// (bench/measured/log_modes.h), put in place of a scenario's machine, run with the
+// (bench/measured/psd_peaks.h), put in place of a scenario's machine, run with the
 // recommended pattern and without.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/metrics.h"
 #include "controller/pattern_config.h"

@@ -118,12 +118,7 @@ std::vector<Impulse> Ei(double frequency_hz, double z, double v) {
 
 ShaperEntry Entry(const std::string& key, const std::string& name, const std::string& description,
                   int rank, Undamped undamped) {
-  ShaperEntry entry;
-  entry.key = key;
-  entry.name = name;
-  entry.description = description;
-  entry.kind = ShaperKind::kImpulse;
-  entry.rank = rank;
+  ShaperEntry entry = ShaperEntry::Named(key, name, description, ShaperKind::kImpulse, rank);
   entry.design = [undamped, key](const PatternConfig& config, double frequency_hz) {
     const double z = config.design_damping_ratio;
     return Impulses(Design(undamped, key, z, config.vibration_tolerance), frequency_hz);

@@ -15,12 +15,9 @@ using Steps = std::function<StepPattern(const PatternConfig& config, double peri
 
 ShaperEntry PatentMethod(int number, const std::string& paragraphs, const std::string& description,
                          Steps steps) {
-  ShaperEntry entry;
-  entry.key = std::to_string(number);
-  entry.name = "Method " + entry.key + " (JP2551868B2 " + paragraphs + ")";
-  entry.description = description;
-  entry.kind = ShaperKind::kPatentStep;
-  entry.rank = 10 * number;
+  const std::string key = std::to_string(number);
+  ShaperEntry entry = ShaperEntry::Named(key, "Method " + key + " (JP2551868B2 " + paragraphs + ")", description,
+                                         ShaperKind::kPatentStep, 10 * number);
   // One mode's impulses: the jerks of the steps as set (para. 61), rounded like the
   // stepped realization's.
   entry.design = [steps](const PatternConfig& config, double frequency_hz) {

@@ -25,12 +25,7 @@ DampedMode Damped(double frequency_hz, double z) {
 
 ShaperEntry Entry(const std::string& key, const std::string& name, const std::string& description,
                   int rank, std::vector<Impulse> (*design)(const DampedMode& mode)) {
-  ShaperEntry entry;
-  entry.key = key;
-  entry.name = name;
-  entry.description = description;
-  entry.kind = ShaperKind::kImpulse;
-  entry.rank = rank;
+  ShaperEntry entry = ShaperEntry::Named(key, name, description, ShaperKind::kImpulse, rank);
   entry.design = [design](const PatternConfig& config, double frequency_hz) {
     return design(Damped(frequency_hz, config.design_damping_ratio));
   };

@@ -9,7 +9,7 @@
 
 #include "bench/measured/accel_log.h"
 #include "bench/measured/accel_spectrum.h"
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "controller/shaper_registry.h"
 #include "controller/vibration_suppression_pattern.h"
@@ -248,7 +248,7 @@ TEST(Recommend, SmoothingIsTheCircleContourError) {
 // of 80/20; and that the machine built from them keeps the static deflection.
 TEST(Recommend, ModesOfTheLogAreIdentified) {
   const Fitted& fitted = TwoModes();
-  const std::vector<LogMode> modes = IdentifyModes(fitted.spectrum.frequency_hz, fitted.spectrum.psd);
+  const std::vector<LogMode> modes = PickPsdPeaks(fitted.spectrum.frequency_hz, fitted.spectrum.psd);
   ASSERT_EQ(modes.size(), 2u);
   const SyntheticLogSpec spec = TwoModeSpec();
   for (std::size_t m = 0; m < 2; ++m) {

@@ -1,5 +1,5 @@
 // The log's modes (see the header).
-#include "bench/measured/log_modes.h"
+#include "bench/measured/psd_peaks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +39,7 @@ double LogParabolaOffset(const std::vector<double>& p, std::size_t i) {
 
 }  // namespace
 
-std::vector<LogMode> IdentifyModes(const std::vector<double>& f, const std::vector<double>& p) {
+std::vector<LogMode> PickPsdPeaks(const std::vector<double>& f, const std::vector<double>& p) {
   const double threshold = *std::max_element(p.begin(), p.end()) / 20.0;
   std::vector<LogMode> modes;
   for (std::size_t i = 0; i < p.size(); ++i) {

@@ -1,5 +1,7 @@
-// The modes an accelerometer log shows (`recommend --validate` puts them in place of a
-// scenario's machine: bench/run/recommend_validation.h).
+// PSD peak picking: the peaks of an accelerometer log's PSD taken as its modes
+// (`recommend --validate` puts them in place of a scenario's machine:
+// bench/run/recommend_validation.h). Not a modal identification (model/modal_identification.h
+// fits FRFs); a peak's frequency and half-power width only.
 //
 // Modes: every local maximum of the PSD in the fit band (5-200 Hz) at or above P_max / 20
 // (the fit's threshold) that stands apart: walking away from it on each side, the PSD
@@ -36,7 +38,7 @@ struct LogMode {
 };
 
 // The log's modes (above), ascending frequency; gains not yet known (share set).
-std::vector<LogMode> IdentifyModes(const std::vector<double>& frequency_hz, const std::vector<double>& psd);
+std::vector<LogMode> PickPsdPeaks(const std::vector<double>& frequency_hz, const std::vector<double>& psd);
 
 // The modal machine of `modes` whose static deflection per acceleration is
 // `static_deflection_per_accel_s2` (m per m/s^2), shared as `share` says.
