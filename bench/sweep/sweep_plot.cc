@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/csv.h"
+#include "common/ends_with.h"
 #include "common/fd_stream.h"
 #include "bench/output/gnuplot.h"
 #include "bench/output/report.h"
