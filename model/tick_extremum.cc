@@ -10,7 +10,14 @@
 namespace shapebench::model {
 namespace {
 
-constexpr int kMaxDepth = 30;          // halvings of a grid interval (multi-pole search)
+// The multi-pole search (model/tick_extremum.h): an interval not cleared is halved no
+// further once the extremum it can hide is at most kHiddenTolerance of the output's scale,
+// or at kMaxDepth halvings of a grid step. kRoundingSlack widens the Taylor bounds by the
+// rounding of y', y'' and y''' (sums of n terms, each within a few ulps of its magnitude:
+// 1e-13 of the sum of magnitudes leaves room for ~1000 ulps).
+constexpr int kMaxDepth = 15;
+constexpr double kHiddenTolerance = 3e-10;
+constexpr double kRoundingSlack = 1e-13;
 constexpr double kTimeTolerance = 1e-15;  // of the period
 
 using Complex = std::complex<double>;
@@ -86,12 +93,14 @@ void TickExtremum::SetUpPeriod(const double* z0, const double* u) {
 }
 
 double TickExtremum::OutputAt(double t) const {
+  ++work_;
   double y = y_eq_;
   for (int k = 0; k < n_; ++k) y += (q_(k) * std::exp(lambda_(k) * t)).real();
   return y;
 }
 
 void TickExtremum::RateAndCurvature(double t, double* rate, double* curvature) const {
+  ++work_;
   double r = 0.0;
   double d = 0.0;
   for (int k = 0; k < n_; ++k) {
@@ -113,6 +122,7 @@ double TickExtremum::Rate(double t) const {
 // sum |q_i| |lambda_i|^power e^{sigma_i t} at its largest on [lo, hi]: a bound of
 // |y^(power)| there.
 double TickExtremum::DerivativeBound(double lo, double hi, int power) const {
+  ++work_;
   double bound = 0.0;
   for (int k = 0; k < n_; ++k) {
     const double sigma = lambda_(k).real();
@@ -144,15 +154,27 @@ double TickExtremum::Refine(double lo, double hi, double rate_lo) const {
 
 void TickExtremum::Search(double lo, double hi, double rate_lo, double rate_hi, int depth, double* best) const {
   const bool change = (rate_lo < 0.0) != (rate_hi < 0.0) && rate_lo != 0.0 && rate_hi != 0.0;
-  if (!single_pole_ && depth < kMaxDepth) {
+  if (!single_pole_) {
     // Several poles: a sign change with y'' of one sign holds exactly one root; no sign
-    // change and |y'| kept off 0 by the bound of y'' holds none. Else halve.
+    // change and |y'| kept off 0 by the bound of y'' holds none. Else halve, or stop.
     double r = 0.0;
     double d = 0.0;
     RateAndCurvature(lo, &r, &d);
     const bool settled = change ? std::abs(d) > DerivativeBound(lo, hi, 3) * (hi - lo)
                                 : std::abs(rate_lo) + std::abs(rate_hi) > DerivativeBound(lo, hi, 2) * (hi - lo);
     if (!settled) {
+      const TaylorBounds taylor = Taylor(lo, hi);
+      const double w = hi - lo;
+      // No sign change and y' kept off 0 by its Taylor polynomial from lo: no root (what
+      // the halving would have found too, sooner where the modes cancel).
+      if (!change && std::abs(rate_lo) - kRoundingSlack * taylor.rate_bound >
+                         taylor.curvature * w + 0.5 * taylor.jerk_bound * w * w) {
+        return;
+      }
+      if (depth >= kMaxDepth || taylor.curvature_bound * w * w / 8.0 <= kHiddenTolerance * scale_) {
+        CountEnds(lo, hi, best);
+        return;
+      }
       const double mid = 0.5 * (lo + hi);
       const double rate_mid = Rate(mid);
       if (rate_mid == 0.0) *best = std::max(*best, std::abs(OutputAt(mid)));
@@ -164,9 +186,54 @@ void TickExtremum::Search(double lo, double hi, double rate_lo, double rate_hi, 
   if (change) *best = std::max(*best, std::abs(OutputAt(Refine(lo, hi, rate_lo))));
 }
 
+// One pass over the poles: M1..M4 on [lo, hi] (sum |q_i| |lambda_i|^k e^{sigma_i t} at its
+// largest), y'' and y''' at lo, and from them bounds of |y''| and |y'''| on [lo, hi], the
+// smaller of M_k and the Taylor bound from lo, which sees the modes' cancellation (each
+// value at lo widened by its rounding, kRoundingSlack of its M).
+TickExtremum::TaylorBounds TickExtremum::Taylor(double lo, double hi) const {
+  ++work_;
+  double m[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  double curvature = 0.0;
+  double jerk = 0.0;
+  for (int k = 0; k < n_; ++k) {
+    const double sigma = lambda_(k).real();
+    const double magnitude = std::abs(lambda_(k));
+    double term = std::abs(q_(k)) * std::exp(std::max(sigma * lo, sigma * hi));
+    for (int power = 1; power <= 4; ++power) {
+      term *= magnitude;
+      m[power] += term;
+    }
+    const Complex second = q_(k) * lambda_(k) * lambda_(k) * std::exp(lambda_(k) * lo);
+    curvature += second.real();
+    jerk += (second * lambda_(k)).real();
+  }
+  const double w = hi - lo;
+  TaylorBounds out;
+  out.rate_bound = m[1];
+  out.curvature = std::abs(curvature) + kRoundingSlack * m[2];
+  out.jerk_bound = std::min(m[3], std::abs(jerk) + kRoundingSlack * m[3] + m[4] * w);
+  out.curvature_bound = std::min(m[2], out.curvature + out.jerk_bound * w);
+  return out;
+}
+
+// The ends of an interval the search stopped halving: values y takes inside the period
+// (the period's own ends are the caller's samples).
+void TickExtremum::CountEnds(double lo, double hi, double* best) const {
+  ++stopped_;
+  if (lo > 0.0) *best = std::max(*best, std::abs(OutputAt(lo)));
+  if (hi < h_) *best = std::max(*best, std::abs(OutputAt(hi)));
+}
+
 double TickExtremum::Inside(const double* z0, const double* u, double d0, double d1) {
+  work_ = 0;
+  stopped_ = 0;
   if (n_ == 0) return 0.0;
   SetUpPeriod(z0, u);
+  if (!single_pole_) {
+    double scale = std::abs(y_eq_);
+    for (int k = 0; k < n_; ++k) scale += std::abs(q_(k)) * std::exp(std::max(0.0, lambda_(k).real() * h_));
+    scale_ = scale;
+  }
   if (single_pole_ && grid_ == 1) {
     // Closed form: y' = |q lambda| e^{sigma t} cos(w_d t + arg(q lambda)) vanishes where
     // w_d t + arg(q lambda) = pi / 2 (mod pi), once in the period (the sign change).

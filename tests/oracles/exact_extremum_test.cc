@@ -179,5 +179,28 @@ TEST(ExactExtremum, TwoModesWithinTheBound) {
   EXPECT_NEAR(run.metrics.peak_ratio, OraclePeakRatio(run, modes), 1e-9);
 }
 
+// Tests that modes of opposite gains that nearly cancel (25 and 25.01 Hz, 25 and 30 Hz,
+// +-0.1: 34.6 s and 13.6 s a run before, the in-tick search halving towards 2^30 intervals
+// a period) run on the exact path and keep the oracle's peak_ratio within the search's
+// stated bound: 3e-10 of the output's scale S (model/tick_extremum.h). S is at most a few
+// of the modes' statics sum |gain_i| a / w_i^2, here up to 2500 times the cancelled static
+// the ratio divides by: 1e-9 of that ratio of statics leaves ~3x room, and covers the
+// oracle's rounding (~1e-13 of a mode's static over the run).
+TEST(ExactExtremum, CancellingModesWithinTheStatedBound) {
+  for (const std::vector<OracleMode>& modes :
+       {std::vector<OracleMode>{{25.0, 0.0, 0.1}, {25.01, 0.0, -0.1}},
+        std::vector<OracleMode>{{25.0, 0.0, 0.1}, {30.0, 0.0, -0.1}}}) {
+    double statics = 0.0;
+    double cancelled = 0.0;
+    for (const OracleMode& m : modes) {
+      statics += std::abs(m.gain) / std::pow(2.0 * kPi * m.frequency_hz, 2);
+      cancelled += m.gain / std::pow(2.0 * kPi * m.frequency_hz, 2);
+    }
+    const RunResult run = RunCase1(modes);
+    EXPECT_NEAR(run.metrics.peak_ratio, OraclePeakRatio(run, modes), 1e-9 * statics / std::abs(cancelled))
+        << modes[1].frequency_hz << " Hz";
+  }
+}
+
 }  // namespace
 }  // namespace shapebench::bench
