@@ -11,6 +11,7 @@
 #include "bench/run/finish_metrics.h"
 #include "common/math_constants.h"
 #include "model/band_crossing.h"
+#include "model/free_response.h"
 #include "model/machine.h"
 
 namespace shapebench::bench {
@@ -41,6 +42,7 @@ class SingleModeKernel {
     sigma_ = mode.damping_ratio * w;
     wd_ = w * std::sqrt(1.0 - mode.damping_ratio * mode.damping_ratio);
     gain_ = mode.gain;
+    cap_ = model::ResidualCap(mode.damping_ratio);
     start_ = line.start_m(axis);
     direction_ = line.direction(axis);
     length_ = line.length_m;
@@ -58,8 +60,11 @@ class SingleModeKernel {
     }
   }
 
-  double ModalAmplitude() const {  // of the free vibration about q = 0 (a = 0)
-    return std::abs(gain_) * std::hypot(q_, (v_ + sigma_ * q_) / wd_);
+  // Of the free vibration about q = 0 (a = 0): the envelope, capped at ResidualCap(zeta)
+  // times the free response's largest |value| (model/free_response.h, CappedResidual).
+  double ModalAmplitude() const {
+    const double envelope = std::abs(gain_) * std::hypot(q_, (v_ + sigma_ * q_) / wd_);
+    return model::CappedResidual(envelope, std::abs(gain_) * model::PairPeak(q_, v_, sigma_, wd_), cap_);
   }
   double StaticGain() const { return -gain_ / w2_; }  // deflection per m/s^2
   // |deflection| never exceeds this from rest under accelerations of the given sum of
@@ -193,7 +198,7 @@ class SingleModeKernel {
     return std::abs(gain_ * (x + q_eq));
   }
 
-  double w2_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0;
+  double w2_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0, cap_ = 1.0;
   Transition period_;
   double g_q_ = 0.0, g_v_ = 0.0;  // the period's response to a held a = 1 from rest
   Transition twice_;               // over two periods

@@ -94,13 +94,16 @@ Metrics FinishMetrics(const RunPlan& plan, const MetricTally& t) {
                             ? 0.0
                             : plan.SampleTime(t.last_outside_band) + dt / plan.substeps - m.motion_time_s;
   }
+  // A model whose static deflections cancel in the view (opposite gains) has no static
+  // reference: its ratios are n/a (NaN), the absolute metrics stand.
+  const auto ratio = [&t](double x) { return t.static_m > 0.0 ? x / t.static_m : NAN; };
   m.peak_deflection_m = t.peak;
-  m.peak_ratio = t.peak / t.static_m;
+  m.peak_ratio = ratio(t.peak);
   m.residual_amplitude_m = t.residual_m;
-  m.residual_ratio = t.residual_m / t.static_m;
+  m.residual_ratio = ratio(t.residual_m);
   m.residual_peak_m = t.residual;
-  m.residual_peak_ratio = t.residual / t.static_m;
-  m.cruise_residual_ratio = t.cruise_m / t.static_m;
+  m.residual_peak_ratio = ratio(t.residual);
+  m.cruise_residual_ratio = ratio(t.cruise_m);
   m.max_contour_error_m = std::sqrt(t.contour_sq);
   m.radial_error_m = t.radial_error_m;
   if (t.nonlinear) FinishNonlinearMetrics(t, &m);

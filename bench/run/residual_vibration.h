@@ -24,7 +24,8 @@ class ResidualVibration {
   // Per pole of the plant the view can see (ascending frequency; a pole of another axis,
   // whose modes never reach the view's rows, is left out): the amplitude (m) in the view of
   // the free vibration from state x about the equilibrium under drive velocity v (per
-  // axis, m/s).
+  // axis, m/s). Where V^{-1} does not split the state (a pair near critical damping:
+  // ModalDecomposition::WellSplit), through the real basis (AmplitudesOfState).
   std::vector<model::PoleAmplitude> Amplitudes(const Eigen::VectorXd& x, const Eigen::Vector3d& v) const;
 
   // Their sum: a bound of the view's free vibration for all later t (the amplitude the
@@ -34,6 +35,8 @@ class ResidualVibration {
  private:
   std::shared_ptr<const model::ModalDecomposition> modes_;
   Eigen::MatrixXcd cv_;                 // the view's deflection rows of C, times V
+  Eigen::MatrixXd c_;                   // the view's deflection rows of C
+  Eigen::MatrixXd x_per_velocity_;      // the equilibrium state per drive velocity, -A^{-1} B_vel
   Eigen::MatrixXcd z_per_velocity_;     // modal coordinates of the equilibrium per drive velocity
   bool loads_velocity_ = false;         // B_vel is not 0
   std::vector<char> visible_;           // per pole: some member's column of cv_ is not 0

@@ -68,6 +68,28 @@ CheckResult EvaluateCheck(const Check& check, double value, double worst_at, int
   return result;
 }
 
+std::string ZeroStaticReason(std::string_view metric) {
+  struct Relative {
+    std::string_view metric;
+    std::string_view instead;  // the absolute metric to bound instead
+  };
+  static constexpr Relative kRelative[] = {{"peak_ratio", "peak_deflection_m"},
+                                           {"residual_ratio", "residual_amplitude_m"},
+                                           {"residual_peak_ratio", "residual_peak_m"},
+                                           {"cruise_residual_ratio", ""},
+                                           {"settling_time_s", ""}};
+  for (const Relative& r : kRelative) {
+    if (r.metric != metric) continue;
+    std::string reason =
+        "the static displacement is 0 (the model's static deflections cancel in the output view), so " +
+        std::string(metric == "settling_time_s" ? "the settling band (5% of it) is 0"
+                                                : "no ratio to it is defined");
+    if (!r.instead.empty()) reason += "; bound " + std::string(r.instead) + " instead";
+    return reason;
+  }
+  return "";
+}
+
 std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks,
                                         const Metrics& metrics) {
   std::vector<CheckResult> results;
@@ -75,6 +97,8 @@ std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks,
     double value = NAN;
     if (const MetricInfo* info = FindMetric(check.metric)) value = metrics.*info->field;
     results.push_back(EvaluateCheck(check, value));
+    const std::string reason = metrics.static_displacement_m == 0.0 ? ZeroStaticReason(check.metric) : "";
+    if (std::isnan(value) && !reason.empty()) results.back().message = check.metric + " is n/a because " + reason;
   }
   return results;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -53,8 +54,14 @@ double Violation(const Check& check, double value);
 // for a band check's result; "" for another.
 std::string BandText(const CheckResult& result);
 
+// Why `metric` is n/a when the static displacement is 0 (a model whose static deflections
+// cancel in the output view): "the static displacement is 0 (...)" for the ratios to it and
+// the settling time (its band is 5% of it); "" for any other metric.
+std::string ZeroStaticReason(std::string_view metric);
+
 // One result per check, in the scenario's order. A NaN value fails with
-// "metric not defined for this run"; bounds are inclusive. A band check is evaluated on
+// "metric not defined for this run", or with "n/a because " ZeroStaticReason when that
+// applies (static_displacement_m is 0); bounds are inclusive. A band check is evaluated on
 // `metrics` too (its nominal point): EvaluateBandCheck (bench/sweep/band_check.h) gives
 // its worst over the band.
 std::vector<CheckResult> EvaluateChecks(const std::vector<Check>& checks, const Metrics& metrics);

@@ -13,7 +13,8 @@ using M = Metrics;
 constexpr MetricInfo kMetricRows[] = {
       {"static_displacement_m", "m", Better::kLower,
        "the deflection under the run's largest commanded acceleration held constant (a static "
-       "solve of the model): the reference of every ratio",
+       "solve of the model): the reference of every ratio (the ratios are n/a when it is 0: a "
+       "model whose static deflections cancel in the output view)",
        &M::static_displacement_m},
       {"peak_deflection_m", "m", Better::kLower,
        "the largest absolute deflection over the run (motion and tail)", &M::peak_deflection_m},
@@ -23,9 +24,12 @@ constexpr MetricInfo kMetricRows[] = {
       {"residual_amplitude_m", "m", Better::kLower,
        "the amplitude of the free vibration the structure holds when commanded motion ends, from "
        "its state then (input 0 after): with A = V diag(lambda) V^-1 and x = V z, per pole of "
-       "the plant the modulus of 2 C v z (a pair) or of C v z (a real pole) in the output view, "
-       "summed (one modal mode: abs(gain) sqrt(q^2 + ((q' + zeta w q) / w_d)^2)); a bound of "
-       "every later deflection. A plant with nonlinear elements has no modes: half the "
+       "the plant the modulus of 2 C v z (a pair: its envelope) or of C v z (a real pole) in the "
+       "output view, summed (one modal mode: abs(gain) sqrt(q^2 + ((q' + zeta w q) / w_d)^2)); a "
+       "pair's envelope is capped at K times the largest absolute value of its free response, K = "
+       "exp(pi z / sqrt(1 - z^2)), z = min(zeta, 1 - zeta) (the cap never acts for zeta <= 0.5; as "
+       "zeta -> 1, where the envelope grows as 1 / w_d, the amplitude tends to that largest value); "
+       "a bound of every later deflection. A plant with nonlinear elements has no modes: half the "
        "peak-to-peak of its deflection sampled from motion end to the run's end (its free "
        "response; one undamped mode's amplitude exactly)",
        &M::residual_amplitude_m},

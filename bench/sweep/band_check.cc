@@ -1,6 +1,7 @@
 // Band checks (bench/sweep/band_check.h).
 #include "bench/sweep/band_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -72,8 +73,13 @@ double BandPointRunner::operator()(double x) {
     overrides.push_back({check_.band->key, text});
     throw AtBandKey(LocateValidationError(scenario_.source_file, overrides, error), text);
   }
+  if (result.metrics.static_displacement_m == 0.0) zero_static_at_.push_back(x);
   const MetricInfo* info = FindMetric(check_.metric);
   return info != nullptr ? result.metrics.*info->field : NAN;
+}
+
+bool BandPointRunner::ZeroStaticAt(double x) const {
+  return std::find(zero_static_at_.begin(), zero_static_at_.end(), x) != zero_static_at_.end();
 }
 
 void ValidateBandChecks(const Scenario& scenario, const std::vector<Override>& overrides) {
@@ -98,7 +104,13 @@ CheckResult EvaluateBandCheck(const Scenario& scenario, const std::vector<Overri
     if (!worst || Violation(check, found.value) > Violation(check, worst->value)) worst = found;
     if (std::isnan(found.value)) break;
   }
-  return EvaluateCheck(check, worst->value, worst->x, runner.runs());
+  CheckResult result = EvaluateCheck(check, worst->value, worst->x, runner.runs());
+  const std::string reason = runner.ZeroStaticAt(worst->x) ? ZeroStaticReason(check.metric) : "";
+  if (std::isnan(worst->value) && !reason.empty()) {
+    result.message = check.metric + " is n/a at " + check.band->key + " = " + FormatValue(worst->x, 7) +
+                     " because " + reason;
+  }
+  return result;
 }
 
 std::vector<CheckResult> EvaluateScenarioChecks(const Scenario& scenario,

@@ -35,6 +35,8 @@ class BandPointRunner {
                   const Check& check);
   double operator()(double x);
   int runs() const { return runs_; }
+  // Whether the run at x had a static displacement of 0 (its ratios n/a: ZeroStaticReason).
+  bool ZeroStaticAt(double x) const;
   bool fast() const { return fast_; }  // the structure-number path
   // The scenario loaded from its sources with the key set to `text`.
   Scenario LoadAt(const std::string& text) const;
@@ -48,6 +50,7 @@ class BandPointRunner {
   bool fast_ = false;
   std::shared_ptr<const controller::MultiAxisCommand> command_;
   int runs_ = 0;
+  std::vector<double> zero_static_at_;
 };
 
 // The number text a band point is set with: %.17g (reads back as exactly x).

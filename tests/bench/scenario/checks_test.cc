@@ -41,6 +41,33 @@ TEST(Checks, NanFails) {
             "FAIL f.yaml cruise_residual_ratio = n/a (max 1): metric not defined for this run");
 }
 
+// Tests that a ratio that is n/a because the static displacement is 0 (a model whose
+// static deflections cancel) fails naming that reason and the absolute metric to bound
+// instead; the settling time (its band is 5% of static) likewise; a metric n/a for another
+// reason keeps the general message.
+TEST(Checks, RatioToAZeroStaticFailsNamingTheReason) {
+  Metrics metrics;
+  metrics.static_displacement_m = 0.0;
+  metrics.peak_deflection_m = 1.35e-5;
+  const auto results = EvaluateChecks({{"peak_ratio", std::nullopt, 2.0},
+                                       {"settling_time_s", std::nullopt, 1.0},
+                                       {"radial_error_m", std::nullopt, 1.0},
+                                       {"peak_deflection_m", std::nullopt, 1e-4}},
+                                      metrics);
+  ASSERT_EQ(results.size(), 4u);
+  EXPECT_FALSE(results[0].passed);
+  EXPECT_EQ(FormatCheckLine("f.yaml", results[0]),
+            "FAIL f.yaml peak_ratio = n/a (max 2): peak_ratio is n/a because the static displacement is 0 (the "
+            "model's static deflections cancel in the output view), so no ratio to it is defined; bound "
+            "peak_deflection_m instead");
+  EXPECT_FALSE(results[1].passed);
+  EXPECT_EQ(results[1].message,
+            "settling_time_s is n/a because the static displacement is 0 (the model's static deflections cancel in "
+            "the output view), so the settling band (5% of it) is 0");
+  EXPECT_EQ(results[2].message, "metric not defined for this run");
+  EXPECT_TRUE(results[3].passed);
+}
+
 // Tests that passing and failing checks print in the documented line format.
 TEST(Checks, LineFormat) {
   const auto results = EvaluateChecks(

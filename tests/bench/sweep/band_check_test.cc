@@ -161,6 +161,30 @@ ConfigError BandError(const std::string& path) {
   return testing::ErrorOf([&] { ValidateBandChecks(LoadScenario(path, {}), {}); });
 }
 
+// Tests that a band check on a ratio of a model whose static deflections cancel at every
+// point of the band (the damping does not change them) fails at a point of the band naming
+// why the ratio is n/a there: the static displacement is 0.
+TEST(BandCheck, RatioOfAZeroStaticFailsNamingTheReason) {
+  testing::ScratchDir dir;
+  const std::string shipped = testing::ReadText(kSourceDir + "/tests/bench/data/reliability/cancelling_modes.yaml");
+  const std::string key = "machine.modes[0].damping_ratio";
+  const std::string path = dir.Write("band.yaml", shipped.substr(0, shipped.find("\nchecks:")) +
+                                                      "\nchecks:\n  peak_ratio: {max: 2.0, band: {key: \"" + key +
+                                                      "\", from: 0.01, to: 0.05}}\n");
+  const Scenario scenario = LoadScenario(path, {});
+  ASSERT_EQ(scenario.checks.size(), 1u);
+  const CheckResult result = EvaluateBandCheck(scenario, {}, scenario.checks[0]);
+  EXPECT_FALSE(result.passed);
+  EXPECT_TRUE(std::isnan(result.value));
+  EXPECT_GE(result.worst_at, 0.01);
+  EXPECT_LE(result.worst_at, 0.05);
+  EXPECT_EQ(result.message.substr(0, 30 + key.size()), "peak_ratio is n/a at " + key + " = " + FormatValue(result.worst_at, 7))
+      << result.message;
+  EXPECT_NE(result.message.find(" because the static displacement is 0 (the model's static deflections cancel"),
+            std::string::npos)
+      << result.message;
+}
+
 // Tests that band keys' errors are located at FILE:LINE:COL of the band: an unknown key, a
 // key that is not a number, an index out of range and a value the scenario refuses at the
 // key; from >= to at `to`.
