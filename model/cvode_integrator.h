@@ -55,8 +55,10 @@ class CvodeIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return static_cast<int>(C_.rows()); }
   int substeps() const override { return substeps_; }
-  bool UsesInputHolds() const override {
-    return tuning_.input_mode == CvodeInputMode::kContinuous;
+  IntegratorCapabilities Capabilities() const override {
+    IntegratorCapabilities caps;
+    caps.input_holds = tuning_.input_mode == CvodeInputMode::kContinuous;
+    return caps;
   }
   bool OutputRowIsZero(int row) const override {
     return c_sparse_.row_start[row] == c_sparse_.row_start[row + 1];

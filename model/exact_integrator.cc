@@ -506,8 +506,8 @@ bool ExactIntegrator::WatchExtremum(int row) {
 }
 
 // z <- phi^(substeps periods) z (the input 0: no forced part), by squaring.
-bool ExactIntegrator::AdvanceAtRest(long periods) {
-  if (periods < 0) return false;
+void ExactIntegrator::AdvanceAtRest(long periods) {
+  if (periods < 0) throw std::invalid_argument("ExactIntegrator::AdvanceAtRest: periods < 0");
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   RowMajor power = Eigen::Map<const RowMajor>(phi_.data(), kept_, kept_);
   Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(z_.data(), kept_);
@@ -520,7 +520,6 @@ bool ExactIntegrator::AdvanceAtRest(long periods) {
   tick_count_ = count_;
   std::fill(accel_.begin(), accel_.end(), 0.0);
   std::fill(g_.begin(), g_.end(), 0.0);
-  return true;
 }
 
 void ExactIntegrator::AdvanceStates(const double* drive_accel, double* outputs) {

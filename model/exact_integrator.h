@@ -42,12 +42,18 @@ class ExactIntegrator final : public PlantIntegrator {
   void AdvancePeriod(const double* drive_accel, long same_input_periods,
                      double* outputs) override;
   void SelectOutputs(const std::vector<int>& rows) override;
+  // Deferred substeps on a small plant (the block kernel computes each substep from the
+  // period's start state, so the inner ones can come later, the same bits).
+  IntegratorCapabilities Capabilities() const override {
+    IntegratorCapabilities caps;
+    caps.period_extremum = true;
+    caps.advance_at_rest = true;
+    caps.deferred_substeps = block_kernel_;
+    return caps;
+  }
   bool WatchExtremum(int row) override;
   double PeriodExtremum() const override { return period_extremum_; }
-  bool AdvanceAtRest(long periods) override;
-  // A small plant with a watched extremum (the block kernel computes each substep from the
-  // period's start state, so the inner ones can come later, the same bits).
-  bool DefersSubsteps() const override { return block_kernel_ && extremum_ != nullptr; }
+  void AdvanceAtRest(long periods) override;
   void AdvancePeriodToEnd(const double* drive_accel, double* outputs) override;
   void WriteDeferredSubsteps(double* outputs) const override;
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "common/format.h"
@@ -21,6 +23,21 @@ void PlantIntegrator::AdvancePeriod(const double* drive_accel, long /*same_input
     WriteSelected(all.data(), outputs + static_cast<std::ptrdiff_t>(j) * width);
   }
 }
+
+// The fast paths an integrator does not offer (Capabilities() says which it does).
+namespace {
+[[noreturn]] void NotOffered(const char* call) {
+  throw std::logic_error(std::string("PlantIntegrator::") + call +
+                         ": not offered by this integrator (see Capabilities())");
+}
+}  // namespace
+
+bool PlantIntegrator::WatchExtremum(int /*row*/) { NotOffered("WatchExtremum"); }
+void PlantIntegrator::AdvanceAtRest(long /*periods*/) { NotOffered("AdvanceAtRest"); }
+void PlantIntegrator::AdvancePeriodToEnd(const double* /*drive_accel*/, double* /*outputs*/) {
+  NotOffered("AdvancePeriodToEnd");
+}
+void PlantIntegrator::WriteDeferredSubsteps(double* /*outputs*/) const { NotOffered("WriteDeferredSubsteps"); }
 
 void PlantIntegrator::WriteSelected(const double* all, double* outputs) const {
   if (selected_rows_.empty()) {

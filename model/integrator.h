@@ -122,6 +122,15 @@ class SolverError : public std::runtime_error {
   std::string flag_name_;
 };
 
+// What a PlantIntegrator offers the co-simulation master beyond SetInput/Step and
+// AdvancePeriod (PlantIntegrator::Capabilities): one query instead of a hook per fast path.
+struct IntegratorCapabilities {
+  bool input_holds = false;        // AdvancePeriod integrates across same_input_periods
+  bool period_extremum = false;    // WatchExtremum / PeriodExtremum
+  bool advance_at_rest = false;    // AdvanceAtRest
+  bool deferred_substeps = false;  // AdvancePeriodToEnd / WriteDeferredSubsteps
+};
+
 class PlantIntegrator {
  public:
   virtual ~PlantIntegrator() = default;
@@ -150,34 +159,33 @@ class PlantIntegrator {
   // writes the outputs after each to `outputs` (substep after substep, num_outputs each).
   // `same_input_periods` (>= 1): the master's promise that this input is held for this
   // period and the next same_input_periods - 1; CVODE then integrates across the ticks in
-  // between. Results are those of SetInput and Step/Output per substep up to rounding (the
-  // exact integrator of a small plant computes the period's substeps from its start state;
-  // CVODE may take other, longer steps, within its tolerances).
+  // between (Capabilities().input_holds). Results are those of SetInput and Step/Output per
+  // substep up to rounding (the exact integrator of a small plant computes the period's
+  // substeps from its start state; CVODE may take other, longer steps, within its tolerances).
   virtual void AdvancePeriod(const double* drive_accel, long same_input_periods,
                              double* outputs);
 
-  // Watches output `row`: each AdvancePeriod then also finds PeriodExtremum(), the largest
-  // |output| at a stationary point strictly inside that period, exactly (no substeps:
-  // model/tick_extremum.h). False when the integrator cannot; the master keeps its samples.
-  virtual bool WatchExtremum(int /*row*/) { return false; }
+  // The master's other fast paths, asked once: what this integrator offers beyond
+  // AdvancePeriod. Calling one it does not offer throws std::logic_error.
+  virtual IntegratorCapabilities Capabilities() const { return {}; }
+
+  // period_extremum: watches output `row`; each AdvancePeriod then also finds
+  // PeriodExtremum(), the largest |output| at a stationary point strictly inside that period,
+  // exactly (no substeps: model/tick_extremum.h). False for a row no state reaches.
+  virtual bool WatchExtremum(int row);
   virtual double PeriodExtremum() const { return 0.0; }
 
-  // Advances `periods` whole periods under a zero input at once, outputs unread (the
-  // master has the tail's metrics in closed form: bench/run/damped_tail.h). False when the
-  // integrator cannot; it is then unchanged.
-  virtual bool AdvanceAtRest(long /*periods*/) { return false; }
+  // advance_at_rest: `periods` (>= 0) whole periods under a zero input at once, outputs
+  // unread (the master has the tail's metrics in closed form: bench/run/damped_tail.h).
+  virtual void AdvanceAtRest(long periods);
 
-  // Deferred substeps (a master that needs a period's inner substeps only now and then):
-  // AdvancePeriodToEnd is AdvancePeriod (same_input_periods 1) that writes only the last
-  // substep's outputs, at their place in `outputs` (substep substeps() - 1), and the
-  // extremum; WriteDeferredSubsteps then writes the period's other substeps, as
-  // AdvancePeriod would have written them, bit for bit. Only where DefersSubsteps().
-  virtual bool DefersSubsteps() const { return false; }
-  virtual void AdvancePeriodToEnd(const double* /*drive_accel*/, double* /*outputs*/) {}
-  virtual void WriteDeferredSubsteps(double* /*outputs*/) const {}
-
-  // Whether AdvancePeriod makes use of same_input_periods (else the master may pass 1).
-  virtual bool UsesInputHolds() const { return false; }
+  // deferred_substeps, while an extremum is watched (a master that needs a period's inner
+  // substeps only now and then): AdvancePeriodToEnd is AdvancePeriod (same_input_periods 1)
+  // that writes only the last substep's outputs, at their place in `outputs` (substep
+  // substeps() - 1), and the extremum; WriteDeferredSubsteps then writes the period's other
+  // substeps, as AdvancePeriod would have written them, bit for bit.
+  virtual void AdvancePeriodToEnd(const double* drive_accel, double* outputs);
+  virtual void WriteDeferredSubsteps(double* outputs) const;
 
   // From now on AdvancePeriod writes only these output rows, in this order (rows.size()
   // values per substep); empty: all of them. The master asks for what it reads.

@@ -82,7 +82,13 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   int num_outputs() const override { return inner_->num_outputs(); }
   int substeps() const override { return inner_->substeps(); }
   bool OutputRowIsZero(int row) const override { return inner_->OutputRowIsZero(row); }
-  bool UsesInputHolds() const override { return inner_->UsesInputHolds(); }
+  // Only the holds: the other fast paths are the exact integrator's, which selects its
+  // inputs itself (ExactIntegrator::TakeFullInputs) and is never wrapped.
+  IntegratorCapabilities Capabilities() const override {
+    IntegratorCapabilities caps;
+    caps.input_holds = inner_->Capabilities().input_holds;
+    return caps;
+  }
   void SelectOutputs(const std::vector<int>& rows) override {
     PlantIntegrator::SelectOutputs(rows);
     inner_->SelectOutputs(rows);

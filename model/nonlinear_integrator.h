@@ -48,7 +48,11 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return static_cast<int>(C_.rows()); }
   int substeps() const override { return substeps_; }
-  bool UsesInputHolds() const override { return true; }
+  IntegratorCapabilities Capabilities() const override {
+    IntegratorCapabilities caps;
+    caps.input_holds = true;
+    return caps;
+  }
   bool OutputRowIsZero(int row) const override { return C_.row(row).cwiseAbs().maxCoeff() == 0.0; }
   void AdvancePeriod(const double* drive_accel, long same_input_periods, double* outputs) override;
 

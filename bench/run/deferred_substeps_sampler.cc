@@ -13,7 +13,7 @@ namespace shapebench::bench {
 bool PlantSampler::QualifiesForDeferredSubsteps() const {
   const model::LinearPlant& plant = machine_.plant;
   return exact_extrema_ && watched_rows_.empty() && width_ == 2 && substeps_ > 1 &&
-         integrator_->DefersSubsteps() && plan_.view.axis == single_.axis &&
+         integrator_->Capabilities().deferred_substeps && plan_.view.axis == single_.axis &&
          plant.C.row(model::kDeflectionRow + single_.axis) == plant.C.row(model::kToolErrorRow + single_.axis);
 }
 

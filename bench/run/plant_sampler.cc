@@ -70,15 +70,18 @@ void PlantSampler::SetUpPlant() {
       residual_vibration_ = std::make_unique<ResidualVibration>(plant, plan_.view);
       // The peaks of the view's axis exactly (one sign change of its rate a period, closed
       // form per mode: model/tick_extremum.h), not only at the substeps.
-      if (plan_.view.axis >= 0) exact_extrema_ = integrator_->WatchExtremum(model::kDeflectionRow + plan_.view.axis);
+      const model::IntegratorCapabilities caps = integrator_->Capabilities();
+      if (plan_.view.axis >= 0 && caps.period_extremum) {
+        exact_extrema_ = integrator_->WatchExtremum(model::kDeflectionRow + plan_.view.axis);
+      }
       // The trace shows the tail: simulated then.
-      if (exact_extrema_ && !plan_.record_trace && !window_.never_settles_late &&
+      if (exact_extrema_ && caps.advance_at_rest && !plan_.record_trace && !window_.never_settles_late &&
           plant.num_outputs() == model::kNumOutputRows) {
         damped_tail_ = std::make_unique<DampedTail>(plant, plan_.view);
       }
     }
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
-    holds_ = integrator_->UsesInputHolds();
+    holds_ = integrator_->Capabilities().input_holds;
   }
   rows_ = plant.num_outputs();
   width_ = rows_;
@@ -279,7 +282,8 @@ bool PlantSampler::SettleTail(std::size_t k) {
   }
   const std::size_t stop = quiet + window_.period_ticks;  // > k: Done(k) was false
   const std::size_t end = std::min(stop, window_.max_ticks);
-  if (end < k || !integrator_->AdvanceAtRest(static_cast<long>(end - k))) return false;
+  if (end < k) return false;
+  integrator_->AdvanceAtRest(static_cast<long>(end - k));
   tally_.last_outside_band = last_outside;
   tally_.quiet_since_tick = quiet;
   tally_.settled = stop <= window_.max_ticks;

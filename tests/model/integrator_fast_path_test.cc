@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -317,6 +318,60 @@ TEST(CvodeFastPath, EveryTuningChoiceTracksTheExactSolution) {
     auto cvode = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
     EXPECT_LE(MaxDifference(Periodwise(*cvode, Sequence()), reference), 1e-5 * MaxAbs(reference)) << i;
   }
+}
+
+// Tests that each integrator's capability query names the fast paths it offers, and only
+// those: the exact integrator the in-period extremum and the tail at rest (deferred
+// substeps where its block kernel runs: at most kMaxBlock stepped states), CVODE the held
+// inputs in its continuous mode only; a fast path not offered throws instead of answering.
+TEST(IntegratorCapabilities, EachIntegratorNamesItsFastPaths) {
+  IntegratorConfig exact_config;
+  exact_config.method = IntegratorMethod::kExact;
+  const LinearPlant small = BuildPlant(Modes(25.0, 0.02));  // 4 stepped states
+  MachineConfig many;
+  many.form = ModalMachineConfig{{{20.0, 0.01, 1.0}, {45.0, 0.02, 0.5}, {70.0, 0.0, -0.3}}};
+  const LinearPlant large = BuildPlant(many);  // 6 stepped states
+  const IntegratorCapabilities exact = MakeIntegrator(small, exact_config, kFastPathPeriodS, 4, 1.0)->Capabilities();
+  EXPECT_TRUE(exact.period_extremum && exact.advance_at_rest && exact.deferred_substeps);
+  EXPECT_FALSE(exact.input_holds);
+  const IntegratorCapabilities exact_large =
+      MakeIntegrator(large, exact_config, kFastPathPeriodS, 4, 1.0)->Capabilities();
+  EXPECT_TRUE(exact_large.period_extremum && exact_large.advance_at_rest);
+  EXPECT_FALSE(exact_large.deferred_substeps);
+
+  IntegratorConfig cvode_config;
+  auto cvode = MakeIntegrator(small, cvode_config, kFastPathPeriodS, 4, 1.0);
+  const IntegratorCapabilities continuous = cvode->Capabilities();
+  EXPECT_TRUE(continuous.input_holds);
+  EXPECT_FALSE(continuous.period_extremum || continuous.advance_at_rest || continuous.deferred_substeps);
+  cvode_config.tuning.input_mode = CvodeInputMode::kStopEveryTick;
+  EXPECT_FALSE(MakeIntegrator(small, cvode_config, kFastPathPeriodS, 4, 1.0)->Capabilities().input_holds);
+  EXPECT_THROW(cvode->WatchExtremum(kDeflectionRow), std::logic_error);
+  EXPECT_THROW(cvode->AdvanceAtRest(3), std::logic_error);
+  std::vector<double> buffer(4 * 6);
+  const double input = 0.0;
+  EXPECT_THROW(cvode->AdvancePeriodToEnd(&input, buffer.data()), std::logic_error);
+}
+
+// Tests that the exact integrator's AdvanceAtRest (the state advanced by a power of the
+// transition matrix, by squaring) lands where as many zero-input periods of AdvancePeriod
+// do, to the rounding of ~60 matrix products (1e-12 of the state's largest component).
+TEST(IntegratorCapabilities, AdvanceAtRestMatchesZeroInputPeriods) {
+  IntegratorConfig config;
+  config.method = IntegratorMethod::kExact;
+  const LinearPlant plant = BuildPlant(Modes(25.0, 0.02));
+  auto squared = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
+  auto stepped = MakeIntegrator(plant, config, kFastPathPeriodS, 4, 1.667);
+  Periodwise(*squared, Sequence());
+  Periodwise(*stepped, Sequence());
+  constexpr long kRestPeriods = 37;
+  squared->AdvanceAtRest(kRestPeriods);
+  Periodwise(*stepped, std::vector<double>(kRestPeriods, 0.0));
+  const Eigen::VectorXd a = squared->PlantState();
+  const Eigen::VectorXd b = stepped->PlantState();
+  EXPECT_GT(a.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-12 * b.cwiseAbs().maxCoeff());
+  EXPECT_EQ(squared->Time(), stepped->Time());
 }
 
 }  // namespace
