@@ -40,6 +40,7 @@
 #include "bench/sensitivity/sensitivity.h"
 #include "bench/sweep/point_loop.h"
 #include "bench/sweep/sweep.h"
+#include "common/format.h"
 #include "common/validation_error.h"
 #include "controller/impulse.h"
 #include "controller/shaper_registry.h"
@@ -170,6 +171,10 @@ class Result {
   }
 
   py::list ResidualModes() const { return FromJson(json_.at("residual_modes")); }
+  double RtolUsed() const {
+    const nlohmann::ordered_json& value = json_.at("integrator_rtol_used");
+    return value.is_null() ? NAN : value.get<double>();
+  }
 
   std::string Json() const { return json_.dump(2); }
 
@@ -415,6 +420,41 @@ py::dict Sensitivity(const std::string& path, const std::vector<std::string>& se
   return dict;
 }
 
+// residual_vibration's arguments, refused as the loader refuses a mode (frequency finite and
+// > 0, damping in [0, 1)) and a custom pattern's impulses (times finite, >= 0 and strictly
+// ascending, amplitudes finite), except that the amplitudes need only a positive sum (the
+// residual is a fraction of the step they make): ValidationError, Python's ConfigError.
+void ValidateResidualArguments(const std::vector<controller::Impulse>& impulses, double frequency_hz,
+                               double damping_ratio) {
+  if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
+    throw ValidationError("frequency_hz", "must be finite and > 0" + FormatGot(frequency_hz));
+  }
+  if (!(damping_ratio >= 0.0 && damping_ratio < 1.0)) {
+    throw ValidationError("damping_ratio", "must be in [0, 1) (underdamped)" + FormatGot(damping_ratio));
+  }
+  if (impulses.empty()) throw ValidationError("impulses", "must list at least one (time_s, amplitude) impulse");
+  double total = 0.0;
+  for (std::size_t i = 0; i < impulses.size(); ++i) {
+    const std::string at = "impulses[" + std::to_string(i) + "]";
+    if (!std::isfinite(impulses[i].amplitude)) {
+      throw ValidationError(at + ".amplitude", "must be finite" + FormatGot(impulses[i].amplitude));
+    }
+    if (!(std::isfinite(impulses[i].time_s) && impulses[i].time_s >= 0.0)) {
+      throw ValidationError(at + ".time_s", "must be finite and >= 0 s" + FormatGot(impulses[i].time_s));
+    }
+    if (i > 0 && !(impulses[i].time_s > impulses[i - 1].time_s)) {
+      throw ValidationError(at + ".time_s", "must be after the previous impulse's (" +
+                                                FormatNumber(impulses[i - 1].time_s) +
+                                                " s): times strictly ascending" + FormatGot(impulses[i].time_s));
+    }
+    total += impulses[i].amplitude;
+  }
+  if (!(total > 0.0)) {
+    throw ValidationError("impulses", "the amplitudes must have a positive sum (the residual is a fraction of "
+                                      "the step they make)" + FormatGot(total));
+  }
+}
+
 std::vector<controller::Impulse> ToImpulses(const std::vector<double>& times_s, const std::vector<double>& amplitudes) {
   if (times_s.size() != amplitudes.size()) {
     throw py::value_error("times_s and amplitudes differ in length (" + std::to_string(times_s.size()) + " and " +
@@ -457,6 +497,9 @@ void DefineResult(py::module_& m) {
       .def_property_readonly("residual_modes", &Result::ResidualModes,
                              "`run --json`'s residual_modes: per pole of the plant, ascending frequency,\n"
                              "{frequency_hz, damping_ratio, amplitude_m} (amplitude_m None: undefined).")
+      .def_property_readonly("integrator_rtol_used", &Result::RtolUsed,
+                             "`run --json`'s integrator_rtol_used: the rtol CVODE ran with (the scenario's, or\n"
+                             "the default tightened by its cross-check); NaN where no CVODE ran.")
       .def_property_readonly("trace", &Result::Trace,
                              "With run(trace=True): trace.csv's columns as numpy arrays (t_s, ...,\n"
                              "block as int, planned_feed_mm_min), every sample; else None.")
@@ -490,7 +533,9 @@ PYBIND11_MODULE(_core, m) {
       "residual_vibration",
       [](const std::vector<double>& times_s, const std::vector<double>& amplitudes, double frequency_hz,
          double damping_ratio) {
-        return controller::ResidualVibration(ToImpulses(times_s, amplitudes), frequency_hz, damping_ratio);
+        const std::vector<controller::Impulse> impulses = ToImpulses(times_s, amplitudes);
+        ValidateResidualArguments(impulses, frequency_hz, damping_ratio);
+        return controller::ResidualVibration(impulses, frequency_hz, damping_ratio);
       },
       py::arg("times_s"), py::arg("amplitudes"), py::arg("frequency_hz"), py::arg("damping_ratio") = 0.0);
   m.def("shapers", [] {

@@ -405,13 +405,50 @@ def residual_vibration(impulses: Iterable[tuple[float, float]] | Mapping[str, An
     """The residual vibration an impulse sequence leaves in a mode of frequency_hz and
     damping_ratio, as a fraction of an unshaped step's (controller/impulse.h: the function
     the bench's pattern report and sensitivity curves use). impulses: (time_s, amplitude)
-    pairs, or {"time_s": [...], "amplitude": [...]}."""
-    if isinstance(impulses, Mapping):
+    pairs, {"time_s": ..., "amplitude": ...} mappings as a `custom` pattern lists them, or
+    {"time_s": [...], "amplitude": [...]}. Validated as the loader validates a mode and a
+    `custom` pattern (times >= 0 and strictly ascending, amplitudes with a positive sum;
+    frequency finite and > 0, damping in [0, 1)): else ConfigError."""
+    times, amplitudes = _impulse_lists(impulses)
+    return _core.residual_vibration(times, amplitudes, float(frequency_hz), float(damping_ratio))
+
+
+def _impulse_lists(impulses: Any) -> tuple[list[float], list[float]]:
+    """residual_vibration's impulses as (times, amplitudes); ConfigError naming the impulse
+    that has no number where one belongs."""
+    def number(value: Any, key: str) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ConfigError("", 0, 0, key, f"must be a number (got {value!r})")
+        return float(value)
+
+    if isinstance(impulses, Mapping) and not ({"time_s", "amplitude"} - set(impulses)) and \
+            not isinstance(impulses["time_s"], (int, float)):
         times, amplitudes = list(impulses["time_s"]), list(impulses["amplitude"])
-    else:
-        pairs = [tuple(p) for p in impulses]
-        times, amplitudes = [float(p[0]) for p in pairs], [float(p[1]) for p in pairs]
-    return _core.residual_vibration(times, amplitudes, frequency_hz, damping_ratio)
+        if len(times) != len(amplitudes):
+            raise ConfigError("", 0, 0, "impulses",
+                              f"time_s and amplitude differ in length ({len(times)} and {len(amplitudes)})")
+        return ([number(t, f"impulses.time_s[{i}]") for i, t in enumerate(times)],
+                [number(a, f"impulses.amplitude[{i}]") for i, a in enumerate(amplitudes)])
+    if isinstance(impulses, (Mapping, str, bytes)):
+        raise ConfigError("", 0, 0, "impulses", "must be (time_s, amplitude) pairs, {time_s, amplitude} mappings, "
+                          "or {time_s: [...], amplitude: [...]}")
+    times, amplitudes = [], []
+    for i, impulse in enumerate(impulses):
+        at = f"impulses[{i}]"
+        if isinstance(impulse, Mapping):
+            missing = sorted({"time_s", "amplitude"} - set(impulse))
+            extra = sorted(set(impulse) - {"time_s", "amplitude"})
+            if missing or extra:
+                raise ConfigError("", 0, 0, at, f"needs exactly time_s and amplitude (missing {missing}, unknown {extra})")
+            time_s, amplitude = impulse["time_s"], impulse["amplitude"]
+        else:
+            pair = tuple(impulse) if not isinstance(impulse, (str, bytes)) else ()
+            if len(pair) != 2:
+                raise ConfigError("", 0, 0, at, f"must be a (time_s, amplitude) pair (got {impulse!r})")
+            time_s, amplitude = pair
+        times.append(number(time_s, at + ".time_s"))
+        amplitudes.append(number(amplitude, at + ".amplitude"))
+    return times, amplitudes
 
 
 def shapers() -> list[dict[str, str]]:

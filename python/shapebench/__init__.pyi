@@ -72,6 +72,9 @@ class Result:
     def residual_modes(self) -> list[ResidualMode]:
         """`run --json`'s residual_modes: per pole of the plant, ascending frequency."""
     @property
+    def integrator_rtol_used(self) -> float:
+        """`run --json`'s integrator_rtol_used: the rtol CVODE ran with; NaN where none ran."""
+    @property
     def trace(self) -> dict[str, np.ndarray] | None:
         """With run(trace=True): trace.csv's columns as numpy arrays (t_s, ..., block as
         int, planned_feed_mm_min), every sample; else None."""

@@ -262,6 +262,50 @@ def test_residual_vibration_of_simple_sequences():
         shapebench.residual_vibration({"time_s": [0.0], "amplitude": [0.5, 0.5]}, 25.0)
 
 
+ZV = [(0.0, 0.5), (0.02, 0.5)]
+
+
+@pytest.mark.parametrize("impulses, frequency_hz, damping_ratio, key", [
+    (ZV, float("nan"), 0.0, "frequency_hz"),
+    (ZV, -30.0, 0.0, "frequency_hz"),
+    (ZV, 25.0, -1.0, "damping_ratio"),
+    (ZV, 25.0, 5.0, "damping_ratio"),
+    ([(0.0, 0.5), (0.02, -0.5)], 25.0, 0.0, "impulses"),
+    ([(0.5, 0.0), (0.5, 0.02)], 25.0, 0.0, "impulses[1].time_s"),
+    ([(-0.01, 1.0)], 25.0, 0.0, "impulses[0].time_s"),
+    ([], 25.0, 0.0, "impulses"),
+    ([{"time_s": 0.0}], 25.0, 0.0, "impulses[0]"),
+    ([(0.0, "a")], 25.0, 0.0, "impulses[0].amplitude"),
+    ([(0.0, 0.5, 1.0)], 25.0, 0.0, "impulses[0]"),
+])
+def test_residual_vibration_refuses_what_the_loader_refuses(impulses, frequency_hz, damping_ratio, key):
+    """Tests that residual_vibration raises ConfigError naming the argument, as the loader
+    refuses a mode and a custom pattern: NaN or negative frequency (was nan, and -30 Hz
+    differed from +30 Hz), damping -1 or 5 (145.69 and nan), amplitudes summing to 0 (inf),
+    ZV's pairs swapped to (amplitude, time_s) (times not ascending), a negative time, no
+    impulse, a mapping or tuple that is not one impulse, a non-number."""
+    with pytest.raises(shapebench.ConfigError) as error:
+        shapebench.residual_vibration(impulses, frequency_hz, damping_ratio)
+    assert error.value.key_path == key, str(error.value)
+
+
+def test_residual_vibration_takes_the_custom_patterns_form():
+    """Tests that {time_s, amplitude} mappings, as a custom pattern lists its impulses, give
+    the pairs' residual bit for bit, and that the loader refuses the swapped ZV pairs at the
+    same impulse as residual_vibration does."""
+    mappings = [{"time_s": t, "amplitude": a} for t, a in ZV]
+    for frequency_hz in (20.0, 25.0, 31.0):
+        assert shapebench.residual_vibration(mappings, frequency_hz, 0.05) == \
+            shapebench.residual_vibration(ZV, frequency_hz, 0.05)
+    swapped = [{"time_s": a, "amplitude": t} for t, a in ZV]
+    scenario = {"machine": {"modes": [{"frequency_hz": 25.0}]},
+                "controller": {"pattern": {"method": "custom", "impulses": swapped}},
+                "move": {"distance_mm": 100}}
+    with pytest.raises(shapebench.ConfigError) as loaded:
+        shapebench.load(scenario)
+    assert loaded.value.key_path.endswith("impulses[1].time_s"), str(loaded.value)
+
+
 def test_runs_from_several_threads_equal_serial_runs():
     """Tests that four threads running scenarios at once get the serial runs' metrics bit
     for bit (a scenario is shared by the threads that run it)."""
