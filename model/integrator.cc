@@ -58,7 +58,7 @@ void IntegratorConfig::validate() const {
   // Looser than 1e-6, no shipped scenario keeps its ratio metrics within 1e-4 of the exact
   // path; tighter than 1e-12 is below what CVODE can resolve in double precision over a
   // run's steps (docs/accuracy.md).
-  if (!(rtol >= 1.0e-12 && rtol <= 1.0e-6)) {
+  if (!(rtol >= kTightestRtol && rtol <= 1.0e-6)) {
     throw ValidationError("rtol", "must be in [1e-12, 1e-6] (docs/accuracy.md)" + FormatGot(rtol));
   }
   if (!(atol_scale > 0.0) || !std::isfinite(atol_scale)) {

@@ -106,7 +106,7 @@ int RunCommand(const RunArgs& args) {
     std::cout << RunJson(result).dump(2) << std::endl;
   } else {
     std::cout << "scenario " << Safe(scenario.name) << " (" << Safe(scenario.source_file) << ")\n";
-    PrintMetricsTable(std::cout, result.metrics);
+    PrintRunTable(std::cout, result);
     std::cout.flush();
   }
   PrintWrote(args.json ? std::cerr : std::cout, args.out_dir, written);

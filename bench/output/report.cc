@@ -36,6 +36,16 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
   }
 }
 
+void PrintRunTable(std::ostream& out, const RunResult& result) {
+  PrintMetricsTable(out, result.metrics);
+  if (std::isfinite(result.integrator_rtol_used)) {
+    std::size_t width = 0;
+    for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+    out << std::left << std::setw(static_cast<int>(width) + 2) << "integrator_rtol_used"
+        << FormatNumber(result.integrator_rtol_used) << "\n";
+  }
+}
+
 nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
   for (const MetricInfo& info : MetricTable()) {
@@ -67,6 +77,8 @@ nlohmann::ordered_json RunJson(const RunResult& result) {
     modes.push_back(entry);
   }
   json["residual_modes"] = modes;
+  json["integrator_rtol_used"] =
+      std::isfinite(result.integrator_rtol_used) ? nlohmann::ordered_json(result.integrator_rtol_used) : nullptr;
   return json;
 }
 

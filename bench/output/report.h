@@ -21,6 +21,10 @@ namespace shapebench::bench {
 // "7.99855 um", "12.5 ms"), "n/a" for NaN.
 void PrintMetricsTable(std::ostream& out, const Metrics& metrics);
 
+// `run`'s table: PrintMetricsTable, then, where CVODE ran, the rtol it ran with
+// (`integrator_rtol_used`: the scenario's, or the default tightened by its cross-check).
+void PrintRunTable(std::ostream& out, const RunResult& result);
+
 // The unit a table shows for a metric (MetricInfo::shown_unit): "m", "s", or "".
 std::string MetricUnit(const std::string& name);
 
@@ -32,7 +36,8 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 // vibration at motion end per pole of the plant (RunResult::residual_modes), ascending
 // frequency: [{"frequency_hz", "damping_ratio", "amplitude_m"}, ...] (the poles the output
 // view sees; empty for a machine without states; a real pole: its rate / 2 pi and damping
-// ratio 1).
+// ratio 1), then "integrator_rtol_used" (RunResult::integrator_rtol_used; null where no
+// CVODE ran).
 nlohmann::ordered_json RunJson(const RunResult& result);
 
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,

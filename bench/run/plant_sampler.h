@@ -74,6 +74,8 @@ class PlantSampler final : public Sampler {
   MetricTally tally_;
   const ContourGauge contour_gauge_;
   const model::MachinePlant machine_;
+  // The scenario's integrator settings, rtol as CrossCheckCvode leaves it.
+  model::IntegratorConfig integrator_config_;
   // What a nonlinear run integrates: machine_ without the structures of axes the command
   // never moves (IdleAxesRigid).
   model::MachinePlant integrated_;

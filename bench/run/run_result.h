@@ -2,6 +2,7 @@
 // the plant and the sampler report beside them.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,10 @@ struct RunResult {
   // What the user must be told beside the metrics (a failed CVODE cross-check under
   // integrator.cross_check: warn).
   std::vector<std::string> warnings;
+  // The rtol CVODE ran with: the scenario's, or the default tightened until the cross-check
+  // passed (IntegratorConfig::rtol_given). NaN where no CVODE ran (the exact path, the
+  // closed form, a machine without states).
+  double integrator_rtol_used = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace shapebench::bench

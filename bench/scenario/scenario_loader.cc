@@ -155,6 +155,7 @@ model::DriveConfig ReadDrive(const NodeReader& drive) {
 model::IntegratorConfig ReadIntegrator(const NodeReader& integrator) {
   model::IntegratorConfig config;
   ReadFields(integrator, &config);
+  config.rtol_given = integrator.Has("rtol");
   return config;
 }
 
@@ -368,6 +369,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                                    {"z", OutputDirection::kZ}},
                                   &scenario.output.direction);
   }
+  scenario.integrator.rtol_given = false;  // the default, which CVODE's cross-check may tighten
   if (auto integrator = top.Child("integrator")) scenario.integrator = ReadIntegrator(*integrator);
   if (auto checks = top.Child("checks")) scenario.checks = ReadChecksEntry(*checks, &document.root());
 

@@ -143,5 +143,54 @@ TEST(CrossCheckCli, LooseTolerancesAreRefused) {
   EXPECT_EQ(servo.out, "") << "no metrics printed";
 }
 
+// Tests that a default rtol (the scenario leaves `rtol` out) is tightened where it fails
+// the cross-check, and a written one is not (issue 32 item 11): the demo at period_s 1e-5
+// is refused under the default 1e-8 (1.7e-5 on the pulse, 1.9e-4 projected over the run,
+// against 5e-5); it now runs at a tighter rtol it reports, its ratio metrics within
+// kCvodeMetricAccuracy of the exact path's (what a passed cross-check promises), while the
+// same run with `integrator.rtol: 1e-8` written is still refused. (The issue's other
+// reproduction, exponential.yaml at 1e-4, passes at 1e-8 on this main: the check pulse
+// changed since it was filed.)
+TEST(CrossCheck, DefaultRtolIsTightenedWhereItFailsAndAWrittenOneIsNot) {
+  const std::string file = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/demo.yaml";
+  const Scenario shipped = LoadScenario(file, {});
+  EXPECT_FALSE(shipped.integrator.rtol_given);
+  EXPECT_TRUE(LoadScenario(file, {{"integrator.rtol", "1e-8"}}).integrator.rtol_given);
+  EXPECT_EQ(RunScenario(shipped, RunOptions{false}).integrator_rtol_used, 1e-8);  // passes as it is
+
+  const RunResult tightened = RunScenario(LoadScenario(file, {{"controller.period_s", "1e-5"}}), RunOptions{false});
+  EXPECT_LT(tightened.integrator_rtol_used, 1e-8);
+  EXPECT_GE(tightened.integrator_rtol_used, model::kTightestRtol);
+  EXPECT_TRUE(tightened.warnings.empty());
+  const RunResult exact = RunScenario(
+      LoadScenario(file, {{"controller.period_s", "1e-5"}, {"integrator.method", "exact"}}), RunOptions{false});
+  EXPECT_TRUE(std::isnan(exact.integrator_rtol_used));
+  EXPECT_LE(WorstRatioError(tightened.metrics, exact.metrics), model::kCvodeMetricAccuracy);
+
+  try {
+    RunScenario(LoadScenario(file, {{"controller.period_s", "1e-5"}, {"integrator.rtol", "1e-8"}}), RunOptions{false});
+    ADD_FAILURE() << "a written rtol 1e-8 was tightened";
+  } catch (const model::SolverError& error) {
+    EXPECT_EQ(error.flag_name(), "CROSS_CHECK_FAILED");
+    EXPECT_EQ(std::string(error.what()).find("tightened"), std::string::npos) << error.what();
+  }
+}
+
+// Tests that `run` reports the rtol CVODE ran with, in its table and its JSON, and null
+// (no table line) on the exact path.
+TEST(CrossCheckCli, RunReportsTheRtolUsed) {
+  const auto table = testing::RunCli({"run", "configs/demo.yaml"}, SHAPEBENCH_SOURCE_DIR);
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("\nintegrator_rtol_used            1e-08\n"), std::string::npos) << table.out;
+  const auto json = testing::RunCli({"run", "configs/demo.yaml", "--json", "--set", "integrator.rtol=1e-9"},
+                                    SHAPEBENCH_SOURCE_DIR);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\n  \"integrator_rtol_used\": 1e-09\n"), std::string::npos) << json.out;
+  const auto exact = testing::RunCli({"run", "configs/demo.yaml", "--set", "integrator.method=exact"},
+                                     SHAPEBENCH_SOURCE_DIR);
+  ASSERT_EQ(exact.exit_code, 0) << exact.err;
+  EXPECT_EQ(exact.out.find("integrator_rtol_used"), std::string::npos) << exact.out;
+}
+
 }  // namespace
 }  // namespace shapebench::bench
