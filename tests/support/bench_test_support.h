@@ -32,7 +32,9 @@ namespace shapebench::bench::testing {
 // run under an address-space limit (RLIMIT_AS, prlimit --as) cannot start in the
 // sanitizer build (make test-sanitize). There the memory bound is ASan's own: an RSS
 // limit in ASAN_OPTIONS (hard_rss_limit_mb), which ends the child like the limit would.
-#if defined(__SANITIZE_ADDRESS__)
+// The test code itself is not instrumented there (cmake/sanitize.cmake): the build says so
+// with SHAPEBENCH_CLI_UNDER_ASAN.
+#if defined(SHAPEBENCH_CLI_UNDER_ASAN) || defined(__SANITIZE_ADDRESS__)
 inline constexpr bool kUnderAddressSanitizer = true;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
