@@ -7,6 +7,10 @@
 set(SHAPEBENCH_SANITIZE "" CACHE STRING "sanitizers for the libraries and the CLI, e.g. address,undefined")
 if(SHAPEBENCH_SANITIZE)
   add_link_options(-fsanitize=${SHAPEBENCH_SANITIZE})
+  # Eigen takes malloc as 16-byte aligned except under AddressSanitizer
+  # (__SANITIZE_ADDRESS__), where it aligns by hand and frees accordingly: instrumented and
+  # plain files must agree, or a matrix allocated in one is freed wrongly in the other.
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=0)
 endif()
 
 # shapebench_sanitize(TARGET): TARGET's own files compiled with the sanitizers, if any.
