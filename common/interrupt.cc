@@ -19,11 +19,11 @@ void WriteStderr(const char* text) {
 }
 
 extern "C" void HandleInterrupt(int signal) {
-  // Only async-signal-safe calls here: atomics, write, _exit.
-  if (g_defer_depth.load() > 0 && g_signal.load() == 0) {
-    g_signal.store(signal);
-    return;
-  }
+  // Only async-signal-safe calls here: atomics, write, _exit. The first signal is
+  // recorded once: a second one, delivered to another thread while this handler runs,
+  // finds it taken and ends the process.
+  int none = 0;
+  if (g_defer_depth.load() > 0 && g_signal.compare_exchange_strong(none, signal)) return;
   WriteStderr(signal == SIGINT ? "\nerror: interrupted by SIGINT\n" : "\nerror: interrupted by SIGTERM\n");
   _exit(128 + signal);
 }

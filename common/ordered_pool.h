@@ -11,9 +11,21 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace shapebench {
+
+// Results that wait for an earlier item, handed over while they wait: a sweep writes them
+// ahead of its order (bench/sweep/rows_ahead.h), so that an item finished behind a slow
+// one is not lost when the process ends before the slow one does. `take` gets each such
+// result once, on a thread of RunOrdered's own, when it has waited `after`, and every
+// result left unconsumed when a cancelled run ends (on the calling thread).
+template <typename Result>
+struct Spill {
+  std::chrono::milliseconds after{100};
+  std::function<void(std::uint64_t, const Result&)> take;
+};
 
 // RunOrdered's one job: computed and consumed on the calling thread, in the same order,
 // with no hand-off between threads (a wake-up an item otherwise).
@@ -73,6 +85,12 @@ struct OrderedRun {
   std::exception_ptr failure;
   Pace consumer_pace;                    // the calling thread's, across its calls of Take
   std::vector<Result> consumer_computed;  // its chunk's results before they are published
+  // With a Spill: when each slot's result was published, and whether it was handed over.
+  const Spill<Result>* spill = nullptr;
+  std::vector<std::chrono::steady_clock::time_point> published_at;
+  std::vector<char> spilled;
+  bool ended = false;  // the spilling thread stops
+  std::condition_variable spill_changed;
 
   bool is_cancelled() const { return cancelled && cancelled(); }
   bool has(std::uint64_t k) const { return ready[k % ready.size()].has_value(); }
@@ -102,7 +120,52 @@ struct OrderedRun {
   }
   // Under the lock: the computed results into the ring.
   void Publish(std::uint64_t first, std::vector<Result>* results) {
-    for (std::uint64_t i = 0; i < results->size(); ++i) ready[(first + i) % ready.size()].emplace(std::move((*results)[i]));
+    const auto now = spill != nullptr ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    for (std::uint64_t i = 0; i < results->size(); ++i) {
+      const std::size_t slot = (first + i) % ready.size();
+      ready[slot].emplace(std::move((*results)[i]));
+      if (spill != nullptr) {
+        published_at[slot] = now;
+        spilled[slot] = 0;
+      }
+    }
+  }
+
+  // Under the lock: copies of the results not consumed that have waited at least `age`
+  // and were not handed over yet, marked as handed over.
+  void CollectWaiting(std::chrono::steady_clock::duration age, std::vector<std::pair<std::uint64_t, Result>>* out) {
+    const auto now = std::chrono::steady_clock::now();
+    for (std::uint64_t j = consumed; j < next; ++j) {
+      const std::size_t slot = j % ready.size();
+      if (!ready[slot].has_value() || spilled[slot] != 0 || now - published_at[slot] < age) continue;
+      spilled[slot] = 1;
+      out->emplace_back(j, *ready[slot]);
+    }
+  }
+
+  // The spilling thread: every kPoll, the results that have waited spill->after.
+  void SpillLoop() {
+    std::vector<std::pair<std::uint64_t, Result>> waiting;
+    std::unique_lock<std::mutex> lock(mutex);
+    while (true) {
+      spill_changed.wait_for(lock, kPoll, [&] { return ended; });
+      if (ended || failure) return;
+      CollectWaiting(spill->after, &waiting);
+      if (waiting.empty()) continue;
+      lock.unlock();
+      try {
+        for (const auto& [k, result] : waiting) spill->take(k, result);
+      } catch (...) {
+        lock.lock();
+        if (!failure) failure = std::current_exception();
+        stop = true;
+        consumed_changed.notify_all();
+        ready_changed.notify_all();
+        return;
+      }
+      waiting.clear();
+      lock.lock();
+    }
   }
 
   void WorkLoop() {
@@ -189,13 +252,15 @@ struct OrderedRun {
 // with `count`. An exception from work or consume stops the workers and is rethrown here.
 // When `cancelled` (polled) turns true, workers take no new items, the ones in progress
 // finish, and the consumer takes every result that is complete and in order, then returns.
-// Returns how many were consumed.
+// With a `spill` (several jobs), results waiting for an earlier item are handed to it too
+// (Spill). Returns how many were consumed.
 template <typename Result>
 std::uint64_t RunOrdered(std::uint64_t count, int jobs,
                          const std::function<Result(std::uint64_t)>& work,
                          const std::function<void(std::uint64_t, Result&&)>& consume,
                          std::uint64_t window = 0,
-                         const std::function<bool()>& cancelled = {}) {
+                         const std::function<bool()>& cancelled = {},
+                         const Spill<Result>* spill = nullptr) {
   if (count == 0) return 0;
   if (jobs < 1) jobs = 1;
   if (static_cast<std::uint64_t>(jobs) > count) jobs = static_cast<int>(count);
@@ -211,6 +276,11 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   run.work = &work;
   run.cancelled = cancelled;
   run.running = jobs - 1;
+  if (spill != nullptr && spill->take) {
+    run.spill = spill;
+    run.published_at.resize(run.ready.size());
+    run.spilled.assign(run.ready.size(), 0);
+  }
   auto worker = [&run] {
     run.WorkLoop();
     {
@@ -221,12 +291,15 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   };
   std::vector<std::thread> threads;
   for (int i = 0; i + 1 < jobs; ++i) threads.emplace_back(worker);
+  if (run.spill != nullptr) threads.emplace_back([&run] { run.SpillLoop(); });
   auto finish = [&] {
     {
       std::lock_guard<std::mutex> lock(run.mutex);
       run.stop = true;
+      run.ended = true;
     }
     run.consumed_changed.notify_all();
+    run.spill_changed.notify_all();
     for (auto& thread : threads) thread.join();
   };
   std::uint64_t done = 0;
@@ -251,6 +324,11 @@ std::uint64_t RunOrdered(std::uint64_t count, int jobs,
   }
   finish();
   if (run.failure) std::rethrow_exception(run.failure);
+  if (run.spill != nullptr && done < count) {  // cancelled: what waits behind a gap
+    std::vector<std::pair<std::uint64_t, Result>> left;
+    run.CollectWaiting(std::chrono::steady_clock::duration::zero(), &left);
+    for (const auto& [k, result] : left) spill->take(k, result);
+  }
   return done;
 }
 

@@ -113,6 +113,21 @@ int CheckCommand(const CheckArgs& args) {
   if (!args.junit.empty()) RequireWritableOutputFile("--junit", args.junit);  // before the runs
   const std::vector<Override> overrides = ParseOverrides(args.sets);
   const CheckFiles files = LoadCheckFiles(args, overrides);
+  AgreeAcrossRanks([&] {  // every MPI rank serves these sweeps, or none runs (exit 2)
+    RunIdentity identity;
+    identity.Add("command", "check");
+    std::string sweeps;
+    std::string hashes;
+    for (const auto& sweep : files.sweeps) {
+      if (!sweep) continue;
+      sweeps += (sweeps.empty() ? "" : ", ") + sweep->file;
+      hashes += (hashes.empty() ? "" : ", ") + SweepHash(*sweep, overrides);
+    }
+    identity.Add("sweep files", sweeps);
+    identity.Add("--set options", SetsText(overrides));
+    identity.Add("sweep hashes", hashes);
+    return identity;
+  });
   if (IsDistributedWorker()) {  // an MPI rank other than 0 (bench/sweep/sweep_mpi.h)
     for (const auto& sweep : files.sweeps) {
       if (sweep) ServeCheckSweep(*sweep, overrides, JobsOrDefault(args.jobs));

@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "bench/cli/shapebench_version.h"  // generated in the build tree: cmake/git_version.cmake
 #include "bench/config/config_error.h"
 #include "bench/run/located_run.h"
 #include "bench/sweep/distribute.h"
@@ -115,6 +116,19 @@ void PrintRunWarnings(const std::string& file, const RunResult& result) {
 }
 
 int JobsOrDefault(int jobs) { return jobs > 0 ? jobs : DefaultJobs(); }
+
+void AgreeAcrossRanks(const std::function<RunIdentity()>& identity) {
+  if (true) return;  // REVERT CHECK
+  RunIdentity mine = identity();
+  mine.Add("shapebench version", SHAPEBENCH_VERSION);
+  CurrentDistributor()->Agree(mine.Encode());
+}
+
+std::string SetsText(const std::vector<Override>& sets) {
+  std::string text;
+  for (const Override& set : sets) text += (text.empty() ? "" : ", ") + set.key_path + "=" + set.value_yaml;
+  return text;
+}
 
 void AddSetOption(CLI::App* command, std::vector<std::string>* sets, const std::string& name,
                   const std::string& help) {

@@ -13,7 +13,9 @@
 
 #include "bench/output/html_report.h"
 #include "bench/run/run_scenario.h"
+#include "bench/config/override.h"
 #include "bench/scenario/scenario.h"
+#include "bench/sweep/run_identity.h"
 #include "common/exit_codes.h"
 #include "common/fd_stream.h"
 
@@ -48,6 +50,14 @@ void PrintRunWarnings(const std::string& file, const RunResult& result);
 
 // --jobs: 0 means every hardware thread (MPI ranks on one host share its cores).
 int JobsOrDefault(int jobs);
+
+// Under mpirun (bench/sweep/sweep_mpi.h), before anything runs or is written: what
+// `identity` makes plus this shapebench's version compared across the ranks
+// (Distributor::Agree); rank 0 throws (exit 2) naming a rank that runs something else.
+// Nothing (identity not called) without MPI.
+void AgreeAcrossRanks(const std::function<RunIdentity()>& identity);
+// The --set options as an identity shows them: "KEY=VALUE" joined by ", " ("" for none).
+std::string SetsText(const std::vector<Override>& sets);
 
 // --report of run, check, sweep and compare.
 constexpr const char* kReportHelp =

@@ -83,6 +83,15 @@ int SweepCommand(const SweepArgs& args) {
   if (array) options.out_dir = ArrayShardDir(options.out_dir, *array);
   options.jobs = JobsOrDefault(args.jobs);
   if (args.no_sync) options.durability = Durability::kUnsynced;
+  AgreeAcrossRanks([&] {  // every MPI rank runs this sweep, or none runs (exit 2)
+    RunIdentity identity;
+    identity.Add("command", "sweep");
+    identity.Add("sweep file", sweep.file);
+    identity.Add("--set options", SetsText(overrides));
+    identity.Add("sweep hash", SweepHash(sweep, overrides));
+    identity.Add("shard", std::to_string(options.shard_index) + "/" + std::to_string(options.shard_count));
+    return identity;
+  });
   if (IsDistributedWorker()) {  // an MPI rank other than 0 (bench/sweep/sweep_mpi.h)
     ServeSweep(sweep, overrides, options);
     return kExitOk;

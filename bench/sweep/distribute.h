@@ -6,6 +6,7 @@
 // bytes whichever rank computed it.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -18,6 +19,17 @@ namespace shapebench::bench {
 using EncodedWork = std::function<std::string(std::uint64_t)>;
 using EncodedConsume = std::function<void(std::uint64_t, std::string&&)>;
 
+// What a distribution is told besides its work (point_loop.h's PointHooks, encoded).
+struct DistributionHooks {
+  // Points work(k) returns at once (a resumed sweep's rows ahead): never handed to
+  // another rank.
+  std::function<bool(std::uint64_t)> known;
+  // Results that waited spill_after behind an earlier point, and those left when a
+  // cancelled distribution ends: each handed once to `spill` on rank 0's calling thread.
+  std::chrono::milliseconds spill_after{100};
+  std::function<void(std::uint64_t, const std::string&)> spill;
+};
+
 class Distributor {
  public:
   virtual ~Distributor() = default;
@@ -28,7 +40,13 @@ class Distributor {
   // Returns how many were consumed.
   virtual std::uint64_t Coordinate(std::uint64_t first, std::uint64_t end, int jobs,
                                    const EncodedWork& work, const EncodedConsume& consume,
-                                   const std::function<bool()>& cancelled) = 0;
+                                   const std::function<bool()>& cancelled,
+                                   const DistributionHooks& hooks) = 0;
+  // Every rank, once, before its first distribution and before the command writes
+  // anything: `identity` (RunIdentity's bytes, bench/sweep/run_identity.h) is compared
+  // with rank 0's. Rank 0 throws std::runtime_error naming the first rank whose identity
+  // differs (and what differs) or that failed before; the other ranks then serve nothing.
+  virtual void Agree(const std::string& identity) = 0;
   // The other ranks: work(k) on `jobs` threads for the points rank 0's next Coordinate
   // hands out, until it has all of them (or the run has no more Coordinate).
   virtual void Serve(int jobs, const EncodedWork& work) = 0;

@@ -299,7 +299,7 @@ void CheckResumeDirectory(const std::string& dir_name, const nlohmann::ordered_j
   const nlohmann::json manifest = nlohmann::json::parse(ordered.dump());
   const fs::path manifest_path = dir / kSweepManifestFile;
   if (!fs::exists(manifest_path)) {
-    for (const char* name : {kSweepResultsFile, kSweepPartialFile}) {
+    for (const char* name : {kSweepResultsFile, kSweepPartialFile, kSweepAheadFile}) {
       if (fs::exists(dir / name)) {
         throw std::runtime_error(dir.string() + " holds " + name +
                                  " but no manifest.json: not this sweep's output; remove it or "
@@ -347,7 +347,7 @@ void CheckMergeOutput(const std::string& dir_name, const nlohmann::json& shard_m
     throw std::runtime_error(refused + "holds " + DescribeManifest(existing) +
                              ", not this sweep's merged result; remove it or choose another directory");
   }
-  if (fs::exists(dir / kSweepPartialFile)) {
+  if (fs::exists(dir / kSweepPartialFile) || fs::exists(dir / kSweepAheadFile)) {
     throw std::runtime_error(refused + "holds an unfinished run of this sweep (" + kSweepPartialFile +
                              "); finish it with `shapebench sweep` or choose another directory");
   }
@@ -411,6 +411,7 @@ ResumedRows KeepResumableRows(const std::string& dir_name, const std::vector<std
                                std::to_string(shard.Size()) + " rows (damaged?); remove it to run again");
     }
     fs::remove(partial, ec);
+    fs::remove(dir / kSweepAheadFile, ec);  // its rows are all in results.csv
     resumed.rows = scan.rows;
     resumed.errors = scan.errors;
     resumed.finished = true;

@@ -20,6 +20,8 @@ namespace shapebench::bench {
 inline constexpr const char* kSweepManifestFile = "manifest.json";
 inline constexpr const char* kSweepResultsFile = "results.csv";
 inline constexpr const char* kSweepPartialFile = "results.csv.partial";
+// Rows that finished ahead of their turn (bench/sweep/rows_ahead.h).
+inline constexpr const char* kSweepAheadFile = "results.csv.ahead";
 
 // The k-th point of a shard (--shard index/count: the points p with p % count == index),
 // and how many points it has.

@@ -34,6 +34,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/sweep/run_identity.h"
 #include "bench/sweep/sweep_mpi_messages.h"
 #include "bench/sweep/sweep_mpi_worker.h"
 #endif
@@ -81,9 +82,9 @@ struct Stats {
 class Coordinator {
  public:
   Coordinator(int ranks, std::uint64_t first, std::uint64_t end, int jobs, const EncodedWork& work,
-              const EncodedConsume& consume)
+              const EncodedConsume& consume, const DistributionHooks& hooks)
       : ranks_(ranks), jobs_(std::max(jobs, 1)), next_(first), written_(first), end_(end), work_(work),
-        consume_(consume), slots_(static_cast<std::size_t>(ranks), 0),
+        consume_(consume), hooks_(hooks), slots_(static_cast<std::size_t>(ranks), 0),
         outstanding_(static_cast<std::size_t>(ranks), 0) {}
 
   // Returns whether every point was consumed and every rank took part (then each is told
@@ -96,6 +97,7 @@ class Coordinator {
         Poll();
         TopUp();
         Consume();
+        SpillWaiting(false);
         if (cancelled && cancelled()) break;
         if (written_ == end_ && hellos_ == ranks_ - 1) break;
         std::unique_lock<std::mutex> lock(mutex_);
@@ -105,10 +107,12 @@ class Coordinator {
       StopLocal(&threads);
       throw;
     }
+    SpillWaiting(false);  // before the local threads' points in progress end
     StopLocal(&threads);
     if (failure_) std::rethrow_exception(failure_);
     Consume();  // what the local threads completed before they stopped
     const bool complete = written_ == end_ && hellos_ == ranks_ - 1;
+    if (!complete) SpillWaiting(true);  // what waits behind a point that will not come
     if (complete) {
       for (int rank = 1; rank < ranks_; ++rank) Send("", rank, kStop);
     }
@@ -132,12 +136,40 @@ class Coordinator {
     std::uint64_t threads = static_cast<std::uint64_t>(jobs_);
     for (const int slots : slots_) threads += static_cast<std::uint64_t>(slots);
     const std::uint64_t window = std::max<std::uint64_t>(4096, 4 * kMaxChunk * threads);
+    // Known points (read from disk: work_ returns them at once) go straight to ready_.
+    while (hooks_.known && !stop_ && next_ < end_ && next_ < written_ + window && hooks_.known(next_)) {
+      ready_.emplace(next_, Waiting{work_(next_), std::chrono::steady_clock::now(), true});
+      ++next_;
+      ready_changed_.notify_one();
+    }
     if (stop_ || next_ >= end_ || next_ >= written_ + window) return false;
     *begin = next_;
     *count = std::clamp<std::uint64_t>((end_ - next_) / (4 * threads), 1, kMaxChunk);
     *count = std::min(*count, end_ - next_);
+    for (std::uint64_t i = 1; hooks_.known && i < *count; ++i) {
+      if (hooks_.known(next_ + i)) *count = i;  // a chunk ends before a known point
+    }
     next_ += *count;
     return true;
+  }
+
+  // Results that waited hooks_.spill_after behind an earlier point (every one: `all`),
+  // each handed once to hooks_.spill; at most every kSpillPoll unless `all`.
+  void SpillWaiting(bool all) {
+    if (!hooks_.spill) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!all && now - last_spill_ < kSpillPoll) return;
+    last_spill_ = now;
+    std::vector<std::pair<std::uint64_t, std::string>> waiting;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& [k, result] : ready_) {
+        if (result.spilled || (!all && now - result.at < hooks_.spill_after)) continue;
+        result.spilled = true;
+        waiting.emplace_back(k, result.bytes);
+      }
+    }
+    for (const auto& [k, bytes] : waiting) hooks_.spill(k, bytes);
   }
 
   void LocalThread() {
@@ -164,7 +196,8 @@ class Coordinator {
       }
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        for (std::size_t i = 0; i < results.size(); ++i) ready_.emplace(begin + i, std::move(results[i]));
+        const auto now = std::chrono::steady_clock::now();
+        for (std::size_t i = 0; i < results.size(); ++i) ready_.emplace(begin + i, Waiting{std::move(results[i]), now, false});
       }
       ready_changed_.notify_one();
     }
@@ -206,7 +239,8 @@ class Coordinator {
           at += size;
         }
         std::lock_guard<std::mutex> lock(mutex_);
-        for (std::uint64_t i = 0; i < count; ++i) ready_.emplace(begin + i, std::move(rows[i]));
+        const auto now = std::chrono::steady_clock::now();
+        for (std::uint64_t i = 0; i < count; ++i) ready_.emplace(begin + i, Waiting{std::move(rows[i]), now, false});
         --outstanding_[static_cast<std::size_t>(source)];
       } else {
         throw std::runtime_error("MPI: rank " + std::to_string(source) + " sent an unexpected message");
@@ -248,7 +282,7 @@ class Coordinator {
         std::lock_guard<std::mutex> lock(mutex_);
         const auto it = ready_.find(written_);
         if (it == ready_.end()) break;
-        bytes = std::move(it->second);
+        bytes = std::move(it->second.bytes);
         ready_.erase(it);
       }
       consume_(written_, std::move(bytes));
@@ -268,13 +302,22 @@ class Coordinator {
   const std::uint64_t end_;
   const EncodedWork& work_;
   const EncodedConsume& consume_;
+  const DistributionHooks& hooks_;
   std::vector<int> slots_;        // each rank's threads (0: no hello yet); written under mutex_
   std::vector<int> outstanding_;  // each rank's chunks not yet returned
   int hellos_ = 0;  // written under mutex_
   std::mutex mutex_;
   std::condition_variable ready_changed_;
   std::condition_variable work_changed_;
-  std::map<std::uint64_t, std::string> ready_;
+  // A result waiting to be consumed: since when, and whether hooks_.spill has it.
+  struct Waiting {
+    std::string bytes;
+    std::chrono::steady_clock::time_point at;
+    bool spilled = false;
+  };
+  static constexpr std::chrono::milliseconds kSpillPoll{20};
+  std::map<std::uint64_t, Waiting> ready_;
+  std::chrono::steady_clock::time_point last_spill_{};
   std::atomic<bool> stop_{false};  // read between a chunk's points without the lock
   std::exception_ptr failure_;
   Stats stats_;
@@ -305,14 +348,17 @@ class MpiRun::Impl : public Distributor {
   }
 
   std::uint64_t Coordinate(std::uint64_t first, std::uint64_t end, int jobs, const EncodedWork& work,
-                           const EncodedConsume& consume, const std::function<bool()>& cancelled) override;
+                           const EncodedConsume& consume, const std::function<bool()>& cancelled,
+                           const DistributionHooks& hooks) override;
   void Serve(int jobs, const EncodedWork& work) override;
+  void Agree(const std::string& identity) override;
   int ProcessesOnHost() const override { return host_size_; }
   bool coordinator() const override { return rank_ == 0; }
   int Finish(int code);
 
  private:
-  bool Rendezvous(bool ready);
+  bool Rendezvous(bool ready, const std::string& identity = "");
+  std::vector<std::string> AllGather(const std::string& mine) const;
   [[noreturn]] void Fatal(const std::string& message, int code);
 
   int rank_ = 0;
@@ -326,25 +372,56 @@ class MpiRun::Impl : public Distributor {
   bool finished_ = false;
 };
 
-// Once per run, at a rank's first distribution or at its end: whether every rank got
-// there ready (a rank whose command failed first, e.g. on a file only it cannot read,
-// says not ready, and nobody waits for it). Polled: MPI's blocking waits spin on a core.
-bool MpiRun::Impl::Rendezvous(bool ready) {
-  rendezvoused_ = true;
-  int mine = ready ? 1 : 0;
-  std::vector<int> all(static_cast<std::size_t>(size_), 0);
-  MPI_Request request;
-  MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+namespace {
+
+// Waits for a non-blocking collective, polling: MPI's blocking waits spin on a core.
+void WaitPolled(MPI_Request* request) {
   int done = 0;
-  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && done == 0) {
+  while (MPI_Test(request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && done == 0) {
     std::this_thread::sleep_for(kPoll);
   }
-  std::string not_ready;
-  for (int rank = 0; rank < size_; ++rank) {
-    if (all[static_cast<std::size_t>(rank)] == 0) not_ready += (not_ready.empty() ? "" : ", ") + std::to_string(rank);
+}
+
+}  // namespace
+
+// Every rank's bytes, in rank order.
+std::vector<std::string> MpiRun::Impl::AllGather(const std::string& mine) const {
+  int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(static_cast<std::size_t>(size_), 0);
+  MPI_Request request;
+  MPI_Iallgather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+  WaitPolled(&request);
+  std::vector<int> offsets(sizes.size(), 0);
+  for (std::size_t i = 1; i < sizes.size(); ++i) offsets[i] = offsets[i - 1] + sizes[i - 1];
+  std::string all(static_cast<std::size_t>(offsets.back() + sizes.back()), '\0');
+  MPI_Iallgatherv(mine.data(), size, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD,
+                  &request);
+  WaitPolled(&request);
+  std::vector<std::string> each;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    each.push_back(all.substr(static_cast<std::size_t>(offsets[i]), static_cast<std::size_t>(sizes[i])));
   }
-  everyone_ready_ = not_ready.empty();
+  return each;
+}
+
+// Once per run, before a rank's first distribution (Agree, or the distribution itself) or
+// at its end: whether every rank got there ready (a rank whose command failed first, e.g.
+// on a file only it cannot read, says not ready, and nobody waits for it) with rank 0's
+// identity (the same command, files, --set options and shapebench: run_identity.h).
+bool MpiRun::Impl::Rendezvous(bool ready, const std::string& identity) {
+  rendezvoused_ = true;
+  std::vector<std::string> all = AllGather((ready ? "1" : "0") + identity);
+  std::string not_ready;
+  std::vector<int> differing;
+  for (int rank = 0; rank < size_; ++rank) {
+    std::string& bytes = all[static_cast<std::size_t>(rank)];
+    if (bytes.empty() || bytes[0] != '1') not_ready += (not_ready.empty() ? "" : ", ") + std::to_string(rank);
+    bytes.erase(0, 1);
+    if (bytes != all[0]) differing.push_back(rank);
+  }
+  everyone_ready_ = not_ready.empty() && differing.empty();
   if (!everyone_ready_ && rank_ == 0 && ready) {
+    if (not_ready.empty()) throw std::runtime_error(RankMismatchMessage(all, differing));
     throw std::runtime_error("MPI rank " + not_ready + " of " + std::to_string(size_) +
                              " failed before the points were handed out (its own error is not "
                              "shown: ranks other than 0 are quiet); run the command without mpirun to see it");
@@ -352,13 +429,17 @@ bool MpiRun::Impl::Rendezvous(bool ready) {
   return everyone_ready_;
 }
 
+void MpiRun::Impl::Agree(const std::string& identity) {
+  if (!rendezvoused_) Rendezvous(true, identity);
+}
+
 std::uint64_t MpiRun::Impl::Coordinate(std::uint64_t first, std::uint64_t end, int jobs,
                                        const EncodedWork& work, const EncodedConsume& consume,
-                                       const std::function<bool()>& cancelled) {
+                                       const std::function<bool()>& cancelled, const DistributionHooks& hooks) {
   if (!rendezvoused_) Rendezvous(true);
   if (!everyone_ready_ || broken_) throw std::runtime_error("MPI: the run cannot distribute points any more");
   broken_ = true;  // until the distribution ends cleanly
-  Coordinator coordinator(size_, first, end, jobs, work, consume);
+  Coordinator coordinator(size_, first, end, jobs, work, consume, hooks);
   const auto start = std::chrono::steady_clock::now();
   broken_ = !coordinator.Run(cancelled);
   const Stats& stats = coordinator.stats();

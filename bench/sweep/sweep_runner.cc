@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <future>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +27,8 @@
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
 #include "bench/sweep/point_loop.h"
+#include "bench/sweep/rows_ahead.h"
+#include "bench/sweep/sweep_rows.h"
 #include "bench/sweep/sweep_plot.h"
 
 namespace shapebench::bench {
@@ -90,8 +94,21 @@ std::vector<const MetricInfo*> MetricColumns(const std::vector<std::string>& met
   return columns;
 }
 
+// SHAPEBENCH_TEST_HANG_POINT=P[,P...]: these points of `sweep` never end (they sleep
+// until the process does), as points the solver cannot finish would; how the tests
+// (tests/cli/reliability_cli_test.cc, sweep_cli_test.cc) hang a point at a known place,
+// and show that a resumed sweep does not run again a point it has the row of.
+bool HangsForTests(std::uint64_t point_index) {
+  static const std::string hang = [] {
+    const char* text = std::getenv("SHAPEBENCH_TEST_HANG_POINT");
+    return text == nullptr ? std::string() : "," + std::string(text) + ",";
+  }();
+  return !hang.empty() && hang.find("," + std::to_string(point_index) + ",") != std::string::npos;
+}
+
 Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
               const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
+  while (HangsForTests(point_index)) std::this_thread::sleep_for(std::chrono::seconds(1));
   const SweepPoint point = MakePoint(sweep, point_index, sets);
   const PointOutcome outcome = RunPoint(sweep, point);
   // CsvRecord's line, written in place: a number (ExactDouble's text) never needs quotes.
@@ -115,96 +132,6 @@ Row DecodeRow(const std::string& bytes) {
   return Row{bytes.empty() ? std::string() : bytes.substr(1), !bytes.empty() && bytes[0] == '1'};
 }
 
-// Rows reach the file at least every kFlushEvery (a watcher sees the sweep progress; a
-// crash loses at most that much work: resume runs a torn tail again, sweep_files.cc), not
-// one write per row (a fast sweep's rows cost microseconds each). An interrupted sweep
-// closes the file, which writes every row it kept.
-constexpr std::chrono::milliseconds kFlushEvery{100};
-
-void WriteAll(std::FILE* file, const std::string& text, const std::string& path,
-              std::chrono::steady_clock::time_point* flushed) {
-  const auto now = std::chrono::steady_clock::now();
-  const bool flush = now - *flushed >= kFlushEvery;
-  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || (flush && std::fflush(file) != 0)) {
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  }
-  if (flush) *flushed = now;
-}
-
-// results.csv.partial as a sweep appends its rows, in order. A new directory's manifest and
-// header are written while the first points run (`ready`): on another thread (one job), or
-// by this one when the first row arrives (a deferred future: several jobs). Until they
-// are, the rows wait in memory, so none reaches the disk before the manifest that says
-// whose rows they are.
-class PartialRows {
- public:
-  PartialRows(fs::path path, std::future<ResumedRows>* ready, Durability durability)
-      : path_(std::move(path)), ready_(ready), durability_(durability) {}
-  PartialRows(const PartialRows&) = delete;
-  PartialRows& operator=(const PartialRows&) = delete;
-  ~PartialRows() {
-    if (file_ != nullptr) std::fclose(file_);
-  }
-
-  // Opens the file now when nothing is being prepared (a resumed directory): a file that
-  // cannot be written is said before any point runs.
-  void OpenIfReady() {
-    if (!ready_->valid()) Open();
-  }
-  void Add(const std::string& row) {
-    if (file_ == nullptr && ready_->valid() &&
-        ready_->wait_for(std::chrono::seconds(0)) == std::future_status::timeout) {
-      waiting_ += row;
-      return;
-    }
-    if (file_ == nullptr) Open();
-    WriteAll(file_, row, path_.string(), &flushed_);
-  }
-  // Every row on disk (synced, unless kUnsynced), the file closed; throws what could not
-  // be written.
-  void Close() {
-    if (file_ == nullptr) Open();  // rows still waiting, or none (interrupted before the first)
-    if (std::fflush(file_) != 0) Fail();
-    if (durability_ == Durability::kSynced && !SyncFile(fileno(file_))) Fail();
-    std::FILE* file = file_;
-    file_ = nullptr;
-    if (std::fclose(file) != 0) Fail();
-  }
-  // After a failure: the rows computed so far kept as far as they can be, nothing thrown.
-  // None when the manifest could not be written: no row goes to disk without it.
-  void KeepComputed() noexcept {
-    try {
-      if (file_ == nullptr && !waiting_.empty() && !unprepared_) Open();
-    } catch (...) {
-    }
-    if (ready_->valid()) ready_->wait();  // it reads the caller's variables
-  }
-
- private:
-  void Open() {
-    if (ready_->valid()) {
-      unprepared_ = true;
-      ready_->get();
-      unprepared_ = false;
-    }
-    file_ = std::fopen(path_.c_str(), "ab");
-    if (file_ == nullptr) Fail();
-    if (!waiting_.empty()) WriteAll(file_, waiting_, path_.string(), &flushed_);
-    waiting_.clear();
-  }
-  [[noreturn]] void Fail() const {
-    throw std::runtime_error("cannot write " + path_.string() + ": " + std::strerror(errno));
-  }
-
-  const fs::path path_;
-  std::future<ResumedRows>* ready_;
-  const Durability durability_;
-  std::FILE* file_ = nullptr;
-  std::string waiting_;  // rows computed before the file was ready, in order
-  bool unprepared_ = false;  // the manifest and header failed: nothing may be written
-  std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
-};
-
 // The output directory, created when missing.
 void CreateOutputDir(const fs::path& dir) {
   std::error_code ec;
@@ -215,29 +142,39 @@ void CreateOutputDir(const fs::path& dir) {
   }
 }
 
-// The shard's points from summary->resumed on, their rows appended to `partial` in order
-// (after the manifest `preparing` writes, if any), and `partial` renamed results.csv once
-// complete. An interruption keeps the rows so far and says how to resume.
-void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets,
-                        const SweepRunOptions& options, const ShardPoints& shard, const fs::path& partial,
+// The shard's points from `first` on, their rows appended to the partial file in order
+// (after the manifest `preparing` writes, if any) and, while one waits behind an earlier
+// point, to results.csv.ahead (rows_ahead.h); the rows `ahead` holds are not run again.
+// The partial file is renamed results.csv once complete. An interruption keeps the rows
+// so far and says how to resume.
+void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets, const SweepRunOptions& options,
+                        const ShardPoints& shard, std::uint64_t first, const RowsAhead& ahead,
                         std::future<ResumedRows>* preparing, SweepRunSummary* summary) {
   const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
+  const fs::path dir(options.out_dir);
   ProgressBar progress(options.progress, shard.Size(), summary->resumed);
-  std::uint64_t written = summary->resumed;
-  PartialRows rows(partial, preparing, options.durability);
+  std::uint64_t written = first;
+  SweepRows rows(dir, ResultColumns(sweep), preparing, options.durability, ahead.Points());
   try {
     rows.OpenIfReady();
     // k: the shard's k-th point, as ServeSweep's ranks compute it (MPI, distribute.h).
     const PointCodec<Row> codec{EncodeRow, DecodeRow};
+    PointHooks<Row> hooks;
+    hooks.known = [&](std::uint64_t k) { return ahead.Find(k) != nullptr; };
+    hooks.spill.after = kAheadAfter;
+    hooks.spill.take = [&](std::uint64_t k, const Row& row) { rows.Ahead(k, row.text); };
     ForEachSweepPoint<Row>(
-        summary->resumed, shard.Size(), options.jobs,
-        [&](std::uint64_t k) { return FormatRow(sweep, sets, columns, shard.Point(k)); },
-        [&](std::uint64_t, Row&& row) {
-          rows.Add(row.text);
+        first, shard.Size(), options.jobs,
+        [&](std::uint64_t k) {
+          const AheadRow* done = ahead.Find(k);
+          return done != nullptr ? Row{done->text, done->ok} : FormatRow(sweep, sets, columns, shard.Point(k));
+        },
+        [&](std::uint64_t k, Row&& row) {
+          rows.Add(k, row.text);
           if (!row.ok) ++summary->errors;
           progress.Update(++written);
         },
-        [] { return PendingInterrupt() != 0; }, &codec);
+        [] { return PendingInterrupt() != 0; }, &codec, nullptr);
     progress.Finish(written);
     rows.Close();
   } catch (...) {
@@ -246,11 +183,17 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets,
   }
   if (written < shard.Size()) {
     // SIGINT/SIGTERM: the rows so far are complete and flushed; the same command resumes.
-    ThrowIfInterrupted(std::to_string(written) + " of " + std::to_string(shard.Size()) +
-                       " points done, kept in " + partial.string() +
+    const std::uint64_t waiting = rows.WaitingAhead();
+    ThrowIfInterrupted(std::to_string(written + waiting) + " of " + std::to_string(shard.Size()) +
+                       " points done, kept in " + (dir / kSweepPartialFile).string() +
+                       (waiting > 0 ? " (" + std::to_string(waiting) + " of them, finished ahead of their turn, in " +
+                                          (dir / kSweepAheadFile).string() + ")"
+                                    : std::string()) +
                        "; run the same command again to resume");
   }
-  fs::rename(partial, summary->results);  // dir / kSweepResultsFile
+  fs::rename(dir / kSweepPartialFile, summary->results);  // dir / kSweepResultsFile
+  std::error_code ec;
+  fs::remove(dir / kSweepAheadFile, ec);  // every row of it is in results.csv
 }
 
 // The plots of a complete, unsharded sweep.
@@ -306,9 +249,15 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   std::future<ResumedRows> preparing;
   const ResumedRows resumed = fresh ? ResumedRows{} : prepare();
   if (fresh) preparing = std::async(here ? std::launch::deferred : std::launch::async, prepare);
-  summary.resumed = resumed.rows;
+  // Rows that finished ahead of their turn before the last run stopped: not run again.
+  const RowsAhead ahead = true ? RowsAhead{}
+                                                    : RowsAhead::Resume(dir.string(), columns, shard, GridTexts::Of(sweep),
+                                                                        resumed.rows, options.durability);
+  summary.resumed = resumed.rows + ahead.size();
   summary.errors = resumed.errors;
-  if (!resumed.finished) RunRemainingPoints(sweep, sets, options, shard, partial, &preparing, &summary);
+  if (!resumed.finished) {
+    RunRemainingPoints(sweep, sets, options, shard, resumed.rows, ahead, &preparing, &summary);
+  }
   summary.ok = summary.points - summary.errors;
   ThrowIfInterrupted("all " + std::to_string(summary.points) + " points done, " + summary.results +
                      " is complete; run the same command again to draw the plots");

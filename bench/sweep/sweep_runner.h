@@ -6,7 +6,10 @@
 //   manifest.json        what the rows belong to: the sweep's hash (base scenario as read,
 //                        expanded grid, --set options, kept metrics), the shard, the
 //                        columns and what the plots need. Written before any row.
-//   results.csv.partial  the rows so far, appended and flushed one by one, in point order;
+//   results.csv.partial  the rows so far, appended in point order, flushed every 0.1 s;
+//   results.csv.ahead    rows that finished while an earlier point still ran, written once
+//                        they have waited 0.1 s (bench/sweep/rows_ahead.h): a resume does
+//                        not run them again;
 //   results.csv          the finished file: the partial file renamed when the last row is
 //                        written (so a results.csv is always complete);
 //   *.png                the plots (not for a shard; `merge` draws them).
@@ -15,8 +18,8 @@
 // shortest text that reads back exactly; empty when undefined or the point failed),
 // `status` (ok|error) and `error` (the message); RFC 4180 quoting.
 // Started again with the same --out, a sweep keeps the partial file's complete rows (a
-// torn last row is cut off), runs the points after them and ends with the same bytes as
-// an uninterrupted run. A directory holding another sweep (or another shard) is refused.
+// torn last row is cut off) and the rows ahead, runs the other points and ends with the
+// same bytes as an uninterrupted run. A directory holding another sweep (or another shard) is refused.
 // A sweep or merge holds an exclusive lock on the directory (.shapebench.lock, with its
 // PID; bench/sweep/output_dir.h) while it writes there: a second one is refused (exit 2).
 // manifest.json also keeps the grid's values, so that a merge checks each row's keys.

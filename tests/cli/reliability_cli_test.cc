@@ -140,6 +140,86 @@ TEST(Interrupt, SweepStopsCleanlyAndResumesToTheSameFile) {
   }
 }
 
+// Waits (at most 20 s) until process `pid` has taken `signal` (no longer pending: its
+// handler ran), so that a second one sent then is not merged into the first.
+bool WaitUntilTaken(pid_t pid, int signal) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line;
+    bool pending = false;
+    while (std::getline(status, line)) {
+      if (line.rfind("SigPnd:", 0) == 0 || line.rfind("ShdPnd:", 0) == 0) {
+        pending = pending || (std::stoull(line.substr(7), nullptr, 16) >> (signal - 1) & 1) != 0;
+      }
+    }
+    if (!pending) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+const std::string kHungPointSweep = "tests/bench/data/reliability/hung_point_sweep.yaml";  // 21 points
+
+// Tests that the rows of points that finished while an earlier point hangs reach the disk
+// (results.csv.ahead) while it hangs, that two SIGINTs then (the second ends the process
+// at once, exit 130) lose none of them, and that the same command resumes without running
+// them again: with those 20 points set to hang (SHAPEBENCH_TEST_HANG_POINT; running one
+// would never end, and `timeout` would fail the run) it ends, reports 20 done before and
+// writes the uninterrupted run's results.csv byte for byte.
+TEST(Interrupt, RowsFinishedBehindAHungPointAreNotRunAgain) {
+  ScratchDir dir;
+  const CliResult whole = RunCli({"sweep", kHungPointSweep, "--jobs", "1", "--out", dir.File("whole")}, kSourceDir);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const std::string reference = ReadText(dir.File("whole/results.csv"));
+  const std::string out = dir.File("hung");
+  const std::string ahead = out + "/results.csv.ahead";
+  setenv("SHAPEBENCH_TEST_HANG_POINT", "0", 1);
+  const pid_t pid = SpawnCli({"sweep", kHungPointSweep, "--jobs", "2", "--out", out}, kSourceDir, dir.File("err.txt"));
+  unsetenv("SHAPEBENCH_TEST_HANG_POINT");
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && (!fs::exists(ahead) || ReadCsvRows(ahead).size() < 21)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const bool seen = fs::exists(ahead) && ReadCsvRows(ahead).size() == 21;  // the header and 20 rows
+  ASSERT_TRUE(WaitForHandler(pid, SIGINT));
+  kill(pid, SIGINT);
+  EXPECT_TRUE(WaitUntilTaken(pid, SIGINT));
+  kill(pid, SIGINT);
+  int status = 0;
+  const auto end_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (waitpid(pid, &status, WNOHANG) == 0 && std::chrono::steady_clock::now() < end_deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (std::chrono::steady_clock::now() >= end_deadline) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "the second SIGINT did not end the sweep";
+  }
+  ASSERT_TRUE(seen) << "the rows behind the hung point never reached " << ahead;
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << ReadText(dir.File("err.txt"));
+  EXPECT_FALSE(fs::exists(out + "/results.csv"));
+  EXPECT_EQ(ReadCsvRows(out + "/results.csv.partial").size(), 1u);  // the header: point 0 never came
+  std::vector<std::vector<std::string>> rows = ReadCsvRows(ahead);
+  std::sort(rows.begin() + 1, rows.end(), [](const auto& a, const auto& b) { return std::stoi(a[0]) < std::stoi(b[0]); });
+  std::string sorted;
+  for (const auto& row : rows) sorted += CsvRecord(row);
+  const std::size_t row0_end = reference.find('\n', reference.find('\n') + 1) + 1;
+  EXPECT_EQ(sorted, reference.substr(0, reference.find('\n') + 1) + reference.substr(row0_end))
+      << "the rows ahead are the uninterrupted run's rows 1-20";
+
+  std::string others;
+  for (int point = 1; point <= 20; ++point) others += (point > 1 ? "," : "") + std::to_string(point);
+  const CliResult resumed = RunCli({"sweep", kHungPointSweep, "--jobs", "2", "--out", out}, kSourceDir,
+                                   "SHAPEBENCH_TEST_HANG_POINT=" + others + " timeout 120 ");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;  // 124: a point finished before was run again, and hung
+  EXPECT_NE(resumed.out.find("21 points, 21 ok, 0 error (20 done before)"), std::string::npos) << resumed.out;
+  EXPECT_EQ(ReadText(out + "/results.csv"), reference);
+  EXPECT_FALSE(fs::exists(ahead));
+}
+
 // Tests that `run --out` interrupted while it simulates exits 143 and leaves no output
 // directory (files are written only after the run, each complete or absent).
 TEST(Interrupt, RunInterruptedWhileSimulatingWritesNothing) {

@@ -250,6 +250,30 @@ TEST(SweepCli, RowTornInsideAQuotedFieldIsRunAgain) {
   EXPECT_EQ(ReadText(dir.File("torn/results.csv")), text);
 }
 
+// Tests that a resumed sweep takes the rows of results.csv.ahead (points that finished
+// behind a slower one before the last run stopped) instead of running their points: the
+// directory holds 50 rows in order and, ahead, the rows of points 60-69 and of point 200
+// (an error row), then a row torn by a kill; resumed on one job and on two with those 11
+// points set to hang (SHAPEBENCH_TEST_HANG_POINT: running one would never end, and
+// `timeout` would fail the run), it ends, reports 61 points done before, writes the
+// uninterrupted run's results.csv byte for byte and leaves no results.csv.ahead.
+TEST(SweepCli, ResumeTakesRowsAheadInsteadOfRunningThem) {
+  ScratchDir dir;
+  const std::string reference = Reference(dir, kMethod4, "whole");
+  for (const std::string jobs : {"1", "2"}) {
+    const std::string out = dir.File("ahead" + jobs);
+    const std::string hang = testing::WriteSweepDirWithRowsAhead(dir.File("whole"), out, 50,
+                                                                 {64, 60, 200, 61, 62, 63, 65, 66, 67, 68, 69});
+    const CliResult r = RunCli(Args({"sweep", kNaturalPeriod, "--jobs", jobs, "--out", out}, kMethod4), kSourceDir,
+                               "SHAPEBENCH_TEST_HANG_POINT=" + hang + " timeout 120 ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;  // 124: a point ahead was run again, and hung
+    EXPECT_NE(r.out.find(", 200 ok, 1 error (61 done before)"), std::string::npos) << r.out;
+    EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference)) << jobs;
+    EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.ahead"));
+    EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.partial"));
+  }
+}
+
 // Tests that an output directory holding another sweep's results is refused (exit 2)
 // and left as it was, and that a grid over the limit needs --force.
 TEST(SweepCli, RefusesAnotherSweepsDirectoryAndHugeGrids) {

@@ -151,6 +151,67 @@ TEST(SweepMpi, SampledSweepIsTheSameOnAnyNumberOfRanks) {
   }
 }
 
+// Tests that ranks started on different sweeps are refused before the first point, exit
+// 2, rank 0 naming the first rank that differs and what differs: MPMD with rank 0 on the
+// natural-period sweep and ranks 1 and 2 on it with --set controller.feed_mm_min=20000,
+// for `check` (nothing printed on stdout) and `sweep` (no manifest, no row written);
+// and rank 1 running `check` where rank 0 runs `sweep`.
+TEST(SweepMpi, RanksRunningAnotherSweepAreRefused) {
+  if (const std::string missing = MpiMissing(); !missing.empty()) GTEST_SKIP() << missing;
+  ScratchDir dir;
+  const std::string binary = testing::ShellQuoted(SHAPEBENCH_BINARY);
+  const std::vector<std::string> other_set = {"--set", "controller.feed_mm_min=20000"};
+  for (const std::string command : {"check", "sweep"}) {
+    SCOPED_TRACE(command);
+    const std::string out = dir.File(command + "_out");
+    std::vector<std::string> args = {command, kShippedNaturalPeriod, "--jobs", "1"};
+    if (command == "sweep") args = Args(args, {"--out", out});
+    std::string rank0;
+    for (const std::string& arg : args) rank0 += " " + testing::ShellQuoted(arg);
+    const CliResult r = RunCli(Args(args, other_set), kSourceDir, Mpirun(1) + binary + rank0 + " : -n 2 ");
+    EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find("error: MPI rank 1 of 3 does not run what rank 0 runs: --set options "
+                         "\"controller.feed_mm_min=20000\" on rank 1, none on rank 0; sweep hash"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("(rank 2 differs from rank 0 too); every rank must run the same command"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_FALSE(std::filesystem::exists(out + "/manifest.json"));
+    EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.partial"));
+  }
+  const std::string out = dir.File("mixed");
+  const CliResult mixed = RunCli({"check", kShippedNaturalPeriod, "--jobs", "1"}, kSourceDir,
+                                 Mpirun(1) + binary + " sweep " + kShippedNaturalPeriod + " --jobs 1 --out " +
+                                     testing::ShellQuoted(out) + " : -n 1 ");
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.err;
+  EXPECT_NE(mixed.err.find("error: MPI rank 1 of 2 does not run what rank 0 runs: command \"check\" on rank 1, "
+                           "\"sweep\" on rank 0"),
+            std::string::npos)
+      << mixed.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/manifest.json"));
+}
+
+// Tests that a sweep resumed on 3 ranks takes the rows of results.csv.ahead without
+// handing their points to any rank: 50 rows in order and 11 ahead (points 60-69 and 300)
+// then a torn row; those points set to hang on every rank, the run ends (exit 0),
+// reports 61 done before and writes --jobs 1's results.csv byte for byte.
+TEST(SweepMpi, ResumeHandsNoRowAheadToAnyRank) {
+  if (const std::string missing = MpiMissing(); !missing.empty()) GTEST_SKIP() << missing;
+  ScratchDir dir;
+  const std::string reference = MpiReference(dir);
+  const std::string out = dir.File("ahead");
+  const std::string hang =
+      testing::WriteSweepDirWithRowsAhead(reference, out, 50, {61, 60, 300, 62, 63, 64, 65, 66, 67, 68, 69});
+  const CliResult r = RunCli({"sweep", kShippedNaturalPeriod, "--jobs", "1", "--out", out}, kSourceDir,
+                             "timeout 120 env " + Mpirun(3, "SHAPEBENCH_TEST_HANG_POINT=" + hang));
+  ASSERT_EQ(r.exit_code, 0) << r.err;  // 124: a point ahead was run again, and hung
+  EXPECT_NE(r.out.find("(61 done before)"), std::string::npos) << r.out;
+  EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference + "/results.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.ahead"));
+}
+
 // Tests that a Slurm array task without --shard runs shard ID-MIN of COUNT into
 // DIR/shard-I-of-N, that both tasks merge to --jobs 1's file, that an explicit --shard
 // wins (and --out is used as given), and that an id that is no shard is refused (exit 2).

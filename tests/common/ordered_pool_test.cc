@@ -3,7 +3,10 @@
 // of wake-ups, with a window smaller and larger than the batch.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -58,6 +61,49 @@ TEST(OrderedPool, SeveralJobsInOrderForEveryWindow) {
       ASSERT_EQ(seen.size(), 203u) << window << " " << jobs;
       for (std::uint64_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], k);
     }
+  }
+}
+
+// Tests that with a Spill the results computed while an earlier item is still running
+// are handed to it while they wait, each once: item 0 does not end until every other item
+// has been handed over (60 s at most, so a failure cannot hang the test); then every
+// result is still consumed, in order.
+TEST(OrderedPool, ResultsWaitingBehindASlowItemAreSpilled) {
+  for (const int jobs : {2, 3}) {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::multiset<std::uint64_t> spilled;
+    Spill<std::uint64_t> spill;
+    spill.after = std::chrono::milliseconds(0);
+    spill.take = [&](std::uint64_t k, const std::uint64_t& value) {
+      EXPECT_EQ(value, 5 * k);
+      std::lock_guard<std::mutex> lock(mutex);
+      spilled.insert(k);
+      changed.notify_all();
+    };
+    std::vector<std::uint64_t> seen;
+    bool all_spilled_first = false;
+    const std::uint64_t done = RunOrdered<std::uint64_t>(
+        40, jobs,
+        [&](std::uint64_t k) {
+          if (k == 0) {
+            std::unique_lock<std::mutex> lock(mutex);
+            all_spilled_first = changed.wait_for(lock, std::chrono::seconds(60), [&] { return spilled.size() >= 39; });
+          }
+          return 5 * k;
+        },
+        [&](std::uint64_t k, std::uint64_t&& value) {
+          EXPECT_EQ(value, 5 * k);
+          seen.push_back(k);
+        },
+        0, {}, &spill);
+    EXPECT_TRUE(all_spilled_first) << jobs;
+    EXPECT_EQ(done, 40u);
+    ASSERT_EQ(seen.size(), 40u);
+    for (std::uint64_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], k);
+    std::lock_guard<std::mutex> lock(mutex);
+    for (std::uint64_t k = 1; k < 40; ++k) EXPECT_EQ(spilled.count(k), 1u) << k << " with " << jobs << " jobs";
+    EXPECT_EQ(spilled.count(0), 0u);
   }
 }
 

@@ -138,6 +138,29 @@ inline std::vector<std::vector<std::string>> ReadCsv(const std::string& path) {
   return rows;
 }
 
+// The output directory of a sweep stopped with rows ahead (bench/sweep/rows_ahead.h),
+// made in `out` from the finished run in `whole`: its manifest, results.csv.partial with
+// the header and the rows of points 0..in_order-1, and results.csv.ahead with the header,
+// the rows of the points `ahead` in that order, and then a row torn by a kill. Returns
+// those points as SHAPEBENCH_TEST_HANG_POINT takes them ("60,61,...").
+inline std::string WriteSweepDirWithRowsAhead(const std::string& whole, const std::string& out, std::size_t in_order,
+                                              const std::vector<std::size_t>& ahead) {
+  const std::vector<std::vector<std::string>> rows = ReadCsv(whole + "/results.csv");
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(whole + "/manifest.json", out + "/manifest.json");
+  std::ofstream partial(out + "/results.csv.partial", std::ios::binary);
+  for (std::size_t i = 0; i <= in_order && i < rows.size(); ++i) partial << CsvRecord(rows[i]);
+  std::ofstream file(out + "/results.csv.ahead", std::ios::binary);
+  file << CsvRecord(rows[0]);
+  std::string points;
+  for (const std::size_t point : ahead) {
+    file << CsvRecord(rows.at(point + 1));
+    points += (points.empty() ? "" : ",") + std::to_string(point);
+  }
+  file << CsvRecord(rows.back()).substr(0, 6);  // torn: no end of record
+  return points;
+}
+
 struct CliResult {
   int exit_code = -1;
   std::string out;
