@@ -18,7 +18,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$root" || exit 1
 "$bin" run configs/demo.yaml --report "$work/demo.html" >/dev/null || { echo "report_in_browser: run --report failed"; exit 1; }
 chrome() {
-  HOME="$work" timeout 120 "$browser" --headless=new --no-sandbox --disable-gpu --enable-logging=stderr --v=0 \
+  HOME="$work" timeout -k 10 120 "$browser" --headless=new --no-sandbox --disable-gpu --enable-logging=stderr --v=0 \
     --user-data-dir="$work/profile" "$@" "file://$work/demo.html"
 }
 chrome --dump-dom >"$work/dom.html" 2>"$work/console.log" || { echo "report_in_browser: chromium failed"; cat "$work/console.log"; exit 1; }

@@ -152,7 +152,9 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets, c
                         std::future<ResumedRows>* preparing, SweepRunSummary* summary) {
   const std::vector<const MetricInfo*> columns = MetricColumns(sweep.metrics);
   const fs::path dir(options.out_dir);
-  ProgressBar progress(options.progress, shard.Size(), summary->resumed);
+  // From `first`, as `written` counts (summary->resumed adds the rows ahead: done - already
+  // would wrap below zero until they are written).
+  ProgressBar progress(options.progress, shard.Size(), first);
   std::uint64_t written = first;
   SweepRows rows(dir, ResultColumns(sweep), preparing, options.durability, ahead.Points());
   try {
@@ -174,7 +176,7 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets, c
           if (!row.ok) ++summary->errors;
           progress.Update(++written);
         },
-        [] { return PendingInterrupt() != 0; }, &codec, nullptr);
+        [] { return PendingInterrupt() != 0; }, &codec, &hooks);
     progress.Finish(written);
     rows.Close();
   } catch (...) {
@@ -250,9 +252,9 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   const ResumedRows resumed = fresh ? ResumedRows{} : prepare();
   if (fresh) preparing = std::async(here ? std::launch::deferred : std::launch::async, prepare);
   // Rows that finished ahead of their turn before the last run stopped: not run again.
-  const RowsAhead ahead = true ? RowsAhead{}
-                                                    : RowsAhead::Resume(dir.string(), columns, shard, GridTexts::Of(sweep),
-                                                                        resumed.rows, options.durability);
+  const RowsAhead ahead = resumed.finished ? RowsAhead{}
+                                            : RowsAhead::Resume(dir.string(), columns, shard, GridTexts::Of(sweep),
+                                                                resumed.rows, options.durability);
   summary.resumed = resumed.rows + ahead.size();
   summary.errors = resumed.errors;
   if (!resumed.finished) {

@@ -213,8 +213,9 @@ TEST(Interrupt, RowsFinishedBehindAHungPointAreNotRunAgain) {
   std::string others;
   for (int point = 1; point <= 20; ++point) others += (point > 1 ? "," : "") + std::to_string(point);
   const CliResult resumed = RunCli({"sweep", kHungPointSweep, "--jobs", "2", "--out", out}, kSourceDir,
-                                   "SHAPEBENCH_TEST_HANG_POINT=" + others + " timeout 120 ");
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;  // 124: a point finished before was run again, and hung
+                                   "SHAPEBENCH_TEST_HANG_POINT=" + others + " timeout -k 10 120 ");
+  // 124 (137: killed by -k): a point finished before was run again, and hung.
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("21 points, 21 ok, 0 error (20 done before)"), std::string::npos) << resumed.out;
   EXPECT_EQ(ReadText(out + "/results.csv"), reference);
   EXPECT_FALSE(fs::exists(ahead));

@@ -265,8 +265,8 @@ TEST(SweepCli, ResumeTakesRowsAheadInsteadOfRunningThem) {
     const std::string hang = testing::WriteSweepDirWithRowsAhead(dir.File("whole"), out, 50,
                                                                  {64, 60, 200, 61, 62, 63, 65, 66, 67, 68, 69});
     const CliResult r = RunCli(Args({"sweep", kNaturalPeriod, "--jobs", jobs, "--out", out}, kMethod4), kSourceDir,
-                               "SHAPEBENCH_TEST_HANG_POINT=" + hang + " timeout 120 ");
-    ASSERT_EQ(r.exit_code, 0) << r.err;  // 124: a point ahead was run again, and hung
+                               "SHAPEBENCH_TEST_HANG_POINT=" + hang + " timeout -k 10 120 ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;  // 124 (137: killed by -k): a point ahead was run again, and hung
     EXPECT_NE(r.out.find(", 200 ok, 1 error (61 done before)"), std::string::npos) << r.out;
     EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference)) << jobs;
     EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.ahead"));

@@ -205,8 +205,8 @@ TEST(SweepMpi, ResumeHandsNoRowAheadToAnyRank) {
   const std::string hang =
       testing::WriteSweepDirWithRowsAhead(reference, out, 50, {61, 60, 300, 62, 63, 64, 65, 66, 67, 68, 69});
   const CliResult r = RunCli({"sweep", kShippedNaturalPeriod, "--jobs", "1", "--out", out}, kSourceDir,
-                             "timeout 120 env " + Mpirun(3, "SHAPEBENCH_TEST_HANG_POINT=" + hang));
-  ASSERT_EQ(r.exit_code, 0) << r.err;  // 124: a point ahead was run again, and hung
+                             "timeout -k 10 120 env " + Mpirun(3, "SHAPEBENCH_TEST_HANG_POINT=" + hang));
+  ASSERT_EQ(r.exit_code, 0) << r.err;  // 124 (137: killed by -k): a point ahead was run again, and hung
   EXPECT_NE(r.out.find("(61 done before)"), std::string::npos) << r.out;
   EXPECT_EQ(ReadText(out + "/results.csv"), ReadText(reference + "/results.csv"));
   EXPECT_FALSE(std::filesystem::exists(out + "/results.csv.ahead"));
