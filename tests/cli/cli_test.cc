@@ -37,16 +37,17 @@ TEST(Cli, RunPrintsTable) {
   EXPECT_TRUE(r.err.empty()) << r.err;
 }
 
-// Tests that `run --json` prints exactly one JSON object carrying every metric name and,
-// last, residual_modes: per pole its frequency, damping and amplitude, summing to
-// residual_amplitude_m.
+// Tests that `run --json` prints exactly one JSON object carrying every metric name, then
+// residual_modes (per pole its frequency, damping and amplitude, summing to
+// residual_amplitude_m) and integrator_rtol_used.
 TEST(Cli, RunJsonIsOneObject) {
   const CliResult r = RunCli({"run", DataPath("shaped_method1.yaml"), "--json"}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);  // throws on trailing text
   ASSERT_TRUE(json.is_object());
   for (const auto& [name, value] : Metrics{}.Named()) EXPECT_TRUE(json.contains(name)) << name;
-  EXPECT_EQ(json.size(), Metrics{}.Named().size() + 1);
+  EXPECT_EQ(json.size(), Metrics{}.Named().size() + 2);
+  EXPECT_TRUE(json.contains("integrator_rtol_used"));
   const nlohmann::json& modes = json.at("residual_modes");
   ASSERT_EQ(modes.size(), 1u);  // one 25 Hz mode
   EXPECT_NEAR(modes[0].at("frequency_hz").get<double>(), 25.0, 1e-9);
@@ -73,7 +74,7 @@ TEST(Cli, RunOutWritesFiles) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const auto metrics = nlohmann::json::parse(ReadText(out + "/metrics.json"));
-  EXPECT_EQ(metrics.size(), Metrics{}.Named().size() + 1);  // and residual_modes
+  EXPECT_EQ(metrics.size(), Metrics{}.Named().size() + 2);  // and residual_modes, integrator_rtol_used
   EXPECT_TRUE(metrics.at("residual_modes").is_array());
   const std::string csv = ReadText(out + "/trace.csv");
   EXPECT_EQ(csv.rfind("t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,", 0), 0u);
