@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bench/config/config_document.h"
 #include "bench/config/config_error.h"
 #include "common/format.h"
 #include "common/shown_text.h"
@@ -160,15 +161,13 @@ AccelLog ParseAccelLog(const std::string& text, const std::string& file) {
   return log;
 }
 
+// As every input file: a regular file of at most kMaxInputFileBytes (/dev/zero grew to the
+// memory cap and a FIFO blocked forever).
 AccelLog ReadAccelLog(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw ConfigError(path, 0, 0, "", "cannot read: a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path, 0, 0, "", std::string("cannot read: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ConfigError(path, 0, 0, "", std::string("cannot read: ") + std::strerror(errno));
-  return ParseAccelLog(text.str(), path);
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  return ParseAccelLog(text, path);
 }
 
 }  // namespace shapebench::bench

@@ -102,12 +102,15 @@ void ShaperFitOptions::validate() const {
   if (!(design_damping_ratio >= 0.0 && design_damping_ratio < 1.0)) {
     throw ValidationError("--damping-ratio", "must be in [0, 1) (got " + FormatNumber(design_damping_ratio) + ")");
   }
-  if (!(feed_mm_min > 0.0 && std::isfinite(feed_mm_min))) {
-    throw ValidationError("--feed-mm-min", "must be a finite feed > 0 mm/min (got " + FormatNumber(feed_mm_min) + ")");
+  // Bounded as the scenario's feeds are (at most 1e6 mm/min), and the acceleration from
+  // 1 mm/s^2 to 1e7 mm/s^2 (1000 g): beyond them the smoothing read 1e285 m or inf.
+  if (!(feed_mm_min >= 1.0 && feed_mm_min <= 1.0e6)) {
+    throw ValidationError("--feed-mm-min", "must be a finite feed > 0 mm/min, from 1 to 1e6 (got " +
+                                               FormatNumber(feed_mm_min) + ")");
   }
-  if (!(accel_mm_s2 > 0.0 && std::isfinite(accel_mm_s2))) {
-    throw ValidationError("--accel-mm-s2",
-                          "must be a finite acceleration > 0 mm/s^2 (got " + FormatNumber(accel_mm_s2) + ")");
+  if (!(accel_mm_s2 >= 1.0 && accel_mm_s2 <= 1.0e7)) {
+    throw ValidationError("--accel-mm-s2", "must be a finite acceleration > 0 mm/s^2, from 1 to 1e7 (got " +
+                                               FormatNumber(accel_mm_s2) + ")");
   }
 }
 

@@ -217,22 +217,23 @@ class ClosedFormSampler final : public Sampler {
         result_(*result),
         kernel_(*plan.single_mode.mode, *plan.single_mode.line, plan.single_mode.axis, plan.samples, plan.dt_s,
                 plan.substeps),
-        m_(kernel_),
         window_(plan.window) {
     Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
-    static_gain(m_.axis_, m_.axis_) = m_.StaticGain();
+    static_gain(kernel_.axis_, kernel_.axis_) = kernel_.StaticGain();
     SetStaticReference(plan, static_gain, &tally_);
     static_m_ = tally_.static_m;
     contour_floor_ = 1e-12 * static_m_;
     next_probe_ = window_.cruise_probe_ticks.begin();
-    const CommandSamples& s = m_.s_;
-    const double end = s.positions.back()(m_.axis_);
+    const CommandSamples& s = kernel_.s_;
+    const double end = s.positions.back()(kernel_.axis_);
     // OffLineBound's rounding term, at its largest over the run's positions (within the
     // line's ends and the largest deflection, which the reach bounds).
-    const double largest = std::abs(m_.start_) + m_.length_ + m_.DeflectionBound(s.accel_l1_m_s[m_.axis_]) +
-                           s.max_speed_m_s * m_.dt_ + s.max_accel_m_s2 * m_.dt_ * m_.dt_;
-    rounding_ = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(m_.start_) + largest + m_.length_) * 2.0;
-    end_off_ = std::abs((end - m_.start_) * m_.direction_ - m_.length_) + rounding_;
+    const double largest = std::abs(kernel_.start_) + kernel_.length_ +
+                           kernel_.DeflectionBound(s.accel_l1_m_s[kernel_.axis_]) + s.max_speed_m_s * kernel_.dt_ +
+                           s.max_accel_m_s2 * kernel_.dt_ * kernel_.dt_;
+    rounding_ = 8.0 * std::numeric_limits<double>::epsilon() *
+                (std::abs(kernel_.start_) + largest + kernel_.length_) * 2.0;
+    end_off_ = std::abs((end - kernel_.start_) * kernel_.direction_ - kernel_.length_) + rounding_;
     FindInnerTicks();
   }
 
@@ -250,7 +251,6 @@ class ClosedFormSampler final : public Sampler {
   const RunPlan& plan_;
   RunResult& result_;
   SingleModeKernel kernel_;
-  SingleModeKernel& m_;  // the kernel, by the short name the formulas read best with
   const RunWindow& window_;
   double static_m_ = 0.0;
   MetricTally tally_;
@@ -276,7 +276,7 @@ void ClosedFormSampler::TickIn(std::size_t k) {
   const double needed = P == RunPhase::kWindow && !motion_end ? std::min(tally_.peak, tally_.residual) : tally_.peak;
   double inside = 0.0;
   double within = 0.0;
-  const double end = m_.Advance(m_.s_.AccelAt(k)(m_.axis_), needed, &inside, &within);
+  const double end = kernel_.Advance(kernel_.s_.AccelAt(k)(kernel_.axis_), needed, &inside, &within);
   const double largest = std::max(std::max(start_abs_, end), within);
   tally_.peak = std::max(tally_.peak, std::max(end, inside));
   if constexpr (P == RunPhase::kWindow) {
@@ -284,17 +284,17 @@ void ClosedFormSampler::TickIn(std::size_t k) {
   }
   if constexpr (P != RunPhase::kMotion) {
     // The last sample outside the settling band: the end's, else an inner one's.
-    int last = end >= tally_.band ? m_.substeps_ - 1 : -1;
+    int last = end >= tally_.band ? kernel_.substeps_ - 1 : -1;
     if (last < 0 && largest >= tally_.band && !motion_end) {
-      for (int j = m_.substeps_ - 2; j >= 0; --j) {
-        if (std::abs(m_.Substep(j)) >= tally_.band) {
+      for (int j = kernel_.substeps_ - 2; j >= 0; --j) {
+        if (std::abs(kernel_.Substep(j)) >= tally_.band) {
           last = j;
           break;
         }
       }
     }
     if (last >= 0) {
-      tally_.last_outside_band = static_cast<long>((k - 1) * static_cast<std::size_t>(m_.substeps_)) + last + 1;
+      tally_.last_outside_band = static_cast<long>((k - 1) * static_cast<std::size_t>(kernel_.substeps_)) + last + 1;
       tally_.quiet_since_tick = k;
     }
   }
@@ -312,18 +312,18 @@ void ClosedFormSampler::TickIn(std::size_t k) {
 // tool within `bound` of it: its distance from the line is at most this; Contour's bound
 // (OffLineBound on the exact range) is never larger.
 inline bool ClosedFormSampler::ContourCannotGrow(std::size_t k, double bound) const {
-  const CommandSamples& s = m_.s_;
+  const CommandSamples& s = kernel_.s_;
   double off = 0.0;
   if (k > s.n) {
     off = bound * (1.0 + 1e-15) + end_off_;
   } else {
-    const int ax = m_.axis_;
-    const double dt = m_.dt_;
+    const int ax = kernel_.axis_;
+    const double dt = kernel_.dt_;
     const double reach = std::abs(s.velocity[k - 1](ax)) * dt + 0.5 * std::abs(s.accel[k](ax)) * dt * dt + bound;
-    const double along = (s.positions[k - 1](ax) - m_.start_) * m_.direction_;
+    const double along = (s.positions[k - 1](ax) - kernel_.start_) * kernel_.direction_;
     // Strictly inside a line from 0: every distance is an exact 0 (OffLineBound).
-    if (m_.start_ == 0.0 && along - reach > rounding_ && along + reach < m_.length_ - rounding_) return true;
-    off = std::max(0.0, std::max(reach - along, along + reach - m_.length_)) * (1.0 + 1e-15) + rounding_;
+    if (kernel_.start_ == 0.0 && along - reach > rounding_ && along + reach < kernel_.length_ - rounding_) return true;
+    off = std::max(0.0, std::max(reach - along, along + reach - kernel_.length_)) * (1.0 + 1e-15) + rounding_;
   }
   return off < contour_floor_ || off * off < tally_.contour_sq;
 }
@@ -333,15 +333,15 @@ inline bool ClosedFormSampler::ContourCannotGrow(std::size_t k, double bound) co
 // from its start at 0, within max speed dt + max |a| dt^2 / 2 of the tick's first one,
 // and the deflection stays within DeflectionBound of the whole command's |a|.
 void ClosedFormSampler::FindInnerTicks() {
-  const CommandSamples& s = m_.s_;
-  const int ax = m_.axis_;
-  if (m_.start_ != 0.0 || s.n < 2 || s.monotone[ax] != (m_.direction_ > 0.0 ? 1 : -1)) return;
-  const double dt = m_.dt_;
+  const CommandSamples& s = kernel_.s_;
+  const int ax = kernel_.axis_;
+  if (kernel_.start_ != 0.0 || s.n < 2 || s.monotone[ax] != (kernel_.direction_ > 0.0 ? 1 : -1)) return;
+  const double dt = kernel_.dt_;
   // A margin far above the rounding OffLineBound allows for (a few ulps of the coordinates).
-  const double margin = 1e-9 * (std::abs(m_.start_) + m_.length_) + 1e-12;
+  const double margin = 1e-9 * (std::abs(kernel_.start_) + kernel_.length_) + 1e-12;
   const double keep = s.max_speed_m_s * dt + 0.5 * s.max_accel_m_s2 * dt * dt +
-                      m_.DeflectionBound(s.accel_l1_m_s[ax]) * (1.0 + 1e-9) + margin;
-  const auto along = [&](std::size_t i) { return (s.positions[i](ax) - m_.start_) * m_.direction_; };
+                      kernel_.DeflectionBound(s.accel_l1_m_s[ax]) * (1.0 + 1e-9) + margin;
+  const auto along = [&](std::size_t i) { return (s.positions[i](ax) - kernel_.start_) * kernel_.direction_; };
   // Tick k spans positions k - 1 to k (nondecreasing along the line).
   std::size_t lo = 0;
   std::size_t hi = s.n + 1;  // the first position beyond `keep`
@@ -354,7 +354,7 @@ void ClosedFormSampler::FindInnerTicks() {
   hi = s.n + 1;  // the first position not below length - keep
   while (lo < hi) {
     const std::size_t mid = lo + (hi - lo) / 2;
-    if (along(mid) < m_.length_ - keep) lo = mid + 1; else hi = mid;
+    if (along(mid) < kernel_.length_ - keep) lo = mid + 1; else hi = mid;
   }
   inner_to_ = lo == 0 ? 0 : lo - 1;
 }
@@ -363,24 +363,24 @@ void ClosedFormSampler::FindInnerTicks() {
 // leave the line (its ends: OffLineBound, deferred_substeps.h); called where
 // ContourCannotGrow's quick bound could not rule them out.
 void ClosedFormSampler::Contour(std::size_t k, double bound) {
-  const CommandSamples& s = m_.s_;
+  const CommandSamples& s = kernel_.s_;
   const bool commanded = k <= s.n;
-  const double p0 = (commanded ? s.positions[k - 1] : s.positions.back())(m_.axis_);
-  const double v0 = commanded ? s.velocity[k - 1](m_.axis_) : 0.0;
-  const double half_a = 0.5 * s.AccelAt(k)(m_.axis_);
+  const double p0 = (commanded ? s.positions[k - 1] : s.positions.back())(kernel_.axis_);
+  const double v0 = commanded ? s.velocity[k - 1](kernel_.axis_) : 0.0;
+  const double half_a = 0.5 * s.AccelAt(k)(kernel_.axis_);
   double lo = 0.0;
   double hi = 0.0;
-  QuadraticRange(p0, v0, half_a, m_.dt_, &lo, &hi);
-  const double off_bound = OffLineBound(m_.start_, m_.direction_, m_.length_, lo - bound, hi + bound);
+  QuadraticRange(p0, v0, half_a, kernel_.dt_, &lo, &hi);
+  const double off_bound = OffLineBound(kernel_.start_, kernel_.direction_, kernel_.length_, lo - bound, hi + bound);
   if (off_bound == 0.0 || off_bound * off_bound < tally_.contour_sq) {
     ++deferred_;
     return;
   }
-  for (int j = 0; j < m_.substeps_; ++j) {
-    const double tau = m_.taus_[static_cast<std::size_t>(j)];
-    const double actual = p0 + v0 * tau + half_a * tau * tau + m_.Substep(j);
-    const double along = std::clamp((actual - m_.start_) * m_.direction_, 0.0, m_.length_);
-    const double off = actual - (m_.start_ + along * m_.direction_);
+  for (int j = 0; j < kernel_.substeps_; ++j) {
+    const double tau = kernel_.taus_[static_cast<std::size_t>(j)];
+    const double actual = p0 + v0 * tau + half_a * tau * tau + kernel_.Substep(j);
+    const double along = std::clamp((actual - kernel_.start_) * kernel_.direction_, 0.0, kernel_.length_);
+    const double off = actual - (kernel_.start_ + along * kernel_.direction_);
     tally_.contour_sq = std::max(tally_.contour_sq, off * off);
   }
 }
@@ -389,7 +389,7 @@ void ClosedFormSampler::Contour(std::size_t k, double bound) {
 // with the one pole pair); false when the simulated tail must decide.
 bool ClosedFormSampler::SettleTail(std::size_t k) {
   if (window_.never_settles_late || k != window_.window_end()) return false;
-  const model::FreeTerms free = m_.Free();
+  const model::FreeTerms free = kernel_.Free();
   constexpr double kMargin = 1.0 + 1e-9;
   const double envelope = free.Envelope(0.0);
   if (!(envelope * kMargin <= tally_.peak) || !(envelope * envelope * kMargin <= tally_.contour_sq)) return false;
@@ -398,8 +398,8 @@ bool ClosedFormSampler::SettleTail(std::size_t k) {
   long last_outside = tally_.last_outside_band;
   std::size_t quiet = tally_.quiet_since_tick;
   if (last >= 1) {
-    last_outside = static_cast<long>(k) * m_.substeps_ + last;
-    quiet = static_cast<std::size_t>((last_outside - 1) / m_.substeps_ + 1);
+    last_outside = static_cast<long>(k) * kernel_.substeps_ + last;
+    quiet = static_cast<std::size_t>((last_outside - 1) / kernel_.substeps_ + 1);
   }
   const std::size_t stop = quiet + window_.period_ticks;
   tally_.last_outside_band = last_outside;
@@ -424,10 +424,10 @@ long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
   const double envelope = std::abs(q);
   if (!(band > 0.0) || !(lambda.real() < 0.0)) return -2;
   if (envelope < band) return 0;
-  const double h = m_.dt_ / m_.substeps_;
+  const double h = kernel_.dt_ / kernel_.substeps_;
   const double crossing = std::log(envelope / band) / -lambda.real();
   const long top = static_cast<long>(std::floor(crossing / h)) + 1;
-  const long reach = 4 * static_cast<long>(window_.period_ticks) * m_.substeps_ + 2;
+  const long reach = 4 * static_cast<long>(window_.period_ticks) * kernel_.substeps_ + 2;
   std::complex<double> term = q * std::exp(lambda * (h * static_cast<double>(top)));
   const std::complex<double> back = std::exp(-lambda * h);
   for (long j = top; j >= 1 && top - j <= reach; --j, term *= back) {
@@ -450,7 +450,7 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
       std::size_t end = std::min(inner_to_ + 1, motion);
       if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
       if (end > k) {
-        tally_.peak = m_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
+        tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
         deferred_ += static_cast<long>(end - k);
         return end - 1;
       }
@@ -458,7 +458,7 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
     TickIn<RunPhase::kMotion>(k);
     if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
       ++next_probe_;
-      const double amplitude = m_.ModalAmplitude();
+      const double amplitude = kernel_.ModalAmplitude();
       if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
       first_probe_ = false;
     }
@@ -466,7 +466,7 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
   }
   if (k <= window_.window_end()) {
     TickIn<RunPhase::kWindow>(k);
-    if (k == motion) tally_.residual_m = m_.ModalAmplitude();
+    if (k == motion) tally_.residual_m = kernel_.ModalAmplitude();
   } else {
     TickIn<RunPhase::kTail>(k);
   }
@@ -475,13 +475,13 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
 
 MetricTally ClosedFormSampler::Run() {
   RunTicks(*this, window_, &tally_);
-  tally_.peak_axes(m_.axis_) = tally_.peak;
+  tally_.peak_axes(kernel_.axis_) = tally_.peak;
   result_.sampler = SamplerKind::kClosedForm;
   result_.single_mode = true;
   result_.tail_in_closed_form = tail_closed_;
   result_.deferred_periods = deferred_;
-  result_.stats.steps = static_cast<long>(tally_.last_tick) * m_.substeps_;
-  result_.substeps = m_.substeps_;
+  result_.stats.steps = static_cast<long>(tally_.last_tick) * kernel_.substeps_;
+  result_.substeps = kernel_.substeps_;
   const model::ModalMode& mode = *plan_.single_mode.mode;
   result_.residual_modes = {{mode.frequency_hz, mode.damping_ratio, tally_.residual_m}};
   return tally_;

@@ -1,6 +1,8 @@
 // `shapebench recommend` through the built CLI: bad logs and options exit 2 naming
 // FILE:LINE:COL and the column, --json parses with its fields, --out writes its files,
 // --validate runs the scenario with and without the recommendation.
+#include <sys/stat.h>
+
 #include <string>
 #include <vector>
 
@@ -75,6 +77,9 @@ TEST(RecommendCli, BadOptionsExit2) {
       {{"--damping-ratio", "1.5"}, "--damping-ratio: must be in [0, 1)"},
       {{"--feed-mm-min", "0"}, "--feed-mm-min: must be a finite feed > 0"},
       {{"--accel-mm-s2", "-1"}, "--accel-mm-s2: must be a finite acceleration > 0"},
+      // Issue 32 item 8: smoothing 1.11e+285 m and inf m, exit 0, before.
+      {{"--accel-mm-s2", "1e-300"}, "--accel-mm-s2: must be a finite acceleration > 0 mm/s^2, from 1 to 1e7"},
+      {{"--feed-mm-min", "1e308"}, "--feed-mm-min: must be a finite feed > 0 mm/min, from 1 to 1e6"},
   };
   for (const auto& [options, message] : cases) {
     std::vector<std::string> args = {"recommend", kExampleLog};
@@ -85,7 +90,21 @@ TEST(RecommendCli, BadOptionsExit2) {
   }
   const CliResult missing = RunCli({"recommend", "no/such.csv"}, kSourceDir);
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_TRUE(Has(missing.err, "error: no/such.csv: cannot read")) << missing.err;
+  EXPECT_TRUE(Has(missing.err, "error: no/such.csv: cannot open")) << missing.err;
+}
+
+// Tests that the log is read as every input file is (issue 32 item 8): /dev/zero and a
+// FIFO are refused at once, exit 2, naming the file (the first grew to the memory cap, the
+// second blocked forever); `timeout -k 5 60` ends a regression instead of hanging ctest.
+TEST(RecommendCli, DevicesAndFifosAreRefused) {
+  ScratchDir dir;
+  const std::string fifo = dir.File("log.fifo");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : {std::string("/dev/zero"), fifo}) {
+    const CliResult r = RunCli({"recommend", path}, kSourceDir, "timeout -k 5 60 ");
+    EXPECT_EQ(r.exit_code, 2) << path << r.err;
+    EXPECT_TRUE(Has(r.err, "error: " + path + ": cannot read file: not a regular file")) << r.err;
+  }
 }
 
 // Tests that --json prints one object that nlohmann parses: every fitted method with
