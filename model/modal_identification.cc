@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/format.h"
 #include "common/math_constants.h"
 #include "common/validation_error.h"
 
@@ -28,6 +29,7 @@ BandData SelectBand(const std::vector<double>& frequency_hz, const std::vector<s
   BandData band;
   band.frfs.resize(frfs.size());
   double sum_squares = 0.0;
+  double largest = 0.0;
   std::size_t count = 0;
   for (std::size_t k = 0; k < frequency_hz.size(); ++k) {
     const double f = frequency_hz[k];
@@ -41,6 +43,7 @@ BandData SelectBand(const std::vector<double>& frequency_hz, const std::vector<s
       }
       band.frfs[o].push_back(h);
       sum_squares += std::norm(h);
+      largest = std::max({largest, std::abs(h.real()), std::abs(h.imag())});
       ++count;
     }
   }
@@ -50,8 +53,16 @@ BandData SelectBand(const std::vector<double>& frequency_hz, const std::vector<s
                                       std::to_string(options.max_frequency_hz) + "] Hz (" +
                                       std::to_string(band.omega.size()) + ")");
   }
-  band.scale = count > 0 ? std::sqrt(sum_squares / static_cast<double>(count)) : 1.0;
-  if (!(band.scale > 0.0)) throw ValidationError("frf", "every value in the band is 0");
+  if (!(largest > 0.0)) throw ValidationError("frf", "every value in the band is 0");
+  band.scale = std::sqrt(sum_squares / static_cast<double>(count));
+  if (!(band.scale > 0.0) || !std::isfinite(band.scale)) {
+    // The squares overflowed (values near 1e155) or underflowed: the RMS of values / largest.
+    sum_squares = 0.0;
+    for (const auto& frf : band.frfs) {
+      for (const Complex& h : frf) sum_squares += std::norm(h / largest);
+    }
+    band.scale = largest * std::sqrt(sum_squares / static_cast<double>(count));
+  }
   for (auto& frf : band.frfs) {
     for (Complex& h : frf) h /= band.scale;
   }
@@ -300,6 +311,27 @@ void IdentificationOptions::validate() const {
   }
 }
 
+namespace {
+
+// A fit whose error or modes are not numbers (lines 1e-300 Hz apart: the LSCF basis
+// degenerates) is refused rather than reported as "fit error -nan %" with exit 0.
+void RequireFinite(const ModalIdentification& result) {
+  bool finite = std::isfinite(result.fit_error_percent);
+  for (const IdentifiedMode& mode : result.modes) {
+    finite = finite && std::isfinite(mode.frequency_hz) && std::isfinite(mode.damping_ratio);
+    for (const Complex& c : mode.modal_constants) finite = finite && std::isfinite(c.real()) && std::isfinite(c.imag());
+  }
+  if (!finite) {
+    const std::vector<double>& f = result.frequency_hz;
+    throw ValidationError("frf", "cannot be fitted: the fit's error or modes are not finite numbers (the band's " +
+                                     std::to_string(f.size()) + " lines span " + FormatNumber(f.back() - f.front()) +
+                                     " Hz from " + FormatNumber(f.front()) + " Hz; lines a usable distance apart "
+                                     "are needed)");
+  }
+}
+
+}  // namespace
+
 ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
                                   const std::vector<std::vector<Complex>>& frfs, int derivative_order,
                                   const IdentificationOptions& options) {
@@ -328,6 +360,7 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
     }
   }
   result.fit_error_percent = total > 0.0 ? 100.0 * std::sqrt(error / total) : 0.0;
+  RequireFinite(result);
   return result;
 }
 

@@ -123,5 +123,48 @@ TEST(ModalIdentification, EmptyBand) {
   }
 }
 
+// Tests that FRF values near 1e155 (whose squares overflow) are identified as the same FRF
+// at its own scale (issue 32 item 4: "fit error 0 %" and no modes before): frequency and
+// damping to the noiseless closed form's bounds (1e-6, 1e-4: NoiselessAccelerance), the
+// constants scaled by 1e155 and the fit error within 1e-6 of the unscaled fit's. The fit is
+// not bit-identical: the LSCF normal equations are ill-conditioned at about 1e-7 for this
+// band (the scaling's rounding moved the constants by up to 1.5e-7), hence 1e-6.
+TEST(ModalIdentification, HugeValuesAreScaledWithoutOverflow) {
+  const std::vector<double> f = Grid();
+  const std::vector<Complex> h = Accelerance(f, 0.0, 1);
+  std::vector<Complex> huge;
+  for (const Complex& value : h) huge.push_back(value * 1e155);
+  const ModalIdentification plain = IdentifyModes(f, {h}, 2, {});
+  const ModalIdentification scaled = IdentifyModes(f, {huge}, 2, {});
+  ASSERT_EQ(scaled.modes.size(), kModes.size());
+  ASSERT_EQ(plain.modes.size(), kModes.size());
+  for (std::size_t r = 0; r < kModes.size(); ++r) {
+    SCOPED_TRACE(r);
+    EXPECT_NEAR(scaled.modes[r].frequency_hz, kModes[r].frequency_hz, 1e-6 * kModes[r].frequency_hz);
+    EXPECT_NEAR(scaled.modes[r].damping_ratio, kModes[r].damping_ratio, 1e-4 * kModes[r].damping_ratio);
+    EXPECT_NEAR(std::abs(scaled.modes[r].modal_constants[0] / 1e155 - plain.modes[r].modal_constants[0]), 0.0,
+                1e-6 * std::abs(plain.modes[r].modal_constants[0]));
+  }
+  EXPECT_NEAR(scaled.fit_error_percent, plain.fit_error_percent, 1e-6);
+}
+
+// Tests that lines 1e-300 Hz apart, which no fit can use, are refused at "frf" naming the
+// lines' span, instead of "fit error -nan %" and exit 0 (issue 32 item 4).
+TEST(ModalIdentification, LinesTooCloseAreRefused) {
+  std::vector<double> f;
+  for (int k = 1; k <= 800; ++k) f.push_back(1e-300 * k);
+  std::vector<Complex> h;
+  for (double fk : f) h.push_back(Receptance(kModes, fk));
+  IdentificationOptions options;
+  options.min_frequency_hz = 0.0;
+  try {
+    const ModalIdentification result = IdentifyModes(f, {h}, 0, options);
+    FAIL() << "fitted, error " << result.fit_error_percent << " %";
+  } catch (const ValidationError& error) {
+    EXPECT_EQ(error.field(), "frf");
+    EXPECT_NE(std::string(error.what()).find("cannot be fitted"), std::string::npos) << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace shapebench::model
