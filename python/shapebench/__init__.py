@@ -164,11 +164,13 @@ def run(source: Source | Scenario, set: Sets = None, *, trace: bool = False) -> 
 
 
 def _jobs(jobs: int | None) -> int:
-    if jobs is None or jobs == 0:
+    """jobs as the CLI's --jobs takes it: None for every core, else a whole number 1..4096
+    (0 was taken for "every core" here while the CLI refuses --jobs 0)."""
+    if jobs is None:
         return os.cpu_count() or 1
-    if jobs < 1:
-        raise ValueError(f"jobs must be >= 1 (got {jobs})")
-    return int(jobs)
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or not 1 <= jobs <= 4096:
+        raise ConfigError("", 0, 0, "jobs", f"must be a whole number in [1, 4096] (got {jobs!r})")
+    return jobs
 
 
 @dataclass(frozen=True)

@@ -306,6 +306,15 @@ def test_residual_vibration_takes_the_custom_patterns_form():
     assert loaded.value.key_path.endswith("impulses[1].time_s"), str(loaded.value)
 
 
+@pytest.mark.parametrize("jobs", [0, -1, 4097, 1.5, True])
+def test_sweep_refuses_the_jobs_the_cli_refuses(jobs):
+    """Tests that sweep(jobs=...) takes what --jobs takes (1..4096, or None for every core):
+    jobs=0 ran on every core while the CLI refuses --jobs 0 (issue 32 item 16)."""
+    with pytest.raises(shapebench.ConfigError) as error:
+        shapebench.sweep(ROOT / "configs" / "sweeps" / "natural_period.yaml", jobs=jobs)
+    assert error.value.key_path == "jobs", str(error.value)
+
+
 def test_runs_from_several_threads_equal_serial_runs():
     """Tests that four threads running scenarios at once get the serial runs' metrics bit
     for bit (a scenario is shared by the threads that run it)."""
