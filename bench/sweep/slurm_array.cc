@@ -18,6 +18,11 @@ std::uint64_t Number(const std::function<const char*(const char*)>& get, const c
                              " is not set; pass --shard I/N explicitly");
   }
   const std::string value(text);
+  if (value.size() > 1 && value[0] == '-' && value.find_first_not_of("0123456789", 1) == std::string::npos) {
+    throw std::runtime_error(std::string("Slurm job array: ") + name + "='" + value +
+                             "' is negative: Slurm's array ids, steps and counts are whole numbers >= 0; "
+                             "pass --shard I/N explicitly");
+  }
   if (value.empty() || value.size() > 9 || value.find_first_not_of("0123456789") != std::string::npos) {
     throw std::runtime_error(std::string("Slurm job array: ") + name + "='" + value +
                              "' is not a whole number; pass --shard I/N explicitly");

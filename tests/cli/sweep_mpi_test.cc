@@ -270,6 +270,14 @@ TEST(SweepSlurm, ShardFromTheArrayVariables) {
                std::runtime_error);
   EXPECT_THROW(shard({{"SLURM_ARRAY_TASK_ID", "1"}}), std::runtime_error);  // no COUNT nor MAX
   EXPECT_THROW(shard({{"SLURM_ARRAY_TASK_ID", "x"}, {"SLURM_ARRAY_TASK_COUNT", "2"}}), std::runtime_error);
+  // A negative id is named as negative, not as "not a whole number" (issue 32 item 16).
+  try {
+    shard({{"SLURM_ARRAY_TASK_ID", "-1"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("SLURM_ARRAY_TASK_ID='-1' is negative"), std::string::npos)
+        << error.what();
+  }
 }
 
 }  // namespace
