@@ -13,6 +13,7 @@
 #include "bench/measured/frf_identification.h"
 #include "bench/output/identify_report.h"
 #include "bench/output/output_path.h"
+#include "common/decimal.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
 
@@ -31,14 +32,10 @@ struct IdentifyArgs {
 // --band MIN:MAX in Hz.
 void ParseBand(const std::string& text, FrfSelection* selection) {
   const std::size_t colon = text.find(':');
-  char* end = nullptr;
   bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
   if (ok) {
-    const std::string low = text.substr(0, colon), high = text.substr(colon + 1);
-    selection->min_frequency_hz = std::strtod(low.c_str(), &end);
-    ok = end == low.c_str() + low.size();
-    selection->max_frequency_hz = std::strtod(high.c_str(), &end);
-    ok = ok && end == high.c_str() + high.size();
+    ok = ParseDecimal(text.substr(0, colon), &selection->min_frequency_hz) &&
+         ParseDecimal(text.substr(colon + 1), &selection->max_frequency_hz);
   }
   if (!ok || !(selection->min_frequency_hz >= 0.0) || !(selection->max_frequency_hz > selection->min_frequency_hz) ||
       !std::isfinite(selection->max_frequency_hz)) {

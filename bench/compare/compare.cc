@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/decimal.h"
 #include "common/format.h"
 #include "common/shown_text.h"
 
@@ -37,11 +38,8 @@ std::string Joined(const std::vector<std::string>& names, const std::string& sep
 
 // REL of --gate: a finite number >= 0, the whole text.
 double ParseRelative(const std::string& text, const std::string& gate) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(value) || value < 0.0) {
+  double value = 0.0;
+  if (!ParseDecimal(text, &value) || value < 0.0) {
     throw std::runtime_error("--gate " + ClippedForMessage(gate) +
                              ": REL must be a number >= 0 (a fraction: 0.05 is 5%), got '" +
                              ClippedForMessage(text) + "'");

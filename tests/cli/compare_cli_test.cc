@@ -189,6 +189,19 @@ TEST(CompareCli, MismatchedInputsExit2) {
   EXPECT_NE(r.err.find("nothing to compare"), std::string::npos) << r.err;
 }
 
+// Tests that a gate's REL is a decimal number >= 0: "0x10" (read as 16, a 1600% gate),
+// "inf" and "nan" exit 2 naming the gate (issue 32 item 16).
+TEST(CompareCli, GateTakesDecimalNumbersOnly) {
+  for (const char* rel : {"0x10", "inf", "nan", "-0.1"}) {
+    const std::string gate = std::string("residual_ratio=") + rel;
+    const CliResult r = RunCli({"compare", "configs/demo.yaml", "--candidate-set", "controller.pattern.method=zvd",
+                                "--gate", gate},
+                               kSourceDir);
+    EXPECT_EQ(r.exit_code, 2) << rel;
+    EXPECT_NE(r.err.find("error: --gate " + gate + ": REL must be a number >= 0"), std::string::npos) << r.err;
+  }
+}
+
 // Tests that a gate on an unknown metric exits 2 before anything runs, suggesting the
 // closest names and listing the allowed ones.
 TEST(CompareCli, UnknownGateMetricExits2WithDidYouMean) {

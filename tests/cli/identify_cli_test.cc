@@ -99,6 +99,12 @@ TEST(IdentifyCli, BadInputIsLocated) {
                 "record 7", "--band 150:200: 0 spectral lines above 0 Hz in the band [150, 200] Hz");
   ExpectLocated(RunCli({"identify", dir.Write("a.uff", clean), "--axis", "x"}, cwd), dir.File("a.uff"), 8, "record 6",
                 "no FRF record has its response along x");
+  // Decimal numbers only (issue 32 item 16): "0x10" was read as 16 Hz.
+  for (const char* band : {"0x10:200", "5:inf", " 5:200"}) {
+    const CliResult hex = RunCli({"identify", dir.File("a.uff"), "--band", band}, cwd);
+    EXPECT_EQ(hex.exit_code, 2) << band;
+    EXPECT_NE(hex.err.find("--band: expected MIN:MAX in Hz"), std::string::npos) << hex.err;
+  }
 }
 
 // Tests that the real measured beam (pyuff's accelerances, tests/data/uff/README.md) gives six

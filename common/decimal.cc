@@ -1,0 +1,48 @@
+#include "common/decimal.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace shapebench {
+namespace {
+
+bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+// Digits from *i on: how many.
+std::size_t Digits(std::string_view text, std::size_t* i) {
+  const std::size_t start = *i;
+  while (*i < text.size() && IsDigit(text[*i])) ++*i;
+  return *i - start;
+}
+
+}  // namespace
+
+bool ParseDecimal(std::string_view text, double* value) {
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t mantissa = Digits(text, &i);
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    mantissa += Digits(text, &i);
+  }
+  if (mantissa == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (Digits(text, &i) == 0) return false;
+  }
+  if (i != text.size()) return false;
+  // The scanner admitted only what strtod reads as decimal; it does the rounding.
+  const std::string copy(text);
+  errno = 0;
+  const double parsed = std::strtod(copy.c_str(), nullptr);
+  if (errno == ERANGE && std::isinf(parsed)) return false;
+  if (!std::isfinite(parsed)) return false;
+  *value = parsed;
+  return true;
+}
+
+}  // namespace shapebench
