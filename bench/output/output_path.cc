@@ -21,6 +21,15 @@ namespace fs = std::filesystem;
   throw std::runtime_error(option + " " + ClippedForMessage(path) + ": cannot write there: " + cause);
 }
 
+// A newline or another control character in an output path is a slip (a pasted line, an
+// unquoted variable): refused before anything is written rather than made into a file name.
+void RequirePrintable(const std::string& option, const std::string& path) {
+  for (const char c : path) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) Fail(option, path, "the path holds a control character (a newline?)");
+  }
+}
+
 // Creates and removes a temporary directory in `dir`; the errno text on failure, else "".
 std::string ProbeDirectory(const fs::path& dir) {
   std::string name = (dir / ".shapebench-probe-XXXXXX").string();
@@ -48,6 +57,7 @@ fs::path NearestExisting(const fs::path& path) {
 
 void RequireWritableOutputDir(const std::string& option, const std::string& path) {
   if (path.empty()) Fail(option, path, "empty path");
+  RequirePrintable(option, path);
   // As given (relative stays relative), so that messages show the user's own path.
   fs::path target = fs::path(path).lexically_normal();
   if (target.filename().empty() && target.has_parent_path()) target = target.parent_path();  // "out/"
@@ -66,6 +76,7 @@ void RequireWritableOutputDir(const std::string& option, const std::string& path
 
 void RequireWritableOutputFile(const std::string& option, const std::string& path) {
   if (path.empty()) Fail(option, path, "empty path");
+  RequirePrintable(option, path);
   const fs::path target(path);
   std::error_code ec;
   if (fs::is_directory(fs::status(target, ec))) Fail(option, path, "it is a directory");

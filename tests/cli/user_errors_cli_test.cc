@@ -131,6 +131,13 @@ TEST(UserErrors, OutputPathsAreCheckedBeforeTheRun) {
   EXPECT_TRUE(HasText(r.err, "No such file or directory")) << r.err;
   r = RunCli({"check", "missing.yaml", "--junit", "."}, work);
   EXPECT_TRUE(HasText(r.err, "error: --junit .: cannot write there: it is a directory")) << r.err;
+  // A newline in an output path is refused before the run (issue 32 item 16: accepted, and
+  // --out refused only after the run).
+  for (const char* option : {"--out", "--report", "--junit"}) {
+    r = RunCli({std::string(option) == "--junit" ? "check" : "run", "missing.yaml", option, "a\nb"}, work);
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_TRUE(HasText(r.err, "cannot write there: the path holds a control character (a newline?)")) << r.err;
+  }
   // Nothing left behind: the scratch directory holds only `file`.
   int entries = 0;
   for (const auto& entry : fs::directory_iterator(dir.path())) entries += entry.path().filename() != "file";
