@@ -78,6 +78,27 @@ double ControllerConfig::accel_m_s2() const {
   return accel_time_s > 0.0 ? feed_m_s() / accel_time_s : feed_m_s() / period_s;
 }
 
+namespace {
+
+// A pattern tuned above the period's Nyquist frequency 1 / (2 period) cannot be realized
+// on the interpolation grid (5000 Hz at a 1 ms period was accepted silently); below it the
+// steps between ticks are handled as docs/design-decisions.md describes.
+void RequireBelowNyquist(const PatternConfig& pattern, double period_s) {
+  const std::vector<double> frequencies = pattern.DesignFrequencies();
+  const double nyquist_hz = 0.5 / period_s;
+  for (std::size_t i = 0; i < frequencies.size(); ++i) {
+    if (frequencies[i] > nyquist_hz) {
+      const std::string key =
+          pattern.frequencies_hz.empty() ? "pattern.frequency_hz" : "pattern.frequencies_hz[" + std::to_string(i) + "]";
+      throw ValidationError(key, FormatNumber(frequencies[i]) + " Hz is above the Nyquist frequency of period_s " +
+                                     FormatNumber(period_s) + " s (" + FormatNumber(nyquist_hz) +
+                                     " Hz): no pattern at that frequency can be realized at this period");
+    }
+  }
+}
+
+}  // namespace
+
 void ControllerConfig::validate() const {
   if (!(std::isfinite(period_s) && period_s > 0.0 && period_s <= 1.0)) {
     throw ValidationError("period_s", "must be in (0, 1] s (got " + FormatNumber(period_s) + ")");
@@ -102,6 +123,7 @@ void ControllerConfig::validate() const {
     throw e.Prefixed("pattern");
   }
   const bool shaped = MakeStepPattern(pattern).shapes();
+  if (shaped) RequireBelowNyquist(pattern, period_s);
   if (shaped && pattern.realization == PatternRealization::kStepped && accel_time_s == 0.0) {
     throw ValidationError("accel_time_s", "must be > 0 when a pattern is active: the steps are "
                                           "fractions of the steady acceleration feed / accel_time_s");

@@ -73,6 +73,38 @@ TEST(ControllerTest, ValidateNamesNestedFields) {
   }
 }
 
+// Tests that a pattern tuned above the period's Nyquist frequency is refused naming the
+// pattern's frequency, the period and the Nyquist frequency (5000 Hz at 1 ms was accepted:
+// issue 32 item 15), per design frequency; at the Nyquist frequency it is accepted.
+TEST(ControllerTest, PatternAboveTheNyquistFrequencyIsRefused) {
+  ControllerConfig c = Method1();
+  c.period_s = 0.001;
+  c.pattern.frequency_hz = 5000.0;
+  try {
+    c.validate();
+    FAIL() << "accepted";
+  } catch (const ValidationError& e) {
+    EXPECT_EQ(e.field(), "pattern.frequency_hz");
+    EXPECT_NE(std::string(e.what()).find("5000 Hz is above the Nyquist frequency of period_s 0.001 s (500 Hz)"),
+              std::string::npos)
+        << e.what();
+  }
+  c.pattern.frequency_hz = 500.0;
+  EXPECT_NO_THROW(c.validate());
+  c.pattern.method = "zv";
+  c.pattern.frequencies_hz = {25.0, 600.0};
+  try {
+    c.validate();
+    FAIL() << "accepted";
+  } catch (const ValidationError& e) {
+    EXPECT_EQ(e.field(), "pattern.frequencies_hz[1]");
+  }
+  c.pattern.method = "none";
+  c.pattern.frequencies_hz.clear();
+  c.pattern.frequency_hz = 5000.0;
+  EXPECT_NO_THROW(c.validate());  // no pattern, no frequency to realize
+}
+
 // Tests that a negative distance moves the other way, the same profile mirrored.
 TEST(ControllerTest, NegativeDistanceMirrorsTheMove) {
   MoveConfig forward, backward;
