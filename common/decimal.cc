@@ -9,18 +9,16 @@
 namespace shapebench {
 namespace {
 
-bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
-
 // Digits from *i on: how many.
 std::size_t Digits(std::string_view text, std::size_t* i) {
   const std::size_t start = *i;
-  while (*i < text.size() && IsDigit(text[*i])) ++*i;
+  while (*i < text.size() && std::isdigit(static_cast<unsigned char>(text[*i])) != 0) ++*i;
   return *i - start;
 }
 
 }  // namespace
 
-bool ParseDecimal(std::string_view text, double* value) {
+bool IsDecimalText(std::string_view text) {
   std::size_t i = 0;
   if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
   std::size_t mantissa = Digits(text, &i);
@@ -34,13 +32,15 @@ bool ParseDecimal(std::string_view text, double* value) {
     if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
     if (Digits(text, &i) == 0) return false;
   }
-  if (i != text.size()) return false;
-  // The scanner admitted only what strtod reads as decimal; it does the rounding.
+  return i == text.size();
+}
+
+bool ParseDecimal(std::string_view text, double* value) {
+  if (!IsDecimalText(text)) return false;
   const std::string copy(text);
   errno = 0;
   const double parsed = std::strtod(copy.c_str(), nullptr);
-  if (errno == ERANGE && std::isinf(parsed)) return false;
-  if (!std::isfinite(parsed)) return false;
+  if ((errno == ERANGE && std::isinf(parsed)) || !std::isfinite(parsed)) return false;
   *value = parsed;
   return true;
 }

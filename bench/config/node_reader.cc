@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common/closest_name.h"
+#include "common/decimal.h"
 #include "common/shown_text.h"
 #include "bench/config/key_path.h"
 
@@ -33,28 +34,8 @@ bool IsQuoted(const YAML::Node& node) { return node.Tag() == "!"; }
 
 }  // namespace
 
-// A hand-written matcher: std::regex made reading a scenario several times slower, which
-// sweeps do per point.
-bool IsNumberText(const std::string& text) {
-  std::size_t i = 0;
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-  if (Digits(text, &i) > 0) {
-    if (i < text.size() && text[i] == '.') {
-      ++i;
-      Digits(text, &i);
-    }
-  } else {
-    if (i >= text.size() || text[i] != '.') return false;
-    ++i;
-    if (Digits(text, &i) == 0) return false;
-  }
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    if (Digits(text, &i) == 0) return false;
-  }
-  return i == text.size();
-}
+// The one decimal grammar of the project (common/decimal.h), also the command line's.
+bool IsNumberText(const std::string& text) { return IsDecimalText(text); }
 
 std::string JoinNames(const std::vector<std::string>& names, const std::string& separator) {
   std::string joined;
