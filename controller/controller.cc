@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/format.h"
+#include "common/key_rule_error.h"
 #include "common/validation_error.h"
 #include "controller/block_planner.h"
 #include "controller/interpolator.h"
@@ -97,6 +98,18 @@ void RequireBelowNyquist(const PatternConfig& pattern, double period_s) {
   }
 }
 
+// The stroke end's minute feed against the feed. Either key may be the slip (a feed in
+// m/min, a minute feed too high): the loader blames the one the user gave.
+void RequireMinuteFeedWithinFeed(const StrokeEndConfig& stroke_end, double feed_mm_min) {
+  if (stroke_end.minute_feed_mm_min <= feed_mm_min) return;
+  const std::string feed = FormatNumber(feed_mm_min) + " mm/min";
+  const std::string minute = FormatNumber(stroke_end.minute_feed_mm_min) + " mm/min";
+  throw KeyRuleError({{"stroke_end.minute_feed_mm_min", minute, "is above"}, {"feed_mm_min", feed, "is below"}},
+                     "the feed must be at least the stroke end's minute feed (the speed near the stroke "
+                     "end; both in mm/min); allowed: a feed of at least " + minute +
+                         ", or a minute_feed_mm_min of at most " + feed);
+}
+
 }  // namespace
 
 void ControllerConfig::validate() const {
@@ -143,11 +156,7 @@ void ControllerConfig::validate() const {
   } catch (const ValidationError& e) {
     throw e.Prefixed("stroke_end");
   }
-  if (stroke_end.minute_feed_mm_min > feed_mm_min) {
-    throw ValidationError("stroke_end.minute_feed_mm_min",
-                          "must not exceed the feed (" + FormatNumber(feed_mm_min) + " mm/min; got " +
-                              FormatNumber(stroke_end.minute_feed_mm_min) + ")");
-  }
+  RequireMinuteFeedWithinFeed(stroke_end, feed_mm_min);
   if (post_interp.type == PostInterpType::kProfileTable && post_interp.table.empty()) {
     const long n = std::lround(post_interp.moving_average_s / period_s);
     if (n < 1 || n > post_interp.max_table_length) {
@@ -209,6 +218,34 @@ std::vector<Eigen::Vector3d> MultiAxisCommand::Positions() const {
   return positions;
 }
 
+namespace {
+
+// The pattern's key that sets how long its acceleration lasts (its step 1, or the shaper),
+// with its value as shown.
+RuleKey PatternTimeKey(const PatternConfig& pattern) {
+  const ShaperKind kind = FindShaper(pattern.method).kind;
+  if (kind == ShaperKind::kCustom) return {"controller.pattern.impulses", "(the impulses given)", "last too long for"};
+  if (kind == ShaperKind::kPatentStep && pattern.method == "4") {
+    return {"controller.pattern.t1_s", FormatNumber(pattern.t1_s) + " s", "is too long for"};
+  }
+  if (!pattern.frequencies_hz.empty()) {
+    std::string shown;
+    for (const double f : pattern.frequencies_hz) shown += (shown.empty() ? "[" : ", ") + FormatNumber(f);
+    return {"controller.pattern.frequencies_hz", shown + "] Hz", "are too low for"};
+  }
+  return {"controller.pattern.frequency_hz", FormatNumber(pattern.frequency_hz) + " Hz", "is too low for"};
+}
+
+// The acc/dec time against the pattern's length: the feed cancels out of the rule
+// (LowestShapedSpeed is a multiple of feed / accel_time_s), so these two are its keys.
+KeyRuleError PatternTimeError(const ControllerConfig& controller, const std::string& rule) {
+  return KeyRuleError({{"controller.accel_time_s", FormatNumber(controller.accel_time_s) + " s", "is too short for"},
+                       PatternTimeKey(controller.pattern)},
+                      rule);
+}
+
+}  // namespace
+
 void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   if (controller.pattern.realization != PatternRealization::kStepped) return;
   const StepPattern pattern = MakeStepPattern(controller.pattern);
@@ -219,12 +256,12 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
     // unshaped, the phase must outlast the shaped end's impulses.
     const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
     if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
-      throw ValidationError(
-          "controller.feed_mm_min",
-          "feed " + FormatNumber(controller.feed_mm_min) + " mm/min is too low for the shaper at one end of "
-          "the phase (pattern.mode start or end): it must be at least " + FormatNumber(lowest_speed * 60000.0) +
-              " mm/min so the unshaped end's step falls outside the shaper; allowed: a higher feed, "
-              "a longer accel_time_s, or pattern.mode both");
+      throw PatternTimeError(controller,
+                             "the shaper at one end of the phase (pattern.mode start or end) needs an acc/dec "
+                             "time of at least " + FormatNumber(lowest_speed / accel_m_s2) +
+                                 " s so the unshaped end's step falls outside the shaper (the feed does not "
+                                 "matter: the acceleration is feed / accel_time_s); allowed: a longer "
+                                 "accel_time_s, a shorter shaper (a higher design frequency), or pattern.mode both");
     }
     const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
     if (distance_m < shortest_m * (1.0 - 1e-12)) {
@@ -238,12 +275,14 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
   }
   const double lowest_speed = LowestShapedSpeed(accel_m_s2, pattern);
   if (controller.feed_m_s() < lowest_speed * (1.0 - 1e-12)) {
-    throw ValidationError(
-        "controller.feed_mm_min",
-        "feed " + FormatNumber(controller.feed_mm_min) + " mm/min is too low for the pattern: after para. 50's "
-        "shortening (steady acceleration, then step 2) the feed must be at least " +
-            FormatNumber(lowest_speed * 60000.0) + " mm/min, or step 1 is cut and nothing of the shaping is left; "
-            "allowed: a higher feed, a longer accel_time_s, or pattern.mode off");
+    throw PatternTimeError(controller,
+                           "after para. 50's shortening (steady acceleration, then step 2) the acc/dec time "
+                           "must be at least the pattern's step 1 at each shaped end, " +
+                               FormatNumber(lowest_speed / accel_m_s2) +
+                               " s, or step 1 is cut and nothing of the shaping is left (the feed does not "
+                               "matter: the acceleration is feed / accel_time_s); allowed: a longer "
+                               "accel_time_s, a shorter step 1 (a higher frequency_hz; method 4: a shorter "
+                               "t1_s), or pattern.mode off");
   }
   const double shortest_m = ShortestShapedMove(accel_m_s2, pattern);
   if (distance_m < shortest_m * (1.0 - 1e-12)) {

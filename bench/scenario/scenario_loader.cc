@@ -15,6 +15,7 @@
 #include "bench/scenario/controller_reader.h"
 #include "bench/config/field_reader.h"
 #include "bench/config/key_path.h"
+#include "bench/config/rule_location.h"
 #include "bench/scenario/machine_reader.h"
 #include "bench/scenario/pattern_defaults.h"
 #include "bench/scenario/metrics.h"
@@ -59,8 +60,14 @@ std::string YamlKeyPath(const std::string& field) {
   return field;
 }
 
-ConfigError Located(const ConfigDocument& document, const ValidationError& error) {
-  const std::string path = YamlKeyPath(error.field());
+// A rule between keys is located at the key the user gave (rule_location.h).
+ConfigError Located(const ConfigDocument& document, const ValidationError& error, const std::string& prefix = "") {
+  if (const auto* rule = dynamic_cast<const KeyRuleError*>(&error)) {
+    std::vector<RuleKey> keys = rule->Prefixed(prefix).keys();
+    for (RuleKey& key : keys) key.field = YamlKeyPath(key.field);
+    return LocateRuleError(document, KeyRuleError(std::move(keys), rule->rule()));
+  }
+  const std::string path = YamlKeyPath(error.Prefixed(prefix).field());
   return document.ErrorAtPath(path, error.message());
 }
 
@@ -70,7 +77,7 @@ void Validated(const ConfigDocument& document, const std::string& prefix, Check&
   try {
     check();
   } catch (const ValidationError& error) {
-    throw Located(document, error.Prefixed(prefix));
+    throw Located(document, error, prefix);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "bench/config/rule_location.h"
 #include "common/csv.h"
 
 namespace shapebench::bench {
@@ -108,15 +109,51 @@ std::string OverridesKey(std::vector<Override>::const_iterator first,
   return key;
 }
 
+namespace {
+
+// The point's override `index` as the user knows it: a grid value's place in the sweep
+// file, or the --set counted among the --set options.
+std::string PointMention(const Sweep& sweep, const SweepPoint& point, int index) {
+  const int grid_overrides = static_cast<int>(point.keys.size());
+  if (index > grid_overrides) return OverrideMention(index - grid_overrides);
+  const auto [line, column] = OverridePosition(sweep, point, index);
+  return sweep.file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+// A rule's message names its other keys' origins as "(--set:N)" (rule_location.h),
+// counting the point's overrides: renumbered here as the location is.
+std::string RenumberedMentions(const Sweep& sweep, const SweepPoint& point, const std::string& message) {
+  const std::string open = "(" + std::string(kOverrideSource) + ":";
+  std::string text;
+  std::size_t from = 0;
+  for (std::size_t at; (at = message.find(open, from)) != std::string::npos;) {
+    std::size_t end = at + open.size();
+    while (end < message.size() && message[end] >= '0' && message[end] <= '9') ++end;
+    const bool mention = end > at + open.size() && end - at - open.size() <= 9 && end < message.size() &&
+                         message[end] == ')';
+    const int index = mention ? std::stoi(message.substr(at + open.size(), end - at - open.size())) : 0;
+    if (!mention || index < 1 || index > static_cast<int>(point.overrides.size())) {
+      text += message.substr(from, at + open.size() - from);
+      from = at + open.size();
+      continue;
+    }
+    text += message.substr(from, at - from) + "(" + PointMention(sweep, point, index) + ")";
+    from = end + 1;
+  }
+  return text + message.substr(from);
+}
+
+}  // namespace
+
 ConfigError RelocatePointError(const Sweep& sweep, const SweepPoint& point, const ConfigError& error) {
   if (error.file() != kOverrideSource) return error;
   const int grid_overrides = static_cast<int>(point.keys.size());
+  const std::string message = RenumberedMentions(sweep, point, error.message());
   if (error.line() >= 1 && error.line() <= grid_overrides) {
     const auto [line, column] = OverridePosition(sweep, point, error.line());
-    return ConfigError(sweep.file, line, column, error.key_path(), error.message());
+    return ConfigError(sweep.file, line, column, error.key_path(), message);
   }
-  return ConfigError(kOverrideSource, error.line() - grid_overrides, 1, error.key_path(),
-                     error.message());
+  return ConfigError(kOverrideSource, error.line() - grid_overrides, 1, error.key_path(), message);
 }
 
 bool IsGridOverrideError(const SweepPoint& point, const ConfigError& error) {

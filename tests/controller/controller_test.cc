@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/key_rule_error.h"
 #include "common/validation_error.h"
 
 namespace shapebench::controller {
@@ -37,15 +38,29 @@ TEST(ControllerTest, TooShortMoveForThePatternIsRefused) {
   EXPECT_EQ(FieldOf(Method1(), move), "");
 }
 
-// Tests that a feed too low for the pattern is refused naming controller.feed_mm_min.
-TEST(ControllerTest, TooLowFeedForThePatternIsRefused) {
+// Tests that an acc/dec time too short for the pattern's step 1 is refused as a rule
+// between controller.accel_time_s and the pattern's frequency, whatever the feed (the
+// lowest shaped speed a T / 2 = feed T / (2 accel_time_s) scales with it).
+TEST(ControllerTest, TooShortAccelTimeForThePatternIsRefused) {
   ControllerConfig c = Method1();
   c.accel_time_s = 0.3;
   c.feed_mm_min = 60;
   // Lowest shaped speed a T / 2 = feed * 0.04 / (2 * 0.3): below the feed, so it passes.
   EXPECT_EQ(FieldOf(c, MoveConfig{}), "");
-  c.accel_time_s = 0.01;  // a T / 2 = feed * 0.04 / 0.02 = 2 x feed: refused
-  EXPECT_EQ(FieldOf(c, MoveConfig{}), "controller.feed_mm_min");
+  for (const double feed_mm_min : {60.0, 6e6}) {
+    c.feed_mm_min = feed_mm_min;
+    c.accel_time_s = 0.01;  // a T / 2 = feed * 0.04 / 0.02 = 2 x feed: refused
+    try {
+      GenerateCommand(c, MoveConfig{});
+      ADD_FAILURE() << "not refused at feed " << feed_mm_min;
+    } catch (const KeyRuleError& e) {
+      EXPECT_EQ(e.field(), "controller.accel_time_s");
+      ASSERT_EQ(e.keys().size(), 2u);
+      EXPECT_EQ(e.keys()[1].field, "controller.pattern.frequency_hz");
+      EXPECT_EQ(e.message().rfind("0.01 s is too short for controller.pattern.frequency_hz = 25 Hz: ", 0), 0u)
+          << e.message();
+    }
+  }
 }
 
 // Tests that validate() names the offending field with its sub-struct path.
