@@ -46,8 +46,46 @@ std::string ClosestName(const std::string& name, const std::vector<std::string>&
   return best;
 }
 
+namespace {
+
+std::vector<std::string> Words(const std::string& name) {
+  std::vector<std::string> words(1);
+  for (const char c : name) {
+    if (c == '_') {
+      words.emplace_back();
+    } else {
+      words.back() += c;
+    }
+  }
+  return words;
+}
+
+// Two snake_case names alike but for one word, one form of the other: the words share
+// their first four letters at least, all of the shorter but its last ("settle_time_s" and
+// "settling_time_s", "freq_hz" and "frequency_hz"), which edits alone call 3 or 5 apart.
+bool OtherWordForm(const std::string& a, const std::string& b) {
+  const std::vector<std::string> x = Words(a);
+  const std::vector<std::string> y = Words(b);
+  if (x.size() != y.size() || a == b) return false;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] == y[i]) continue;
+    if (++differing > 1) return false;
+    std::size_t common = 0;
+    while (common < x[i].size() && common < y[i].size() && x[i][common] == y[i][common]) ++common;
+    const std::size_t shorter = std::min(x[i].size(), y[i].size());
+    if (common < 4 || common + 1 < shorter) return false;
+  }
+  return differing == 1;
+}
+
+}  // namespace
+
 std::string DidYouMean(const std::string& name, const std::vector<std::string>& names) {
-  const std::string closest = ClosestName(name, names);
+  std::string closest = ClosestName(name, names);
+  for (std::size_t i = 0; closest.empty() && name.size() <= 256 && i < names.size(); ++i) {
+    if (OtherWordForm(name, names[i])) closest = names[i];
+  }
   return closest.empty() ? "" : "; did you mean '" + closest + "'?";
 }
 

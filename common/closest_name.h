@@ -18,7 +18,7 @@ std::size_t EditDistance(const std::string& a, const std::string& b);
 std::string ClosestName(const std::string& name, const std::vector<std::string>& names,
                         std::size_t max_distance = 2);
 
-// "; did you mean 'NAME'?" for ClosestName, or "" when there is none.
+// "; did you mean 'NAME'?" for ClosestName, else one word's other form (settle_time_s: settling_time_s), or "".
 std::string DidYouMean(const std::string& name, const std::vector<std::string>& names);
 
 }  // namespace shapebench

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -95,6 +96,39 @@ thread_local std::vector<ParsedFile> parse_cache;  // most recently used first
 
 }  // namespace
 
+namespace {
+
+// A key path with [INDEX] written unquoted inside a flow ({...} or [...]) ends the flow at
+// its '[': yaml-cpp then says "end of map flow not found". The path it finds near `line`
+// (0-based) of `text`, quoted, and how to write it; "" when there is none.
+std::string FlowHint(const std::string& message, const std::string& text, int line) {
+  if (message.find("flow") == std::string::npos) return "";
+  std::vector<std::string> lines(1);
+  for (const char c : text) {
+    if (c == '\n') lines.emplace_back(); else lines.back() += c;
+  }
+  const auto is_key = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.'; };
+  for (int l = std::min(line, static_cast<int>(lines.size()) - 1); l >= 0 && l >= line - 20; --l) {
+    const std::string& row = lines[static_cast<std::size_t>(l)];
+    for (std::size_t open = row.find('['); open != std::string::npos; open = row.find('[', open + 1)) {
+      std::size_t begin = open;
+      while (begin > 0 && is_key(row[begin - 1])) --begin;
+      std::size_t close = open + 1;
+      while (close < row.size() && std::isdigit(static_cast<unsigned char>(row[close])) != 0) ++close;
+      if (begin == open || close == open + 1 || close >= row.size() || row[close] != ']') continue;
+      if (begin > 0 && (row[begin - 1] == '"' || row[begin - 1] == '\'')) continue;
+      std::size_t end = close + 1;
+      while (end < row.size() && (is_key(row[end]) || row[end] == '[' || row[end] == ']')) ++end;
+      const std::string path = ClippedForMessage(row.substr(begin, end - begin));
+      return "; a key path with [INDEX] inside { } or [ ] must be quoted: write \"" + path + "\" (or use the "
+             "block form, one key a line)";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 ParseCacheScope::ParseCacheScope() { ++parse_cache_scopes; }
 ParseCacheScope::~ParseCacheScope() { --parse_cache_scopes; }
 
@@ -122,7 +156,7 @@ YAML::Node ConfigDocument::ParseFile(const std::string& path) {
     return tree;
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path, e.mark.line + 1, e.mark.column + 1, "",
-                      "malformed YAML: " + e.msg);
+                      "malformed YAML: " + e.msg + FlowHint(e.msg, text, e.mark.line));
   }
 }
 
@@ -158,7 +192,8 @@ void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
   try {
     value = YAML::Load(override_value.value_yaml);
   } catch (const YAML::ParserException& e) {
-    throw fail("malformed YAML value '" + ClippedForMessage(override_value.value_yaml) + "': " + e.msg);
+    throw fail("malformed YAML value '" + ClippedForMessage(override_value.value_yaml) + "': " + e.msg +
+               FlowHint(e.msg, override_value.value_yaml, e.mark.line));
   }
 
   if (!root_.IsMap()) {
@@ -170,6 +205,9 @@ void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
   current.reset(root_);
   std::string path;
   bool created = false;  // `current` is a mapping this override just created
+  // The shallowest key it created: all below is the override's, so an error about that key
+  // (unknown, misspelt) is located at the option, not in the file.
+  std::string created_path;
   for (std::size_t i = 0; i < elements->size(); ++i) {
     const PathElement& element = (*elements)[i];
     const bool last = i + 1 == elements->size();
@@ -206,13 +244,15 @@ void ConfigDocument::ApplyOverride(const Override& override_value, int index) {
       current[element.key] = value;
       break;
     }
-    created = !current[element.key].IsDefined();
+    const bool creates = !current[element.key].IsDefined();
+    if (creates && !created) created_path = ChildPath(path, element.key);
+    created = creates;
     if (created) current[element.key] = YAML::Node(YAML::NodeType::Map);
     YAML::Node child = current[element.key];
     current.reset(child);
     path = ChildPath(path, element.key);
   }
-  SetOrigin(key_path, Origin{"", index});
+  SetOrigin(created_path.empty() ? key_path : created_path, Origin{"", index});
 }
 
 Origin ConfigDocument::OriginOf(const std::string& path) const {

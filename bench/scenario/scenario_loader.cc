@@ -102,6 +102,55 @@ void ResolveMachineFile(ConfigDocument& document, const fs::path& base_dir) {
   document.SpliceTopLevel("machine", content, file);
 }
 
+// The first key of `key_path` the tree lacks ("machine.mode" of "machine.mode[0].gain"),
+// when an index follows it (the override cannot be applied); "" otherwise.
+std::string MissingIndexedKey(const YAML::Node& root, const std::string& key_path) {
+  const auto elements = ParseKeyPath(key_path);
+  if (!elements) return "";
+  YAML::Node node;
+  node.reset(root);
+  std::string path;
+  for (std::size_t i = 0; i < elements->size(); ++i) {
+    const PathElement& element = (*elements)[i];
+    const YAML::Node& parent = node;
+    YAML::Node child;
+    if (element.index) {
+      if (!parent.IsSequence() || *element.index >= parent.size()) return "";
+      child.reset(parent[static_cast<int>(*element.index)]);
+      path = IndexPath(path, *element.index);
+    } else if (!HasKey(parent, element.key)) {
+      const bool indexed = std::any_of(elements->begin() + static_cast<std::ptrdiff_t>(i), elements->end(),
+                                       [](const PathElement& e) { return e.index.has_value(); });
+      return indexed ? ChildPath(path, element.key) : "";
+    } else {
+      child.reset(parent[element.key]);
+      path = ChildPath(path, element.key);
+    }
+    node.reset(child);
+  }
+  return "";
+}
+
+// An override that indexes a missing key may have misspelt it: loaded with that key set to
+// {} instead, the scenario's reader says whether it is unknown (with its "did you mean"),
+// which is the better error, located at the same --set.
+ConfigError MisspeltIndexedKey(const std::string& path, std::vector<Override> overrides, std::size_t failed,
+                               const ConfigError& error) {
+  // The tree as it was before the failed override (which may have created keys).
+  const std::vector<Override> before(overrides.begin(), overrides.begin() + static_cast<std::ptrdiff_t>(failed));
+  const std::string missing = MissingIndexedKey(BuildScenarioTree(path, before), overrides[failed].key_path);
+  if (missing.empty()) return error;
+  overrides.resize(failed + 1);
+  overrides[failed] = Override{missing, "{}"};
+  try {
+    LoadScenario(path, overrides);
+  } catch (const ConfigError& unknown) {
+    if (unknown.key_path() == missing && unknown.message().rfind("unknown key", 0) == 0) return unknown;
+  } catch (const std::exception&) {
+  }
+  return error;
+}
+
 // The scenario file with its machine file spliced in and the overrides applied.
 ConfigDocument BuildScenarioDocument(const std::string& path,
                                      const std::vector<Override>& overrides) {
@@ -114,7 +163,11 @@ ConfigDocument BuildScenarioDocument(const std::string& path,
   const fs::path base_dir = fs::path(path).parent_path();
   ResolveMachineFile(document, base_dir);
   for (std::size_t i = 0; i < overrides.size(); ++i) {
-    document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
+    try {
+      document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
+    } catch (const ConfigError& error) {
+      throw MisspeltIndexedKey(path, overrides, i, error);
+    }
     ResolveMachineFile(document, base_dir);  // --set machine=other.yaml
   }
   return document;

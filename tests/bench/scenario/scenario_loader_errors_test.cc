@@ -283,8 +283,12 @@ TEST(ScenarioLoaderErrors, SetMalformed) {
               "machine.modes[2].gain", "out of range");
   ExpectError(LoadError(path, {"move.distance_mm.x=1"}), "--set", 1, 1, "move.distance_mm.x",
               "not a mapping");
-  ExpectError(LoadError(path, {"controller.extra[0]=1"}), "--set", 1, 1, "controller.extra[0]",
-              "does not exist");
+  // An index into a key the section does not allow: that key is unknown.
+  ExpectError(LoadError(path, {"controller.extra[0]=1"}), "--set", 1, 1, "controller.extra",
+              "unknown key 'extra'");
+  // One it allows but the input lacks: the whole sequence must be set.
+  ExpectError(LoadError(path, {"controller.pattern.frequencies_hz[0]=1"}), "--set", 1, 1,
+              "controller.pattern.frequencies_hz[0]", "does not exist; set the whole sequence");
   ExpectError(LoadError(path, {"move=[1"}), "--set", 1, 1, "move", "malformed YAML value");
   ExpectError(LoadError(path, {"move.distance_mm"}), "--set", 1, 1, "", "expected KEY=VALUE");
   ExpectError(LoadError(path, {"move..x=1"}), "--set", 1, 1, "move..x", "not a key path");
