@@ -266,14 +266,8 @@ Origin ConfigDocument::OriginOf(const std::string& path) const {
 }
 
 std::string ConfigDocument::FileOf(const std::string& path) const {
-  const std::pair<std::string, Origin>* best = &origins_.front();  // the root: a file
-  for (const auto& entry : origins_) {
-    if (entry.second.override_index == 0 && IsPathPrefix(entry.first, path) &&
-        entry.first.size() >= best->first.size()) {
-      best = &entry;
-    }
-  }
-  return best->second.file;
+  const Origin origin = OriginOf(path);
+  return origin.override_index > 0 ? std::string() : origin.file;
 }
 
 ConfigError ConfigDocument::ErrorAt(const YAML::Node& node, const std::string& path,

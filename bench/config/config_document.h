@@ -68,9 +68,9 @@ class ConfigDocument {
   ConfigError ErrorAtPath(const std::string& path, const std::string& message) const;
 
   Origin OriginOf(const std::string& path) const;
-  // The file the value at `path` was read from; for a value a --set gave, the file of the
-  // nearest enclosing value read from one (a relative path it names is relative to that
-  // file: `--set machine.modal_file=x.csv` sits in the machine's file).
+  // The file the value at `path` was read from (a relative path it names is relative to
+  // that file's folder), or "" for a value a --set gave (a path given on the command line
+  // is relative to the current directory: bench/config/input_path.h).
   std::string FileOf(const std::string& path) const;
 
  private:

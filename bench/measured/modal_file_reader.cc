@@ -5,17 +5,15 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <set>
 
 #include "bench/config/config_document.h"
 #include "bench/config/config_error.h"
+#include "bench/config/input_path.h"
 #include "common/shown_text.h"
 
 namespace shapebench::bench {
 namespace {
-
-namespace fs = std::filesystem;
 
 // The columns, their units (the allowed spellings; the first is the one to write) and
 // where each number goes.
@@ -262,9 +260,7 @@ std::vector<model::ModalMode> ParseModalFile(const std::string& text, const std:
 
 model::ModalMachineConfig ReadModalFile(const NodeReader& modal_file) {
   const std::string reference = modal_file.AsString();
-  const fs::path base = fs::path(modal_file.document().FileOf(modal_file.path())).parent_path();
-  const fs::path resolved = fs::path(reference).is_absolute() ? fs::path(reference) : base / reference;
-  const std::string file = resolved.lexically_normal().string();
+  const std::string file = ResolvedInputPath(modal_file);
   const std::string shown = file == reference ? "'" + reference + "'" : "'" + reference + "' (" + file + ")";
   std::string text;
   std::string error;

@@ -1,23 +1,14 @@
 // ReadFrfMachine (bench/scenario/frf_machine_reader.h).
 #include "bench/scenario/frf_machine_reader.h"
 
-#include <filesystem>
 #include <optional>
 
 #include "bench/measured/frf_identification.h"
+#include "bench/config/input_path.h"
 #include "bench/config/override.h"
 
 namespace shapebench::bench {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::string ResolvedPath(const NodeReader& frf_file) {
-  const std::string reference = frf_file.AsString();
-  const std::string source = frf_file.Error("").file();
-  if (fs::path(reference).is_absolute() || source == kOverrideSource || source.empty()) return reference;
-  return (fs::path(source).parent_path() / reference).lexically_normal().string();
-}
 
 // The record whose modal constants become the gains: `response_node` if given, the only
 // record along the axis, or the driving point (response = reference DOF) among several.
@@ -77,7 +68,7 @@ const std::vector<std::string>& FrfFormKeys() {
 
 model::ModalMachineConfig ReadFrfMachine(const NodeReader& machine, int axis) {
   const NodeReader frf_file = *machine.Child("frf_file");
-  const std::string path = ResolvedPath(frf_file);
+  const std::string path = ResolvedInputPath(frf_file);
   const FrfSelection selection = ReadSelection(machine, axis);
   const auto mass = machine.Child("moving_mass_kg");
   const IdentifiedFrfs frfs = IdentifyFrfFile(path, selection);

@@ -4,19 +4,17 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "bench/config/config_document.h"
+#include "bench/config/input_path.h"
 #include "controller/gcode_parser.h"
 #include "controller/program_builder.h"
 
 namespace shapebench::bench {
 namespace {
-
-namespace fs = std::filesystem;
 
 const std::vector<std::string> kBlockKeys = {"g", "x", "y", "z", "i", "j",
                                              "k", "r", "f", "p", "n"};
@@ -75,15 +73,11 @@ controller::Program ReadProgramList(const NodeReader& program, const Eigen::Vect
 }
 
 controller::Program ReadProgramFile(const NodeReader& program_file,
-                                    const std::string& scenario_dir,
                                     const Eigen::Vector3d& start_m,
                                     const controller::GcodeLimits& limits,
                                     const controller::GcodeOptions& options) {
   const std::string reference = program_file.AsString();
-  const fs::path resolved = fs::path(reference).is_absolute()
-                                ? fs::path(reference)
-                                : fs::path(scenario_dir) / reference;
-  const std::string file = resolved.lexically_normal().string();
+  const std::string file = ResolvedInputPath(program_file);
   const std::string shown =
       file == reference ? "'" + reference + "'" : "'" + reference + "' (" + file + ")";
   std::string text;

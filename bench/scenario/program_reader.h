@@ -34,10 +34,11 @@ namespace shapebench::bench {
 controller::Program ReadProgramList(const NodeReader& program,
                                     const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
 
-// `limits` stops the parse at the block that crosses them; `options.strict` refuses the
+// The G-code file `program_file` names (bench/config/input_path.h: from the scenario's
+// folder, or from the current directory when a --set gives it). `limits` stops the parse
+// at the block that crosses them; `options.strict` refuses the
 // words the parser would drop with a warning (ParseGcode).
 controller::Program ReadProgramFile(const NodeReader& program_file,
-                                    const std::string& scenario_dir,
                                     const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
                                     const controller::GcodeLimits& limits = {},
                                     const controller::GcodeOptions& options = {});

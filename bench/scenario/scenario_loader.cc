@@ -14,6 +14,7 @@
 #include "bench/config/config_document.h"
 #include "bench/scenario/controller_reader.h"
 #include "bench/config/field_reader.h"
+#include "bench/config/input_path.h"
 #include "bench/config/key_path.h"
 #include "bench/config/rule_location.h"
 #include "bench/scenario/machine_reader.h"
@@ -82,14 +83,12 @@ void Validated(const ConfigDocument& document, const std::string& prefix, Check&
 }
 
 // `machine: path/to/machine.yaml` -> the file's content in place, its origin recorded.
-void ResolveMachineFile(ConfigDocument& document, const fs::path& base_dir) {
+void ResolveMachineFile(ConfigDocument& document) {
   NodeReader top(document, document.root(), "");
   const auto machine = top.Child("machine");
   if (!machine || !machine->IsScalar()) return;
   const std::string reference = machine->AsString();
-  const fs::path resolved =
-      fs::path(reference).is_absolute() ? fs::path(reference) : base_dir / reference;
-  const std::string file = resolved.lexically_normal().string();
+  const std::string file = ResolvedInputPath(*machine);
   YAML::Node content;
   try {
     content = ConfigDocument::ParseFile(file);
@@ -160,15 +159,14 @@ ConfigDocument BuildScenarioDocument(const std::string& path,
         .Error("expected a mapping of scenario keys (" + JoinNames(kScenarioKeys, ", ") +
                ")");
   }
-  const fs::path base_dir = fs::path(path).parent_path();
-  ResolveMachineFile(document, base_dir);
+  ResolveMachineFile(document);
   for (std::size_t i = 0; i < overrides.size(); ++i) {
     try {
       document.ApplyOverride(overrides[i], static_cast<int>(i) + 1);
     } catch (const ConfigError& error) {
       throw MisspeltIndexedKey(path, overrides, i, error);
     }
-    ResolveMachineFile(document, base_dir);  // --set machine=other.yaml
+    ResolveMachineFile(document);  // --set machine=other.yaml, from the current directory
   }
   return document;
 }
@@ -414,7 +412,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   if (auto program_file = top.Child("program_file")) {
     // Limits from a validated period only (an invalid one is reported below, as before).
     const bool period_ok = scenario.controller.period_s > 0.0 && std::isfinite(scenario.controller.period_s);
-    scenario.program = ReadProgramFile(*program_file, fs::path(path).parent_path().string(),
+    scenario.program = ReadProgramFile(*program_file,
                                        Eigen::Vector3d::Zero(),
                                        period_ok ? ParseLimits(scenario) : controller::GcodeLimits{},
                                        gcode_options);

@@ -8,6 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "bench/config/input_path.h"
 #include "bench/config/key_path.h"
 
 namespace shapebench::bench {
@@ -84,7 +85,11 @@ SweepValues ReadValues(const NodeReader& node, const std::string& key) {
       const YAML::Node& value = element.node();
       const bool plain = value.IsScalar() && value.Tag() != "!";
       values.texts.push_back(value.IsScalar() ? value.Scalar() : FlowYaml(value));
-      values.yamls.push_back(plain ? value.Scalar() : FlowYaml(value));
+      // A path written in the sweep file is relative to its folder; the override that sets
+      // it reads from the current directory (bench/config/input_path.h).
+      const bool path = plain && IsPathKey(key) && !value.Scalar().empty();
+      values.yamls.push_back(path ? ResolvedFrom(element.document().FileOf(element.path()), value.Scalar())
+                                  : plain ? value.Scalar() : FlowYaml(value));
       values.positions.push_back(PositionOf(value));
     }
     if (values.texts.empty()) throw node.Error("expected at least one value");

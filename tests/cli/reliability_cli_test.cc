@@ -487,9 +487,9 @@ TEST(Gnuplot, HostileTitlesAreQuotedNeverRun) {
 }
 
 // Tests that every path inside a file is resolved against that file's directory, not the
-// working directory: a scenario's machine file and program file, a --set machine=FILE, a
-// sweep's base; run from an unrelated working directory, and a missing one named with
-// the resolved path.
+// working directory: a scenario's machine file and program file, a sweep's base; run from
+// an unrelated working directory, a missing one named with the resolved path. A --set
+// machine=FILE is the command line's: from the working directory.
 TEST(Paths, RelativeToTheFileThatNamesThem) {
   ScratchDir dir;
   // square.nc moves X too, which two_modes.yaml (a Y machine) does not model: said rigid.
@@ -508,7 +508,7 @@ TEST(Paths, RelativeToTheFileThatNamesThem) {
   const std::string cwd = dir.File("elsewhere");
   const CliResult run = RunCli({"run", scenario, "--json"}, cwd);
   EXPECT_EQ(run.exit_code, 0) << run.err;
-  const CliResult set = RunCli({"run", scenario, "--json", "--set", "machine=../machines/other.yaml"}, cwd);
+  const CliResult set = RunCli({"run", scenario, "--json", "--set", "machine=../project/machines/other.yaml"}, cwd);
   EXPECT_EQ(set.exit_code, 0) << set.err;
   const CliResult relative = RunCli({"run", "../project/scenarios/s.yaml", "--json"}, cwd);
   EXPECT_EQ(relative.exit_code, 0) << relative.err;
@@ -517,9 +517,12 @@ TEST(Paths, RelativeToTheFileThatNamesThem) {
   EXPECT_NE(swept.out.find("2 points, 2 ok, 0 error"), std::string::npos) << swept.out;
   const CliResult missing = RunCli({"run", scenario, "--set", "machine=nowhere.yaml"}, cwd);
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.err.find("machine file 'nowhere.yaml' (" + dir.File("project/scenarios/nowhere.yaml") + ")"),
+  EXPECT_NE(missing.err.find("machine file 'nowhere.yaml': cannot open file"), std::string::npos) << missing.err;
+  const CliResult in_file = RunCli({"run", dir.Write("project/scenarios/no_machine.yaml", "machine: nowhere.yaml\n")}, cwd);
+  EXPECT_EQ(in_file.exit_code, 2);
+  EXPECT_NE(in_file.err.find("machine file 'nowhere.yaml' (" + dir.File("project/scenarios/nowhere.yaml") + ")"),
             std::string::npos)
-      << missing.err;
+      << in_file.err;
 }
 
 }  // namespace

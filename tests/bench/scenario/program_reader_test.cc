@@ -52,7 +52,7 @@ Program ReadList(const std::string& path) {
 
 Program ReadFile(const std::string& path) {
   const Loaded loaded(path);
-  return ReadProgramFile(loaded.Key("program_file"), fs::path(path).parent_path().string());
+  return ReadProgramFile(loaded.Key("program_file"));
 }
 
 
