@@ -94,10 +94,6 @@ struct ParsedFile {
 thread_local int parse_cache_scopes = 0;
 thread_local std::vector<ParsedFile> parse_cache;  // most recently used first
 
-}  // namespace
-
-namespace {
-
 // A key path with [INDEX] written unquoted inside a flow ({...} or [...]) ends the flow at
 // its '[': yaml-cpp then says "end of map flow not found". The path it finds near `line`
 // (0-based) of `text`, quoted, and how to write it; "" when there is none.
@@ -105,7 +101,11 @@ std::string FlowHint(const std::string& message, const std::string& text, int li
   if (message.find("flow") == std::string::npos) return "";
   std::vector<std::string> lines(1);
   for (const char c : text) {
-    if (c == '\n') lines.emplace_back(); else lines.back() += c;
+    if (c == '\n') {
+      lines.emplace_back();
+    } else {
+      lines.back() += c;
+    }
   }
   const auto is_key = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.'; };
   for (int l = std::min(line, static_cast<int>(lines.size()) - 1); l >= 0 && l >= line - 20; --l) {
