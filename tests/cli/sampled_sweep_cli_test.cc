@@ -306,6 +306,28 @@ TEST(SampledSweepCli, TwentyMillionSamplesStartAtOnceAndResume) {
   }
 }
 
+// Tests that an output directory whose manifest lists every sample, with the hash that
+// listed them (as shapebench wrote it before the samples were computed per point), is
+// refused by resume saying so, not as another sweep's.
+TEST(SampledSweepCli, ResumeOfAManifestListingTheSamplesSaysWhy) {
+  const ScratchDir dir;
+  const std::string sweep = SampledSweep(dir, "s.yaml", 20, 42);
+  ASSERT_EQ(RunCli({"sweep", sweep, "--out", dir.File("out")}, kSourceDir).exit_code, 0);
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(ReadText(dir.File("out/manifest.json")));
+  const auto rows = ReadCsv(dir.File("out/results.csv"));
+  std::vector<std::string> listed;
+  for (std::size_t r = 1; r <= 20; ++r) listed.push_back(rows[r][2]);
+  manifest["grid"][1][0]["list"] = listed;
+  manifest["hash"] = "0123456789abcdef";
+  std::ofstream(dir.File("out/manifest.json"), std::ios::binary | std::ios::trunc) << manifest.dump(2) << "\n";
+  const CliResult resumed = RunCli({"sweep", sweep, "--out", dir.File("out")}, kSourceDir);
+  EXPECT_EQ(resumed.exit_code, 2);
+  EXPECT_NE(resumed.err.find("written by an earlier shapebench that listed every sample in its manifest; this "
+                             "version cannot resume it"),
+            std::string::npos)
+      << resumed.err;
+}
+
 // Tests that a sampled sweep draws the empirical CDF of its checked metric, one curve per
 // method, with the limit (a PNG next to results.csv), and that merge draws it too.
 TEST(SampledSweepCli, DrawsTheEmpiricalCdf) {
