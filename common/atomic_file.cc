@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -170,7 +171,9 @@ TempFile::TempFile(const std::string& final_path) : final_path_(final_path) {
   name.push_back('\0');
   // A device or FIFO in its place would be replaced by the rename (WriteFileAtomically
   // writes those in place; gnuplot's PNGs are files).
-  if (IsStreamTarget(final_path)) throw WriteFailure(final_path, "not a regular file (a device, FIFO or socket)");
+  if (IsStreamTarget(final_path) || ProcessDescriptorOf(final_path) >= 0) {
+    throw WriteFailure(final_path, "not a regular file (a device, FIFO, socket or standard output)");
+  }
   const int fd = mkstemp(name.data());
   if (fd < 0) throw WriteError(final_path, errno);
   fchmod(fd, FileMode());
@@ -244,8 +247,28 @@ void StagedDirectory::Commit() {
   }
 }
 
+int ProcessDescriptorOf(const std::string& path) {
+  const std::string normal = std::filesystem::path(path).lexically_normal().string();
+  if (normal == "/dev/stdout") return STDOUT_FILENO;
+  if (normal == "/dev/stderr") return STDERR_FILENO;
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    const std::string digits = normal.rfind(prefix, 0) == 0 ? normal.substr(std::strlen(prefix)) : "";
+    if (!digits.empty() && digits.size() <= 6 && digits.find_first_not_of("0123456789") == std::string::npos) {
+      return std::atoi(digits.c_str());
+    }
+  }
+  return -1;
+}
+
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                          Durability durability) {
+  if (const int own = ProcessDescriptorOf(path); own >= 0) {
+    if (own == STDOUT_FILENO) std::cout.flush();  // its lines first, at the descriptor's offset
+    const int fd = fcntl(own, F_DUPFD_CLOEXEC, 0);
+    if (fd < 0) throw WriteError(path, errno);
+    WriteThrough(fd, path, write);
+    return;
+  }
   if (IsStreamTarget(path)) {
     const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) throw WriteError(path, errno);

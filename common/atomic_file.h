@@ -75,9 +75,16 @@ class StagedDirectory {
   bool staged_ = false;
 };
 
+// The descriptor `path` names when it names one of this process's own: /dev/stdout (1),
+// /dev/stderr (2), /dev/fd/N, /proc/self/fd/N; -1 for any other path. Such a path is a
+// symbolic link in /dev: renamed over, it would be replaced (as root), or refused (not).
+int ProcessDescriptorOf(const std::string& path);
+
 // Calls `write` on a stream to a TempFile, then commits it. An existing device or FIFO at
-// `path` (/dev/stdout, /dev/full, a pipe) is written into instead, without atomicity (a
-// stream has none). Throws std::runtime_error "cannot write PATH: CAUSE", CAUSE the errno
+// `path` (/dev/full, a pipe) is written into instead, without atomicity (a stream has
+// none); a descriptor of this process (ProcessDescriptorOf: /dev/stdout) through a copy
+// of it, after what std::cout holds (the report follows the lines already printed, also
+// when stdout is a file). Throws std::runtime_error "cannot write PATH: CAUSE", CAUSE the errno
 // text of the call that failed ("No space left on device").
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                          Durability durability = Durability::kSynced);

@@ -25,6 +25,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "python/sigint_watch.h"
+
 #include "bench/cli/shapebench_version.h"  // generated in the build tree: cmake/git_version.cmake
 #include "bench/config/config_error.h"
 #include "bench/run/located_run.h"
@@ -243,8 +245,10 @@ Result Run(const LoadedScenario& source, bool trace) {
 // ---------------------------------------------------------------------------------------
 // Sweep: the columns of results.csv
 
-// Every point of the sweep on `jobs` threads, in point order. Ctrl-C (a pending Python
-// signal, looked at every 100 ms on the calling thread) stops it between points.
+// Every point of the sweep on `jobs` threads, in point order. Ctrl-C stops it between
+// points: on Python's main thread a pending signal, looked at every 100 ms; on another
+// thread a SIGINT counted since it began (python/sigint_watch.h), looked at before each
+// point. Either raises KeyboardInterrupt in the thread that called.
 py::dict Sweep(const std::string& path, const std::vector<std::string>& sets, int jobs, bool force) {
   const std::vector<Override> overrides = Overrides(sets);
   bench::SweepLoadOptions load;
@@ -267,6 +271,10 @@ py::dict Sweep(const std::string& path, const std::vector<std::string>& sets, in
   std::vector<std::string> errors;
   std::atomic<bool> interrupted{false};
   auto last_look = std::chrono::steady_clock::now();
+  const py::module_ threading = py::module_::import("threading");
+  const bool main_thread = threading.attr("current_thread")().is(threading.attr("main_thread")());
+  std::optional<SigintWatch> watch;
+  if (!main_thread) watch.emplace();
   using Row = std::pair<std::vector<std::string>, bench::PointOutcome>;
   {
     py::gil_scoped_release release;
@@ -283,14 +291,18 @@ py::dict Sweep(const std::string& path, const std::vector<std::string>& sets, in
           }
           status.push_back(outcome.ok() ? "ok" : "error");
           errors.push_back(outcome.error);
-          if (std::chrono::steady_clock::now() - last_look > std::chrono::milliseconds(100)) {
+          if (main_thread && std::chrono::steady_clock::now() - last_look > std::chrono::milliseconds(100)) {
             last_look = std::chrono::steady_clock::now();
             py::gil_scoped_acquire acquire;
             if (PyErr_CheckSignals() != 0) interrupted = true;
           }
         },
-        [&] { return interrupted.load(); });
+        [&] {
+          if (watch && watch->Fired()) interrupted = true;
+          return interrupted.load();
+        });
   }
+  if (interrupted && !main_thread) PyErr_SetNone(PyExc_KeyboardInterrupt);
   if (interrupted) throw py::error_already_set();
   py::dict columns;
   columns["point"] = ArrayOf<std::int64_t>(status.size(), [](std::size_t i) { return static_cast<std::int64_t>(i); });

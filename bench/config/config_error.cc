@@ -11,7 +11,13 @@ std::string Format(const std::string& file, int line, int column,
   if (line > 0) text += ":" + std::to_string(line) + ":" + std::to_string(column);
   text += ": ";
   if (!key_path.empty()) text += ClippedForMessage(key_path) + ": ";  // a 10 MB key
-  return text + message;
+  text += message;
+  // what() is a C string: a NUL quoted from a file would cut the message there (the rest
+  // of the field, what is allowed). Shown as \x00, as TerminalSafe shows other controls.
+  for (std::size_t at = text.find('\0'); at != std::string::npos; at = text.find('\0', at + 4)) {
+    text.replace(at, 1, "\\x00");
+  }
+  return text;
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "bench/config/config_document.h"
 #include "bench/config/config_error.h"
 #include "bench/measured/uff58_units.h"
+#include "common/decimal.h"
 #include "common/math_constants.h"
 
 namespace shapebench::bench {
@@ -53,14 +54,19 @@ bool ParseLong(const std::string& field, long* out) {
   return true;
 }
 
-// A Fortran real: E or D exponent. False when it is not one; *out may then be NaN or inf
-// when the text spells one (the caller says so).
+// A Fortran real: decimal, E or D exponent. False when it is not one; *out may then be NaN
+// or inf when the text spells one or overflows (the caller says so). strtod alone would
+// also read hexadecimal: "0x10" is no Fortran real.
 bool ParseReal(const std::string& field, double* out) {
   std::string text = Trim(field);
   if (text.empty() || text.size() > 40) return false;
   for (char& c : text) {
     if (c == 'd' || c == 'D') c = 'E';
   }
+  const std::size_t digits = text.find_first_not_of("+-");
+  const bool spelled = digits != std::string::npos && (text[digits] == 'i' || text[digits] == 'I' ||
+                                                       text[digits] == 'n' || text[digits] == 'N');
+  if (!IsDecimalText(text) && !spelled) return false;
   char* end = nullptr;
   *out = std::strtod(text.c_str(), &end);
   return end == text.c_str() + text.size();

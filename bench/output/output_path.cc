@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "common/shown_text.h"
 
 namespace shapebench::bench {
@@ -77,9 +78,25 @@ void RequireWritableOutputDir(const std::string& option, const std::string& path
 void RequireWritableOutputFile(const std::string& option, const std::string& path) {
   if (path.empty()) Fail(option, path, "empty path");
   RequirePrintable(option, path);
+  // Standard output (or another descriptor of this process) is written through a copy of
+  // the descriptor (common/atomic_file.h): open for writing is all it needs.
+  if (const int own = ProcessDescriptorOf(path); own >= 0) {
+    const int flags = fcntl(own, F_GETFL);
+    if (flags < 0) Fail(option, path, std::strerror(errno));
+    if ((flags & O_ACCMODE) == O_RDONLY) Fail(option, path, "the descriptor is open for reading only");
+    return;
+  }
   const fs::path target(path);
   std::error_code ec;
-  if (fs::is_directory(fs::status(target, ec))) Fail(option, path, "it is a directory");
+  const fs::file_status target_status = fs::status(target, ec);
+  if (fs::is_directory(target_status)) Fail(option, path, "it is a directory");
+  // A device or FIFO (/dev/stdout, `--report >(cat)`) is written in place, not renamed
+  // over (common/atomic_file.h): its own write permission counts, not its directory's
+  // (/dev is not writable but by root).
+  if (!ec && fs::exists(target_status) && !fs::is_regular_file(target_status)) {
+    if (access(path.c_str(), W_OK) != 0) Fail(option, path, std::strerror(errno));
+    return;
+  }
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   const fs::file_status status = fs::status(parent, ec);
   if (ec || !fs::exists(status)) {

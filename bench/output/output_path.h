@@ -13,7 +13,8 @@ namespace shapebench::bench {
 void RequireWritableOutputDir(const std::string& option, const std::string& path);
 
 // The same for an output file (--junit, --report): not an existing directory, and its
-// parent directory exists and is writable (probed the same way).
+// parent directory exists and is writable (probed the same way); or an existing device
+// or FIFO (/dev/stdout) this process may write to.
 void RequireWritableOutputFile(const std::string& option, const std::string& path);
 
 }  // namespace shapebench::bench

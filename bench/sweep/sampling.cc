@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
+#include <map>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "common/csv.h"
+#include "common/decimal.h"
 #include "common/sample_math.h"
 
 namespace shapebench::bench {
@@ -200,43 +203,137 @@ std::optional<SweepSampling> ReadSampling(const NodeReader& top) {
   return sampling;
 }
 
-std::vector<std::vector<double>> SampleUniforms(const SweepSampling& sampling, std::size_t dimensions) {
+void CheckSampleDesign(const SweepSampling& sampling, std::size_t dimensions) {
   const std::uint64_t n = sampling.samples;
   if (sampling.design == SampleDesign::kSobol &&
       (dimensions > static_cast<std::size_t>(kSobolDimensions) || n > (1ULL << 32))) {
     throw std::invalid_argument("a sobol design takes at most " + std::to_string(kSobolDimensions) +
                                 " distribution keys and 2^32 samples");
   }
-  std::vector<std::vector<double>> u(dimensions, std::vector<double>(n));
+  if (sampling.design == SampleDesign::kLatinHypercube && n > (1ULL << 32)) {
+    throw std::invalid_argument("a latin_hypercube design takes at most 2^32 samples");
+  }
+}
+
+SampleDraw::SampleDraw(const SweepSampling& sampling, std::size_t dimension, const Distribution& distribution)
+    : sampling_(sampling),
+      dimension_(dimension),
+      distribution_(distribution),
+      shift_(static_cast<std::uint32_t>(CounterWord(sampling.seed, kShiftStream + dimension, 0) >> 32)) {}
+
+// Fisher-Yates, exactly specified: the permutation every process draws alike. Strata
+// below 2^32 fit 4 bytes (CheckSampleDesign).
+const std::vector<std::uint32_t>& SampleDraw::Strata() const {
+  std::call_once(strata_once_, [this] {
+    const std::uint64_t n = sampling_.samples;
+    strata_.resize(n);
+    for (std::uint64_t i = 0; i < n; ++i) strata_[i] = static_cast<std::uint32_t>(i);
+    for (std::uint64_t i = n; i-- > 1;) {
+      std::swap(strata_[i], strata_[CounterWord(sampling_.seed, kPermutationStream + dimension_, i) % (i + 1)]);
+    }
+  });
+  return strata_;
+}
+
+double SampleDraw::Uniform(std::uint64_t i) const {
+  switch (sampling_.design) {
+    case SampleDesign::kRandom:
+      return CounterUniform(sampling_.seed, dimension_, i);
+    case SampleDesign::kLatinHypercube:
+      // (N - 1 + v) / N may round to 1: kept inside the open interval.
+      return std::min((static_cast<double>(Strata()[i]) + CounterUniform(sampling_.seed, dimension_, i)) /
+                          static_cast<double>(sampling_.samples),
+                      std::nextafter(1.0, 0.0));
+    case SampleDesign::kSobol:
+      return (static_cast<double>(SobolPoint(static_cast<int>(dimension_), i) ^ shift_) + 0.5) * 0x1.0p-32;
+  }
+  return NAN;
+}
+
+std::vector<std::vector<double>> SampleUniforms(const SweepSampling& sampling, std::size_t dimensions) {
+  CheckSampleDesign(sampling, dimensions);
+  std::vector<std::vector<double>> u(dimensions, std::vector<double>(sampling.samples));
   for (std::size_t d = 0; d < dimensions; ++d) {
-    std::vector<std::uint64_t> strata;
-    if (sampling.design == SampleDesign::kLatinHypercube) {
-      strata.resize(n);
-      std::iota(strata.begin(), strata.end(), 0);
-      for (std::uint64_t i = n; i-- > 1;) {  // Fisher-Yates, exactly specified
-        std::swap(strata[i], strata[CounterWord(sampling.seed, kPermutationStream + d, i) % (i + 1)]);
-      }
-    }
-    const std::uint32_t shift =
-        static_cast<std::uint32_t>(CounterWord(sampling.seed, kShiftStream + d, 0) >> 32);
-    for (std::uint64_t i = 0; i < n; ++i) {
-      switch (sampling.design) {
-        case SampleDesign::kRandom:
-          u[d][i] = CounterUniform(sampling.seed, d, i);
-          break;
-        case SampleDesign::kLatinHypercube:
-          // (N - 1 + v) / N may round to 1: kept inside the open interval.
-          u[d][i] = std::min((static_cast<double>(strata[i]) + CounterUniform(sampling.seed, d, i)) /
-                                 static_cast<double>(n),
-                             std::nextafter(1.0, 0.0));
-          break;
-        case SampleDesign::kSobol:
-          u[d][i] = (static_cast<double>(SobolPoint(static_cast<int>(d), i) ^ shift) + 0.5) * 0x1.0p-32;
-          break;
-      }
-    }
+    const SampleDraw draw(sampling, d, Distribution{});
+    for (std::uint64_t i = 0; i < sampling.samples; ++i) u[d][i] = draw.Uniform(i);
   }
   return u;
+}
+
+namespace {
+
+// "name{k=v,k=v}" groups of a Describe() text, in order.
+std::vector<std::pair<std::string, std::map<std::string, double>>> DescribedGroups(const std::string& text) {
+  std::vector<std::pair<std::string, std::map<std::string, double>>> groups;
+  std::size_t at = 0;
+  while (at < text.size() && groups.size() < 2) {
+    const std::size_t open = text.find('{', at);
+    const std::size_t close = text.find('}', at);
+    if (open == std::string::npos || close == std::string::npos || close < open) {
+      throw std::runtime_error("expected name{key=value,...} groups");
+    }
+    std::map<std::string, double> params;
+    for (std::size_t p = open + 1; p < close;) {
+      const std::size_t end = std::min(text.find(',', p), close);
+      const std::size_t equals = text.find('=', p);
+      double value = 0.0;
+      if (equals >= end || !ParseDecimal(std::string_view(text).substr(equals + 1, end - equals - 1), &value) ||
+          !params.emplace(text.substr(p, equals - p), value).second) {
+        throw std::runtime_error("expected key=number pairs, each key once");
+      }
+      p = end + 1;
+    }
+    groups.emplace_back(text.substr(at, open - at), std::move(params));
+    at = close + 1;
+  }
+  if (at < text.size()) throw std::runtime_error("expected at most a distribution and truncated{...}");
+  return groups;
+}
+
+}  // namespace
+
+Distribution ParseDistribution(const std::string& text) {
+  const std::string where = "distribution '" + text.substr(0, 80) + "': ";
+  try {
+    const auto groups = DescribedGroups(text);
+    if (groups.empty()) throw std::runtime_error("empty");
+    Distribution dist;
+    const auto param = [&](std::size_t g, const char* key) {
+      const auto found = groups[g].second.find(key);
+      if (found == groups[g].second.end()) throw std::runtime_error(std::string("missing ") + key);
+      return found->second;
+    };
+    const std::string& kind = groups[0].first;
+    const char* names[2] = {nullptr, nullptr};
+    if (kind == "normal") {
+      dist.kind = Distribution::Kind::kNormal;
+      names[0] = "mean", names[1] = "sd";
+    } else if (kind == "uniform") {
+      dist.kind = Distribution::Kind::kUniform;
+      names[0] = "from", names[1] = "to";
+    } else if (kind == "lognormal") {
+      dist.kind = Distribution::Kind::kLogNormal;
+      names[0] = "median", names[1] = "sigma";
+    } else {
+      throw std::runtime_error("expected normal, uniform or lognormal first");
+    }
+    dist.a = param(0, names[0]);
+    dist.b = param(0, names[1]);
+    if (groups.size() == 2) {
+      if (groups[1].first != "truncated") throw std::runtime_error("expected truncated{...} second");
+      if (groups[1].second.count("min") != 0) dist.min = param(1, "min");
+      if (groups[1].second.count("max") != 0) dist.max = param(1, "max");
+    }
+    // What ReadDistribution refuses, and a text that is not Describe()'s own spelling.
+    const bool positive = dist.kind == Distribution::Kind::kUniform ? dist.a < dist.b
+                          : dist.kind == Distribution::Kind::kNormal ? dist.b > 0.0
+                                                                      : dist.a > 0.0 && dist.b > 0.0;
+    if (!positive || !(dist.KeptMass() >= kMinKeptMass)) throw std::runtime_error("parameters out of range");
+    if (dist.Describe() != text) throw std::runtime_error("not as shapebench writes it");
+    return dist;
+  } catch (const std::runtime_error& error) {
+    throw std::runtime_error(where + error.what());
+  }
 }
 
 }  // namespace shapebench::bench

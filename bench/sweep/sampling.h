@@ -16,14 +16,19 @@
 // the same values, whatever its rank, thread or shard. The uniforms u in (0, 1):
 //   random           CounterUniform(seed, d, i) (common/sample_math.h);
 //   latin_hypercube  (pi_d(i) + CounterUniform(seed, d, i)) / N, pi_d a permutation of the
-//                    N strata drawn by Fisher-Yates from CounterWord(seed, 2^32 + d, .);
+//                    N strata drawn by Fisher-Yates from CounterWord(seed, 2^32 + d, .)
+//                    (at most 2^32 samples: the permutation is the one thing held, 4 bytes
+//                    a sample);
 //   sobol            Sobol dimension d (at most kSobolDimensions keys), point i, XORed
 //                    with a digital shift CounterWord(seed, 2^33 + d, 0) (a random digital
 //                    shift keeps the sequence's net property), at the centre of its 2^-32 cell.
-// Each value is written in 15 significant digits and the point runs with that text.
+// Each value is written in 15 significant digits and the point runs with that text. A value
+// is computed when a point asks for it (SampleDraw): a sweep of 20,000,000 samples starts
+// its first point at once and holds no list of them.
 #pragma once
 
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,8 +92,45 @@ Distribution ReadDistribution(const NodeReader& node);
 // The top-level samples:, seed:, design: of a sweep (nullopt when samples: is absent).
 std::optional<SweepSampling> ReadSampling(const NodeReader& top);
 
-// The uniforms of every dimension: result[d][i] in (0, 1) for d < dimensions, i < samples.
-// Throws std::invalid_argument for a Sobol design beyond kSobolDimensions or 2^32 samples.
+// Throws std::invalid_argument when the design cannot draw `dimensions` keys of its N
+// samples: a Sobol design beyond kSobolDimensions keys or 2^32 samples, a Latin hypercube
+// beyond 2^32 samples.
+void CheckSampleDesign(const SweepSampling& sampling, std::size_t dimensions);
+
+// The samples of one distribution key, dimension d of the sampling: sample i computed when
+// asked, the same value whichever thread, process or order asks. A Latin hypercube's
+// permutation is drawn at the first request (not by a reader that only checks a manifest).
+// Shared between threads (const, the permutation drawn once under a std::once_flag).
+class SampleDraw {
+ public:
+  // CheckSampleDesign(sampling, dimension + 1) must hold.
+  SampleDraw(const SweepSampling& sampling, std::size_t dimension, const Distribution& distribution);
+  SampleDraw(const SampleDraw&) = delete;
+  SampleDraw& operator=(const SampleDraw&) = delete;
+
+  std::uint64_t size() const { return sampling_.samples; }
+  // The CDF level in (0, 1) of sample i < size().
+  double Uniform(std::uint64_t i) const;
+  double Value(std::uint64_t i) const { return distribution_.Quantile(Uniform(i)); }
+  const Distribution& distribution() const { return distribution_; }
+
+ private:
+  const std::vector<std::uint32_t>& Strata() const;
+
+  SweepSampling sampling_;
+  std::uint64_t dimension_;
+  Distribution distribution_;
+  std::uint32_t shift_;  // sobol's digital shift
+  mutable std::once_flag strata_once_;
+  mutable std::vector<std::uint32_t> strata_;  // latin_hypercube's pi_d
+};
+
+// The uniforms of every dimension: result[d][i] in (0, 1) for d < dimensions, i < samples
+// (SampleDraw::Uniform of each; for tests). Throws as CheckSampleDesign.
 std::vector<std::vector<double>> SampleUniforms(const SweepSampling& sampling, std::size_t dimensions);
+
+// The Distribution whose Describe() is `text` (a manifest's); std::runtime_error naming
+// what is wrong for any other text or parameters ReadDistribution would refuse.
+Distribution ParseDistribution(const std::string& text);
 
 }  // namespace shapebench::bench

@@ -262,12 +262,15 @@ std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
     HashText(&hash, "axis");
     for (const auto& values : axis.keys) {
       HashText(&hash, values.key);
+      // A sampled key's values follow from the sampling hashed below: not listed one by
+      // one (a sweep of 20,000,000 samples would wait for them before its first point).
+      if (values.kind == SweepValues::Kind::kSampled) continue;
       for (std::uint64_t i = 0; i < values.size(); ++i) HashText(&hash, values.Yaml(i));
     }
   }
   if (sweep.sampling) {
-    // The sampling spec itself (its values are in the grid above): a changed design or seed
-    // that happened to give the same texts is still another sweep.
+    // The sampling spec, which makes its values: the same spec, the same values (a resume
+    // still checks each kept row's values against the grid).
     HashText(&hash, "sampling");
     HashText(&hash, std::string(DesignName(sweep.sampling->design)) + " seed " +
                         std::to_string(sweep.sampling->seed) + " samples " + std::to_string(sweep.sampling->samples));

@@ -32,13 +32,13 @@ std::pair<int, int> OverridePosition(const Sweep& sweep, const SweepPoint& point
 }  // namespace
 
 std::uint64_t SweepValues::size() const {
-  if (kind == Kind::kSampled) return samples ? static_cast<std::uint64_t>(samples->size()) : 0;
+  if (kind == Kind::kSampled) return draw ? draw->size() : 0;
   return kind == Kind::kList ? static_cast<std::uint64_t>(texts.size()) : steps;
 }
 
 std::string SweepValues::Text(std::uint64_t i) const {
   if (kind == Kind::kList) return texts[i];
-  if (kind == Kind::kSampled) return Digits15((*samples)[i]);
+  if (kind == Kind::kSampled) return Digits15(draw->Value(i));
   if (i == 0) return ShortestDouble(from);
   if (i + 1 == steps) return ShortestDouble(to);
   // Inner values in 15 significant digits: 15.3, not 15.300000000000001 (the value a

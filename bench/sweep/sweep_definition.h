@@ -34,9 +34,10 @@ struct SweepValues {
   double from = 0.0;
   double to = 0.0;
   std::uint64_t steps = 0;
-  // kSampled (bench/sweep/sampling.h): the distribution and its samples, drawn once per load.
+  // kSampled (bench/sweep/sampling.h): the distribution and its samples, each computed
+  // when a point asks (no list of them is held).
   std::optional<Distribution> distribution;
-  std::shared_ptr<const std::vector<double>> samples;
+  std::shared_ptr<const SampleDraw> draw;
 
   std::uint64_t size() const;
   std::string Text(std::uint64_t i) const;

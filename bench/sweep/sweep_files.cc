@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -34,10 +35,9 @@ nlohmann::ordered_json GridJson(const Sweep& sweep) {
       if (values.kind == SweepValues::Kind::kList) {
         entry["list"] = values.texts;
       } else if (values.kind == SweepValues::Kind::kSampled) {
-        // The samples as a list (what a merge checks rows against) and what drew them.
-        std::vector<std::string> texts;
-        for (std::uint64_t i = 0; i < values.size(); ++i) texts.push_back(values.Text(i));
-        entry["list"] = texts;
+        // What draws the samples, with the manifest's "sampling" (the k-th distribution key
+        // is dimension k): a merge computes each row's values from it. Not the list: 20 MB
+        // a million samples.
         entry["distribution"] = values.distribution->Describe();
       } else {
         entry["from"] = values.from;
@@ -68,12 +68,26 @@ const std::string& Text(const nlohmann::json& object, const char* key) {
 // One key's values as the manifest's grid keeps them (GridJson), checked as the sweep
 // loader checks them (bench/sweep/sweep.cc, ReadRange): a list of at least one text, or a
 // range of at least one step (one only when from equals to), log spaced above 0.
-SweepValues GridValues(const nlohmann::json& entry) {
+SweepValues GridValues(const nlohmann::json& entry, const std::optional<SweepSampling>& sampling,
+                       std::size_t* dimensions) {
   if (!entry.is_object()) throw std::runtime_error("grid: expected each key an object");
   SweepValues values;
   values.key = Text(entry, "key");
   const std::string where = "grid: key " + values.key + ": ";
-  if (entry.contains("list")) {
+  if (entry.contains("distribution") && !entry.contains("list")) {
+    if (!sampling) throw std::runtime_error(where + "a distribution without the manifest's sampling");
+    const std::size_t dimension = (*dimensions)++;
+    try {
+      CheckSampleDesign(*sampling, dimension + 1);
+      values.distribution = ParseDistribution(Text(entry, "distribution"));
+    } catch (const std::exception& error) {
+      throw std::runtime_error(where + error.what());
+    }
+    values.kind = SweepValues::Kind::kSampled;
+    values.draw = std::make_shared<const SampleDraw>(*sampling, dimension, *values.distribution);
+    return values;
+  }
+  if (entry.contains("list")) {  // a list (or a sampled key's values, as manifests listed them once)
     const nlohmann::json& list = entry.at("list");
     if (!list.is_array() || list.empty()) throw std::runtime_error(where + "expected a list of values");
     for (const auto& text : list) {
@@ -100,6 +114,25 @@ SweepValues GridValues(const nlohmann::json& entry) {
   return values;
 }
 
+// The manifest's "sampling" ({samples, seed, design}), nullopt when absent.
+std::optional<SweepSampling> ManifestSampling(const nlohmann::json& manifest) {
+  if (!manifest.contains("sampling")) return std::nullopt;
+  const nlohmann::json& json = manifest.at("sampling");
+  if (!json.is_object()) throw std::runtime_error("sampling: expected {samples, seed, design}");
+  SweepSampling sampling;
+  sampling.samples = WholeNumber(json.at("samples"), "sampling.samples");
+  sampling.seed = WholeNumber(json.at("seed"), "sampling.seed");
+  const std::string& design = Text(json, "design");
+  for (const SampleDesign known : {SampleDesign::kRandom, SampleDesign::kLatinHypercube, SampleDesign::kSobol}) {
+    if (design == DesignName(known)) sampling.design = known;
+  }
+  if (design != DesignName(sampling.design)) {
+    throw std::runtime_error("sampling.design: expected random, latin_hypercube or sobol");
+  }
+  if (sampling.samples < 1) throw std::runtime_error("sampling.samples: expected at least 1");
+  return sampling;
+}
+
 }  // namespace
 
 GridTexts GridTexts::Of(const Sweep& sweep) {
@@ -116,13 +149,15 @@ GridTexts GridTexts::FromManifest(const nlohmann::json& manifest, bool* present)
   const std::uint64_t manifest_points = WholeNumber(manifest.at("points"), "points");
   const nlohmann::json& axes = manifest.at("grid");
   if (!axes.is_array()) throw std::runtime_error("grid: expected an array of axes");
+  const std::optional<SweepSampling> sampling = ManifestSampling(manifest);
+  std::size_t dimensions = 0;
   std::uint64_t points = 1;
   std::size_t column = 1;
   for (const auto& axis : axes) {
     if (!axis.is_array() || axis.empty()) throw std::runtime_error("grid: expected each axis an array of keys");
     std::vector<SweepValues> keys;
     for (const auto& entry : axis) {
-      SweepValues values = GridValues(entry);
+      SweepValues values = GridValues(entry, sampling, &dimensions);
       if ((!keys.empty() && values.size() != keys.front().size()) || column >= columns.size() ||
           columns[column++] != values.key) {
         throw std::runtime_error("grid: key " + values.key + " does not fit the columns");
@@ -280,6 +315,18 @@ void CheckManifest(const nlohmann::json& json) {
   }
 }
 
+// Whether a manifest lists a sampled key's values (as manifests did before the samples
+// were computed per point).
+bool ListsSamples(const nlohmann::json& manifest) {
+  if (!manifest.contains("grid")) return false;
+  for (const auto& axis : manifest.at("grid")) {
+    for (const auto& entry : axis) {
+      if (entry.contains("distribution") && entry.contains("list")) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 nlohmann::json ReadManifest(const std::string& path, std::string* text_out) {
@@ -309,6 +356,12 @@ void CheckResumeDirectory(const std::string& dir_name, const nlohmann::ordered_j
     return;
   }
   const nlohmann::json existing = ReadManifest(manifest_path.string());
+  if (existing.at("hash") != manifest.at("hash") && ListsSamples(existing) && manifest.contains("sampling")) {
+    // Its hash listed every sample; this version's does not: the same sweep, another hash.
+    throw std::runtime_error(dir.string() + " holds " + DescribeManifest(existing) +
+                             ", written by an earlier shapebench that listed every sample in its manifest; "
+                             "this version cannot resume it: remove it or choose another --out");
+  }
   if (existing.at("hash") != manifest.at("hash") ||
       existing.at("points") != manifest.at("points") ||
       existing.at("columns") != manifest.at("columns")) {

@@ -231,7 +231,7 @@ void DrawSamples(Sweep* sweep, const NodeReader& top, const SweepLoadOptions& op
                       "a distribution needs samples: N at the top of the sweep (and optionally seed: S, "
                       "design: random|latin_hypercube|sobol)");
   }
-  // The grid's size before the samples are drawn: N values per key are held in memory.
+  // The grid's size before anything runs: a grid larger than asked for is a slip.
   std::uint64_t others = 1;
   for (std::size_t a = 0; a < sweep->axes.size(); ++a) {
     if (a == sweep->sample_axis) continue;
@@ -246,19 +246,17 @@ void DrawSamples(Sweep* sweep, const NodeReader& top, const SweepLoadOptions& op
                                       ", more than the " + std::to_string(options.max_points) +
                                       " points a sweep runs without --force; pass --force to run it anyway");
   }
-  std::vector<std::vector<double>> uniforms;
   try {
-    uniforms = SampleUniforms(*sweep->sampling, sampled.size());
+    CheckSampleDesign(*sweep->sampling, sampled.size());
   } catch (const std::invalid_argument& error) {
     const auto design = top.Child("design");
     throw (design ? *design : *top.Child("samples")).Error(
         error.what() + std::string("; this sweep has ") + std::to_string(sampled.size()) +
         " distribution keys and " + std::to_string(sweep->sampling->samples) + " samples");
   }
+  // Each sample is computed when its point runs (SampleDraw): nothing of size N here.
   for (std::size_t d = 0; d < sampled.size(); ++d) {
-    std::vector<double> values(uniforms[d].size());
-    for (std::size_t i = 0; i < values.size(); ++i) values[i] = sampled[d]->distribution->Quantile(uniforms[d][i]);
-    sampled[d]->samples = std::make_shared<const std::vector<double>>(std::move(values));
+    sampled[d]->draw = std::make_shared<const SampleDraw>(*sweep->sampling, d, *sampled[d]->distribution);
   }
 }
 

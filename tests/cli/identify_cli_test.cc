@@ -64,9 +64,9 @@ TEST(IdentifyCli, TableJsonAndDiagram) {
   EXPECT_NE(json.err.find("wrote out2/stabilisation.png"), std::string::npos) << json.err;  // stdout stays JSON
 }
 
-// Tests that a record cut short, a file without dataset 58, a time response, a NaN, units
-// that are neither displacement, velocity nor acceleration per force or acceleration,
-// and a band without lines are each refused (exit 2) at their record and line.
+// Tests that a record cut short, a file without dataset 58, a time response, a NaN, a
+// hexadecimal value, units that are neither displacement, velocity nor acceleration per
+// force or acceleration, and a band without lines are each refused (exit 2) at their record and line.
 TEST(IdentifyCli, BadInputIsLocated) {
   ScratchDir dir;
   const std::string clean = testing::Uff58Ascii(SyntheticAccelerance(0.0, 1));
@@ -90,6 +90,12 @@ TEST(IdentifyCli, BadInputIsLocated) {
   with_nan.replace(value + 20, 20, "                 nan");
   ExpectLocated(RunCli({"identify", dir.Write("n.uff", with_nan)}, cwd), dir.File("n.uff"), 14, "record 12",
                 "value 'nan' is not a finite number");
+  // A decimal Fortran real only (issue 32 item 16): strtod read "0x10" as 16.
+  std::string with_hex = clean;
+  with_hex.replace(value + 20, 20, "                0x10");
+  const CliResult hex_value = RunCli({"identify", dir.Write("h.uff", with_hex)}, cwd);
+  ExpectLocated(hex_value, dir.File("h.uff"), 14, "record 12", "expected a number in columns 21-40, got");
+  EXPECT_NE(hex_value.err.find("0x10'"), std::string::npos) << hex_value.err;
   UffFrf pressure = SyntheticAccelerance(0.0, 1);
   pressure.numerator_type = 15;
   pressure.numerator_units = "Pa";

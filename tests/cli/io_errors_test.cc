@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 
 #include <algorithm>
 #include <filesystem>
@@ -98,6 +99,38 @@ TEST(IoErrors, CliNamesTheFileAndTheCauseOfAFullDisk) {
   EXPECT_EQ(json.exit_code, 2) << json.err;
   EXPECT_EQ(json.err, std::string("error: cannot write standard output: ") + kNoSpace + "\n");
   EXPECT_TRUE(IsCharacterDevice("/dev/full"));
+}
+
+// Tests that --report and --junit take /dev/stdout alike (issue 32 item 16: --report was
+// refused) when stdout is a file: the report follows the lines already printed, /dev/stdout
+// stays the link it was (a rename over it would replace it), and /dev/fd/N of a closed
+// descriptor is refused before anything runs, naming the cause; as root, also run as
+// nobody (who cannot write in /dev).
+TEST(IoErrors, ReportAndJunitGoToStandardOutput) {
+  const std::string scenario = "configs/scenarios/method1.yaml";
+  const CliResult report = RunCli({"check", scenario, "--report", "/dev/stdout"}, kSourceDir);
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_EQ(report.out.rfind("PASS " + scenario, 0), 0u) << report.out.substr(0, 200);
+  EXPECT_NE(report.out.find("<!DOCTYPE html>"), std::string::npos);
+  EXPECT_EQ(report.out.substr(report.out.size() - 8), "</html>\n");
+  const CliResult junit = RunCli({"check", scenario, "--junit", "/dev/stdout"}, kSourceDir);
+  ASSERT_EQ(junit.exit_code, 0) << junit.err;
+  EXPECT_EQ(junit.out.rfind("PASS " + scenario, 0), 0u);
+  EXPECT_NE(junit.out.find("<testsuites"), std::string::npos);
+  EXPECT_TRUE(fs::is_symlink("/dev/stdout"));
+  // Not root: /dev is not writable, and the check probed it (the refusal the issue met).
+  if (geteuid() == 0 && fs::exists("/usr/bin/setpriv")) {
+    ScratchDir dir;
+    const std::string command = "cd " + ShellQuoted(kSourceDir) +
+                                " && /usr/bin/setpriv --reuid=65534 --regid=65534 --clear-groups " +
+                                ShellQuoted(SHAPEBENCH_BINARY) + " check " + scenario + " --report /dev/stdout >" +
+                                ShellQuoted(dir.File("out")) + " 2>" + ShellQuoted(dir.File("err"));
+    EXPECT_EQ(std::system(command.c_str()), 0) << ReadText(dir.File("err"));
+    EXPECT_NE(ReadText(dir.File("out")).find("</html>"), std::string::npos) << ReadText(dir.File("err"));
+  }
+  const CliResult closed = RunCli({"run", scenario, "--report", "/dev/fd/917"}, kSourceDir);
+  EXPECT_EQ(closed.exit_code, 2);
+  EXPECT_EQ(closed.err, "error: --report /dev/fd/917: cannot write there: Bad file descriptor\n");
 }
 
 // Tests that reading a directory as a file says why: the sweep plots' results.csv and a

@@ -2,18 +2,24 @@
 // quantiles"): the same points for any --jobs and shards, a changed seed refused by resume
 // and merge, the quantile and yield gates at their boundaries, the shipped yield study's
 // numbers recomputed from its results.csv, and the empirical-CDF plot.
+#include <signal.h>
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/bench_test_support.h"
+#include "bench/sweep/sampling.h"
 #include "common/sample_math.h"
 
 namespace shapebench::bench {
@@ -25,6 +31,7 @@ using testing::DataPath;
 using testing::ReadText;
 using testing::RunCli;
 using testing::ScratchDir;
+using testing::SpawnCli;
 
 const std::string kYieldStudy = "configs/sweeps/moving_column_yield.yaml";
 
@@ -235,6 +242,90 @@ TEST(SampledSweepCli, ShippedYieldStudyMatchesAnIndependentCount) {
   }
   EXPECT_FALSE(results.at(0).at("passed").get<bool>());
   EXPECT_TRUE(results.at(1).at("passed").get<bool>());
+}
+
+std::size_t Lines(const std::string& path) {
+  const std::string text = ReadText(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// Runs `args` until `partial` holds more than `lines` lines (at most 10 minutes), then
+// sends SIGTERM; the exit status and stderr.
+std::pair<int, std::string> RunUntilRows(const std::vector<std::string>& args, const std::string& partial,
+                                         std::size_t lines, const ScratchDir& dir) {
+  const pid_t pid = SpawnCli(args, kSourceDir, dir.File("err.txt"));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
+  while (std::chrono::steady_clock::now() < deadline && Lines(partial) <= lines) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ReadText(dir.File("err.txt"))};
+}
+
+// Tests that a sampled sweep of 20,000,000 Latin-hypercube samples writes its first rows
+// without listing its samples: SIGTERM after a few rows keeps them with a manifest under
+// 64 KiB that says how to resume, the same command resumes from those rows (more rows, the
+// first ones unchanged, the manifest accepted), and the rows' values are the samples an
+// eager draw of the whole list gives (SampleDraw, the same for every index).
+TEST(SampledSweepCli, TwentyMillionSamplesStartAtOnceAndResume) {
+  const ScratchDir dir;
+  const std::string sweep = dir.Write(
+      "big.yaml", "base: " + DataPath("sweeps/sdof_method1.yaml") +
+                      "\ngrid:\n  machine.modes[0].frequency_hz: {normal: {mean: 25, sd: 0.625}}\n"
+                      "samples: 20000000\nseed: 7\ndesign: latin_hypercube\nmetrics: [residual_ratio]\n");
+  const std::string out = dir.File("out");
+  const std::string partial = out + "/results.csv.partial";
+  const std::vector<std::string> args = {"sweep", sweep, "--force", "--jobs", "1", "--out", out};
+  const auto [code, err] = RunUntilRows(args, partial, 3, dir);
+  EXPECT_EQ(code, 128 + SIGTERM) << err;
+  EXPECT_NE(err.find("of 20000000 points done, kept in " + partial + "; run the same command again to resume"),
+            std::string::npos)
+      << err;
+  ASSERT_TRUE(std::filesystem::exists(out + "/manifest.json"));
+  EXPECT_LT(std::filesystem::file_size(out + "/manifest.json"), 64u << 10);
+  const std::string first = ReadText(partial);
+  const std::size_t kept = Lines(partial) - 1;
+  ASSERT_GE(kept, 3u);
+
+  const auto [again, again_err] = RunUntilRows(args, partial, kept + 3, dir);
+  EXPECT_EQ(again, 128 + SIGTERM) << again_err;
+  EXPECT_EQ(again_err.find("manifest"), std::string::npos) << again_err;
+  EXPECT_NE(again_err.find("run the same command again to resume"), std::string::npos) << again_err;
+  const std::string resumed = ReadText(partial);
+  EXPECT_GT(Lines(partial), kept + 3);
+  EXPECT_EQ(resumed.compare(0, first.size(), first), 0) << "the kept rows stay as they were";
+
+  const Distribution normal{Distribution::Kind::kNormal, 25.0, 0.625, std::nullopt, std::nullopt};
+  const SweepSampling sampling{20000000, 7, SampleDesign::kLatinHypercube};
+  const SampleDraw draw(sampling, 0, normal);
+  const auto rows = ReadCsv(partial);
+  for (std::size_t r = 1; r < std::min<std::size_t>(rows.size(), 50); ++r) {
+    EXPECT_EQ(rows[r][1], PrintedNumber("%.15g", draw.Value(r - 1))) << "row " << r;
+  }
+}
+
+// Tests that an output directory whose manifest lists every sample, with the hash that
+// listed them (as shapebench wrote it before the samples were computed per point), is
+// refused by resume saying so, not as another sweep's.
+TEST(SampledSweepCli, ResumeOfAManifestListingTheSamplesSaysWhy) {
+  const ScratchDir dir;
+  const std::string sweep = SampledSweep(dir, "s.yaml", 20, 42);
+  ASSERT_EQ(RunCli({"sweep", sweep, "--out", dir.File("out")}, kSourceDir).exit_code, 0);
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::parse(ReadText(dir.File("out/manifest.json")));
+  const auto rows = ReadCsv(dir.File("out/results.csv"));
+  std::vector<std::string> listed;
+  for (std::size_t r = 1; r <= 20; ++r) listed.push_back(rows[r][2]);
+  manifest["grid"][1][0]["list"] = listed;
+  manifest["hash"] = "0123456789abcdef";
+  std::ofstream(dir.File("out/manifest.json"), std::ios::binary | std::ios::trunc) << manifest.dump(2) << "\n";
+  const CliResult resumed = RunCli({"sweep", sweep, "--out", dir.File("out")}, kSourceDir);
+  EXPECT_EQ(resumed.exit_code, 2);
+  EXPECT_NE(resumed.err.find("written by an earlier shapebench that listed every sample in its manifest; this "
+                             "version cannot resume it"),
+            std::string::npos)
+      << resumed.err;
 }
 
 // Tests that a sampled sweep draws the empirical CDF of its checked metric, one curve per

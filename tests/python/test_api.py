@@ -382,6 +382,36 @@ except KeyboardInterrupt:
     assert done.stdout.strip() == "interrupted", (done.stdout, done.stderr)
 
 
+def test_ctrl_c_stops_a_sweep_on_a_worker_thread():
+    """Tests that SIGINT stops a 1,000,000-point sweep running on a thread other than the
+    main one, with KeyboardInterrupt in that thread (Python looks at signals on its main
+    thread only: the sweep ran to its end, issue 32 item 16). SIGINT is sent until the
+    thread ends, so one arrives while the sweep runs; the main thread's handler only counts."""
+    script = """
+import os, signal, threading, shapebench
+signal.signal(signal.SIGINT, lambda *args: None)
+outcome = []
+def work():
+    try:
+        shapebench.sweep({"base": "configs/scenarios/sdof_method1.yaml", "metrics": ["peak_ratio"],
+                          "grid": {"machine.modes[0].frequency_hz": {"from": 15, "to": 35, "steps": 1000000}}},
+                         jobs=1)
+        outcome.append("finished")
+    except KeyboardInterrupt:
+        outcome.append("interrupted")
+worker = threading.Thread(target=work)
+worker.start()
+while worker.is_alive():
+    os.kill(os.getpid(), signal.SIGINT)
+    worker.join(0.05)
+print(outcome[0])
+"""
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(shapebench.__file__))))
+    done = subprocess.run([sys.executable, "-c", script], cwd=ROOT, env=env, capture_output=True, text=True,
+                          timeout=600)
+    assert done.stdout.strip() == "interrupted", (done.stdout, done.stderr)
+
+
 def test_stubs_and_docstrings_cover_the_api():
     """Tests that the package ships its stubs and py.typed beside the module, that the stub
     declares every public name and every public member of Scenario and Result, and that each

@@ -40,7 +40,7 @@ std::string ManyModes(int count) {
 // the column (or header, units) and what is allowed: an empty file, a missing or wrong unit
 // row, a missing, duplicate or unknown column, numbers that are not plain decimals (text,
 // NaN, inf, out of range), a negative frequency or damping, a short row, a duplicate or
-// non-integer mode number, too many modes.
+// non-integer mode number, too many modes, a NUL (shown as \x00, the message whole).
 TEST(ModalFile, BadFilesAreRefusedAtLineAndColumn) {
   const std::vector<BadFile> cases = {
       {"empty", "", 1, 1, "header", "no header row"},
@@ -71,6 +71,11 @@ TEST(ModalFile, BadFilesAreRefusedAtLineAndColumn) {
       {"mode not an integer", kHeader + kUnits + "first,25,0.03,0,1,0,0,1,0\n", 3, 1, "mode",
        "expected a positive integer"},
       {"too many modes", ManyModes(101), 103, 1, "mode", "at most 100 modes"},
+      // A NUL shown, and the message not cut there (issue 32 item 16).
+      {"NUL in a column name",
+       std::string("mode,frequency_hz") + '\0' +
+           "x,damping_ratio,participation_x,participation_y,participation_z,shape_x,shape_y,shape_z\n",
+       1, 6, "header", "unknown column 'frequency_hz\\x00x'; allowed: mode,frequency_hz"},
   };
   ScratchDir dir;
   dir.Write("m.yaml", "modal_file: bad.csv\n");

@@ -5,6 +5,8 @@
 // located at FILE:LINE:COL.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -206,7 +208,8 @@ TEST(SampledGrid, LatinHypercubeStrataHoldOnePointEach) {
   std::vector<double> normal_levels;
   std::vector<double> uniform_levels;
   for (const SweepValues& values : sweep.axes[0].keys) {
-    for (const double x : *values.samples) {
+    for (std::uint64_t i = 0; i < values.size(); ++i) {
+      const double x = values.draw->Value(i);
       if (values.distribution->kind == Distribution::Kind::kNormal) {
         normal_levels.push_back(NormalCdf((x - 25.0) / 0.625));
       } else {
@@ -272,6 +275,75 @@ TEST(SampledGrid, SamplesDependOnSeedAndDesignOnly) {
   const std::vector<double> xs = Samples(sweep, "machine.modes[0].frequency_hz");
   EXPECT_EQ(xs, Samples(a.Load(), "machine.modes[0].frequency_hz"));
   EXPECT_EQ(MakePoint(sweep, 64 + 5, {}).texts[1], MakePoint(sweep, 5, {}).texts[1]);
+}
+
+// The uniforms of dimension d as the sweep drew them before SampleDraw: the whole list at
+// once, the Latin hypercube's strata as 64-bit numbers (SampleDraw must give these bits).
+std::vector<double> WholeListUniforms(const SweepSampling& s, std::uint64_t d) {
+  const std::uint64_t n = s.samples;
+  std::vector<std::uint64_t> strata(n);
+  for (std::uint64_t i = 0; i < n; ++i) strata[i] = i;
+  for (std::uint64_t i = n; i-- > 1;) std::swap(strata[i], strata[CounterWord(s.seed, (1ULL << 32) + d, i) % (i + 1)]);
+  const auto shift = static_cast<std::uint32_t>(CounterWord(s.seed, (1ULL << 33) + d, 0) >> 32);
+  std::vector<double> u(n);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    if (s.design == SampleDesign::kRandom) u[i] = CounterUniform(s.seed, d, i);
+    if (s.design == SampleDesign::kLatinHypercube) {
+      u[i] = std::min((static_cast<double>(strata[i]) + CounterUniform(s.seed, d, i)) / static_cast<double>(n),
+                      std::nextafter(1.0, 0.0));
+    }
+    if (s.design == SampleDesign::kSobol) {
+      u[i] = (static_cast<double>(SobolPoint(static_cast<int>(d), i) ^ shift) + 0.5) * 0x1.0p-32;
+    }
+  }
+  return u;
+}
+
+// Tests that a sample computed when asked (SampleDraw, asked last index first) has the
+// bits of the whole-list draw the sweep made before, for every design and three keys, and
+// its value is the distribution's quantile of it.
+TEST(SampledGrid, DrawPerIndexMatchesTheWholeListDraw) {
+  const Distribution normal{Distribution::Kind::kNormal, 25.0, 0.625, 23.75, 26.25};
+  for (const SampleDesign design : {SampleDesign::kRandom, SampleDesign::kLatinHypercube, SampleDesign::kSobol}) {
+    const SweepSampling sampling{1000, 42, design};
+    for (std::uint64_t d = 0; d < 3; ++d) {
+      const std::vector<double> expected = WholeListUniforms(sampling, d);
+      const SampleDraw draw(sampling, d, normal);
+      ASSERT_EQ(draw.size(), 1000u);
+      for (std::uint64_t i = 1000; i-- > 0;) {
+        ASSERT_EQ(draw.Uniform(i), expected[i]) << DesignName(design) << " key " << d << " sample " << i;
+        ASSERT_EQ(draw.Value(i), normal.Quantile(expected[i]));
+      }
+    }
+  }
+}
+
+// Tests that a manifest's distribution text reads back as the Distribution that wrote it,
+// and that any other text, or parameters the sweep loader refuses, are refused by name.
+TEST(SampledGrid, ParseDistributionReadsWhatDescribeWrites) {
+  const std::vector<Distribution> written = {
+      {Distribution::Kind::kNormal, 25.0, 0.625, 23.75, 26.25},
+      {Distribution::Kind::kUniform, -1e-3, 2.5e20, std::nullopt, std::nullopt},
+      {Distribution::Kind::kLogNormal, 0.03, 0.1, std::nullopt, 0.05},
+      {Distribution::Kind::kNormal, 0.1 + 0.2, 1.0 / 3.0, 0.0, std::nullopt},
+  };
+  for (const Distribution& dist : written) {
+    const Distribution read = ParseDistribution(dist.Describe());
+    EXPECT_EQ(read.Describe(), dist.Describe());
+    EXPECT_EQ(read.Quantile(0.3), dist.Quantile(0.3)) << dist.Describe();
+  }
+  for (const std::string bad : {"", "normal", "normal{mean=25,sd=0}", "normal{mean=25}", "gamma{k=1,theta=2}",
+                                "normal{mean=0x10,sd=1}", "normal{mean=25.0,sd=1}", "normal{mean=25,sd=1}x",
+                                "normal{mean=25,sd=1}truncated{min=90}", "uniform{from=2,to=1}",
+                                "normal{mean=25,sd=1,sd=2}", "lognormal{median=-1,sigma=1}",
+                                "normal{mean=25,sd=1}truncated{}", "normal{mean=nan,sd=1}"}) {
+    try {
+      ParseDistribution(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const std::runtime_error& error) {
+      EXPECT_EQ(std::string(error.what()).rfind("distribution '" + bad + "': ", 0), 0u) << error.what();
+    }
+  }
 }
 
 // Tests that a Sobol design refuses more keys than it has direction numbers for.
