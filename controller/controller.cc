@@ -297,17 +297,19 @@ void CheckShapedMove(const ControllerConfig& controller, double distance_m) {
 
 namespace {
 
-// The stroke alarm in words: where the tool was when it fired (the axis furthest towards
-// its limit), and in which block, since the rest of the program is dropped
-// (EP0646852 (seed 001): the conventional stroke check stops the tool there).
-std::string StrokeAlarmWarning(const Program& program, const PathGeometry& path,
-                               const InterpolatedPulses& pulses, const SpeedPlan& plan,
-                               const StrokeLimits& limits) {
+std::string AxisLetter(int axis) { return std::string(1, static_cast<char>('X' + axis)); }
+
+// Where the stroke alarm fired: the tick, the axis furthest towards its limit there, and
+// the block, since the rest of the program is dropped (EP0646852 (seed 001): the
+// conventional stroke check stops the tool there).
+StrokeAlarmSite FindStrokeAlarmSite(const Program& program, const PathGeometry& path,
+                                    const InterpolatedPulses& pulses, const SpeedPlan& plan,
+                                    const StrokeLimits& limits, double period_s) {
+  StrokeAlarmSite site;
   const std::size_t k = std::min(plan.alarm_tick, pulses.path_position_m.size() - 1);
+  site.time_s = static_cast<double>(plan.alarm_tick) * period_s;
   const Eigen::Vector3d p = path.PointAt(pulses.path_position_m[k]);
-  int axis = -1;
   double beyond = -std::numeric_limits<double>::infinity();
-  double limit = 0.0;
   for (int a = 0; a < 3; ++a) {
     if (!limits[a]) continue;
     for (int side = 0; side < 2; ++side) {
@@ -315,27 +317,48 @@ std::string StrokeAlarmWarning(const Program& program, const PathGeometry& path,
       const double reach = side == 0 ? bound - p(a) : p(a) - bound;
       if (reach > beyond) {
         beyond = reach;
-        axis = a;
-        limit = bound;
+        site.axis = a;
+        site.position_m = p(a);
+        site.limit_m = bound;
       }
     }
   }
-  std::string text = "stroke alarm";
-  if (axis >= 0) {
-    const char name[] = {static_cast<char>('X' + axis), '\0'};
-    text += " at " + std::string(name) + " = " + FormatNumber(p(axis)) + " m (limit " +
-            FormatNumber(limit) + " m)";
-  }
   const int block = k < pulses.block.size() ? pulses.block[k] : -1;
   if (block >= 0 && static_cast<std::size_t>(block) < program.blocks.size()) {
-    text += " in block " + std::to_string(block + 1);
+    site.block = block;
     const int line = program.blocks[static_cast<std::size_t>(block)].source_line;
-    if (program.gcode_lines && line > 0) text += " (line " + std::to_string(line) + ")";
+    if (program.gcode_lines && line > 0) site.line = line;
+  }
+  return site;
+}
+
+// The stroke alarm in words: the warning on stderr.
+std::string StrokeAlarmWarning(const StrokeAlarmSite& site) {
+  std::string text = "stroke alarm";
+  if (site.axis >= 0) {
+    text += " at " + AxisLetter(site.axis) + " = " + FormatNumber(site.position_m) + " m (limit " +
+            FormatNumber(site.limit_m) + " m)";
+  }
+  if (site.block >= 0) {
+    text += " in block " + std::to_string(site.block + 1);
+    if (site.line > 0) text += " (line " + std::to_string(site.line) + ")";
   }
   return text + ": the rest of the program was not run";
 }
 
 }  // namespace
+
+std::string StrokeAlarmSite::Text() const {
+  std::string text = "at " + FormatNumber(time_s) + " s";
+  if (axis >= 0) {
+    text += ", " + AxisLetter(axis) + " = " + FormatNumber(position_m) + " m (limit " + FormatNumber(limit_m) + " m)";
+  }
+  if (block >= 0) {
+    text += ", block " + std::to_string(block + 1);
+    if (line > 0) text += " (line " + std::to_string(line) + ")";
+  }
+  return text;
+}
 
 MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program,
                                         const CommandLimits& limits) {
@@ -359,8 +382,8 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
                                           std::to_string(limits.max_ticks) + " periods)");
   }
   InterpolatedPulses pulses = Interpolate(path, plan, dt);
-  const std::string alarm =
-      plan.stroke_alarm ? StrokeAlarmWarning(program, path, pulses, plan, controller.stroke_limits) : "";
+  StrokeAlarmSite alarm_site;
+  if (plan.stroke_alarm) alarm_site = FindStrokeAlarmSite(program, path, pulses, plan, controller.stroke_limits, dt);
 
   const PulseFilter filter = PostInterpFilter(controller);
   std::vector<Eigen::Vector3d> out;
@@ -401,11 +424,12 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   command.block_clamped = std::move(plan.block_clamped);
   command.short_block_clamps = plan.short_block_clamps;
   command.stroke_alarm = plan.stroke_alarm;
+  command.stroke_alarm_site = alarm_site;
   command.warnings = program.warnings;
   for (std::string& warning : ShortBlockWarnings(controller.short_block)) {
     command.warnings.push_back(std::move(warning));
   }
-  if (!alarm.empty()) command.warnings.push_back(alarm);
+  if (plan.stroke_alarm) command.warnings.push_back(StrokeAlarmWarning(alarm_site));
   return command;
 }
 

@@ -102,6 +102,19 @@ struct MoveConfig {
 // The one-block program `move:` stands for: a straight move from the origin along `axis`.
 Program MoveProgram(const MoveConfig& move, int axis);
 
+// Where a stroke alarm fired (EP0646852, seed 001): the tick's time, the block and its
+// G-code line, the axis furthest towards its limit, its position and that limit.
+struct StrokeAlarmSite {
+  double time_s = std::numeric_limits<double>::quiet_NaN();
+  int block = -1;  // 0-based; -1 unknown
+  int line = 0;    // the block's G-code line; 0 for `program:` blocks
+  int axis = -1;   // -1: no limited axis found
+  double position_m = std::numeric_limits<double>::quiet_NaN();
+  double limit_m = std::numeric_limits<double>::quiet_NaN();
+  // "at 0.42 s, Y = 0.5 m (limit 0.5 m), block 2 (line 2)"
+  std::string Text() const;
+};
+
 // What the controller hands the drives: per axis, the velocity at every tick (the pulse
 // of the period just ended / period), all axes the same length (N + 1 samples).
 struct MultiAxisCommand {
@@ -116,6 +129,7 @@ struct MultiAxisCommand {
   std::vector<bool> block_clamped;     // lowered by the short-block clamp
   int short_block_clamps = 0;
   bool stroke_alarm = false;
+  StrokeAlarmSite stroke_alarm_site;   // where, when stroke_alarm
   std::vector<std::string> warnings;   // e.g. the short-block clamp's ratio above its minimum
 
   std::size_t num_ticks() const { return axes[0].num_ticks(); }

@@ -88,6 +88,12 @@ ScenarioCheckReport CheckScenario(const Scenario& scenario, const std::vector<Ov
     const RunResult result = RunScenarioLocated(scenario, overrides);
     PrintRunWarnings(scenario.source_file, result);
     report.results = EvaluateScenarioChecks(scenario, overrides, result.metrics);
+    // A failed stroke_alarm check says where the alarm fired (issue 32 item 15).
+    for (CheckResult& check : report.results) {
+      if (check.metric == "stroke_alarm" && !check.passed && !check.banded() && result.command.stroke_alarm) {
+        check.message += " (the alarm fired " + result.command.stroke_alarm_site.Text() + ")";
+      }
+    }
   } catch (const ConfigError& error) {
     report.error = error.what();
     std::cerr << "error: " << Safe(error.what()) << "\n";

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iomanip>
 
+#include "bench/output/json_number.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/format.h"
@@ -15,7 +17,11 @@ std::string MetricUnit(const std::string& name) {
   return info != nullptr ? std::string(info->shown_unit()) : "";
 }
 
-void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
+namespace {
+
+// The table, a metric's row followed by note(name) where that is not empty.
+void PrintMetricRows(std::ostream& out, const Metrics& metrics,
+                     const std::function<std::string(std::string_view)>& note) {
   std::size_t width = 0;
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   auto print = [&](const MetricInfo& info) {
@@ -24,7 +30,8 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
     if (std::isnan(value)) {
       out << "n/a\n";
     } else if (info.is_bool()) {
-      out << (value != 0.0 ? "true" : "false") << "\n";
+      const std::string where = note ? note(info.name) : "";
+      out << (value != 0.0 ? "true" : "false") << (where.empty() ? "" : " (" + where + ")") << "\n";
     } else {
       out << EngineeringText(value, info.unit) << "\n";  // um, mm, ms: JSON keeps SI
     }
@@ -36,8 +43,15 @@ void PrintMetricsTable(std::ostream& out, const Metrics& metrics) {
   }
 }
 
+}  // namespace
+
+void PrintMetricsTable(std::ostream& out, const Metrics& metrics) { PrintMetricRows(out, metrics, nullptr); }
+
 void PrintRunTable(std::ostream& out, const RunResult& result) {
-  PrintMetricsTable(out, result.metrics);
+  // A stroke alarm says where it fired (issue 32 item 15).
+  PrintMetricRows(out, result.metrics, [&result](std::string_view name) {
+    return name == "stroke_alarm" && result.command.stroke_alarm ? result.command.stroke_alarm_site.Text() : "";
+  });
   if (std::isfinite(result.integrator_rtol_used)) {
     std::size_t width = 0;
     for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
@@ -66,6 +80,17 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics) {
   return json;
 }
 
+nlohmann::ordered_json StrokeAlarmJson(const controller::StrokeAlarmSite& site) {
+  nlohmann::ordered_json json;
+  json["time_s"] = JsonNumber(site.time_s);
+  json["block"] = site.block >= 0 ? nlohmann::ordered_json(site.block + 1) : nullptr;
+  json["line"] = site.line > 0 ? nlohmann::ordered_json(site.line) : nullptr;
+  json["axis"] = site.axis >= 0 ? nlohmann::ordered_json(std::string(1, static_cast<char>('x' + site.axis))) : nullptr;
+  json["position_m"] = JsonNumber(site.position_m);
+  json["limit_m"] = JsonNumber(site.limit_m);
+  return json;
+}
+
 nlohmann::ordered_json RunJson(const RunResult& result) {
   nlohmann::ordered_json json = MetricsJson(result.metrics);
   nlohmann::ordered_json modes = nlohmann::ordered_json::array();
@@ -77,6 +102,8 @@ nlohmann::ordered_json RunJson(const RunResult& result) {
     modes.push_back(entry);
   }
   json["residual_modes"] = modes;
+  // Only where the alarm fired (a run without one is as it was).
+  if (result.command.stroke_alarm) json["stroke_alarm_source"] = StrokeAlarmJson(result.command.stroke_alarm_site);
   json["integrator_rtol_used"] =
       std::isfinite(result.integrator_rtol_used) ? nlohmann::ordered_json(result.integrator_rtol_used) : nullptr;
   return json;

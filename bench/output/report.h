@@ -36,9 +36,12 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 // vibration at motion end per pole of the plant (RunResult::residual_modes), ascending
 // frequency: [{"frequency_hz", "damping_ratio", "amplitude_m"}, ...] (the poles the output
 // view sees; empty for a machine without states; a real pole: its rate / 2 pi and damping
-// ratio 1), then "integrator_rtol_used" (RunResult::integrator_rtol_used; null where no
-// CVODE ran).
+// ratio 1), then "stroke_alarm_source" (StrokeAlarmJson; only where the alarm fired), then
+// "integrator_rtol_used" (RunResult::integrator_rtol_used; null where no CVODE ran).
 nlohmann::ordered_json RunJson(const RunResult& result);
+// Where a stroke alarm fired, as run --json's "stroke_alarm_source" (only where it fired):
+// {time_s, block (1-based), line (G-code; null otherwise), axis, position_m, limit_m}.
+nlohmann::ordered_json StrokeAlarmJson(const controller::StrokeAlarmSite& site);
 
 // t_s, the scalar view (command_position_m, command_velocity_m_s, command_accel_m_s2,
 // deflection_m), per axis command_{x,y,z}_m, actual_{x,y,z}_m, deflection_{x,y,z}_m, then

@@ -50,12 +50,16 @@ double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static
   }
   *vector = Eigen::Vector3d::Zero();
   if (at == 0) return static_m;
-  const Eigen::Vector3d deflection = static_gain * s.accel[at];
-  const double along = view.magnitude ? deflection.dot(s.accel[at]) : view.Of(deflection);
-  for (int b = 0; b < 3; ++b) {
-    const double entry = along < 0.0 ? -deflection(b) : deflection(b);
-    (*vector)(b) = entry == 0.0 ? 0.0 : entry;  // no -0 for the axes it does not deflect
-  }
+  // The vector's sign follows the machine and the move, never the view (issue 32 item 16):
+  // C a (C = -static_gain: the tool lags by -C a) with a taken in the positive sense of the
+  // axis it mostly lies along (the first of equal ones), so a Y move and its reverse,
+  // viewed along Y, Z or as the magnitude, give the same vector; a mode of negative gain
+  // shows as a negative entry.
+  const Eigen::Vector3d& a = s.accel[at];
+  Eigen::Index dominant = 0;
+  a.cwiseAbs().maxCoeff(&dominant);
+  const Eigen::Vector3d deflection = -(static_gain * (a(dominant) < 0.0 ? Eigen::Vector3d(-a) : a));
+  for (int b = 0; b < 3; ++b) (*vector)(b) = deflection(b) == 0.0 ? 0.0 : deflection(b);  // no -0
   return static_m;
 }
 

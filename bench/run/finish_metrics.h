@@ -15,8 +15,8 @@ namespace shapebench::bench {
 
 // The largest deflection a held commanded acceleration gives, in the view (the static
 // displacement the ratios divide by), and into *vector the deflection under that
-// acceleration (the first sample reaching it), oriented so that its component in the view
-// (magnitude: along the acceleration) is positive.
+// acceleration (the first sample reaching it), that acceleration taken in the positive sense
+// of the axis it mostly lies along: the vector does not depend on the view.
 double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
                           Eigen::Vector3d* vector);
 

@@ -10,6 +10,7 @@
 #include "bench/run/run_plan.h"
 #include "bench/run/plant_sampler.h"
 #include "bench/run/sampler.h"
+#include "bench/run/unit_slips.h"
 #include "controller/path_geometry.h"
 
 namespace shapebench::bench {
@@ -24,6 +25,11 @@ std::unique_ptr<Sampler> MakeSampler(const RunPlan& plan, SamplerKind fastest, R
     return MakeClosedFormSampler(plan, result);
   }
   return std::make_unique<PlantSampler>(plan, fastest, result);
+}
+
+// What looks like a unit slip (unit_slips.h), after the sampler's own warnings.
+void AddUnitSlipWarnings(const RunPlan& plan, RunResult* result) {
+  for (std::string& warning : UnitSlipWarnings(plan, result->metrics)) result->warnings.push_back(std::move(warning));
 }
 
 }  // namespace
@@ -54,6 +60,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
     result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
     result.metrics = FinishMetrics(plan, tally);
+    AddUnitSlipWarnings(plan, &result);
     return result;
   }
   // A trace of a closed-form run: the general sampler records it, the metrics stay the
@@ -68,6 +75,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   result.residual_modes = std::move(closed.residual_modes);
   result.sampler = SamplerKind::kClosedForm;
   result.single_mode = true;
+  AddUnitSlipWarnings(plan, &result);
   return result;
 }
 

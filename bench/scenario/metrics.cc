@@ -70,8 +70,8 @@ constexpr MetricInfo kMetricRows[] = {
       {"static_displacement_x_m", "m", Better::kLower,
        "the X component of the static tool deflection vector C a under the held commanded "
        "acceleration a that gives static_displacement_m (C: the machine's static compliance, "
-       "cross terms included), signed, oriented so that its component in the output view (the "
-       "magnitude view: along a) is positive; 0 off the moved axis of an uncoupled machine",
+       "cross terms included), signed, a taken in the positive sense of the axis it mostly lies "
+       "along, whatever the output view; 0 off the moved axis of an uncoupled machine",
        &M::static_displacement_x_m},
       {"static_displacement_y_m", "m", Better::kLower, "as static_displacement_x_m, along Y",
        &M::static_displacement_y_m},

@@ -149,9 +149,17 @@ class GateTally {
       std::sort(sorted.begin(), sorted.end());
       const std::uint64_t rank = QuantileRank(n, gate.quantile);
       const QuantileRanks ranks = QuantileInterval(n, gate.quantile);
-      result = EvaluateCheck(Check{gate.metric, gate.min, gate.max}, sorted[rank - 1]);
-      result.interval_low = ranks.lower == 0 ? -INFINITY : sorted[ranks.lower - 1];
-      result.interval_high = ranks.upper > n ? INFINITY : sorted[ranks.upper - 1];
+      // A sample without a value sorts as the worst (+-inf, no metric is infinite): the
+      // quantile or an interval end landing on one is n/a, never "inf" (issue 32 item 16).
+      const auto value = [&sorted](std::uint64_t r) { return std::isinf(sorted[r - 1]) ? NAN : sorted[r - 1]; };
+      result = EvaluateCheck(Check{gate.metric, gate.min, gate.max}, value(rank));
+      if (std::isnan(result.value)) {
+        const auto missing = std::count_if(sorted.begin(), sorted.end(), [](double x) { return std::isinf(x); });
+        result.message = "n/a: the quantile falls on one of the " + std::to_string(missing) + " of " +
+                         std::to_string(n) + " samples without a value (failed or n/a), counted as the worst";
+      }
+      result.interval_low = ranks.lower == 0 ? -INFINITY : value(ranks.lower);
+      result.interval_high = ranks.upper > n ? INFINITY : value(ranks.upper);
       result.statistic = "quantile " + ShortestDouble(gate.quantile);
       char coverage[32];
       std::snprintf(coverage, sizeof coverage, "%.3f", ranks.coverage);

@@ -350,5 +350,24 @@ TEST(SampledSweepCli, DrawsTheEmpiricalCdf) {
   EXPECT_TRUE(std::filesystem::exists(dir.File("m/residual_ratio-cdf-by-method.png")));
 }
 
+// Tests that a quantile landing on samples without a value (radial_error_m: no arc, n/a for
+// every point) prints and reports n/a, never "= inf m" (issue 32 item 16), and fails
+// saying why; its interval ends are n/a (null in JSON) too.
+TEST(SampledSweepCli, QuantileOfSamplesWithoutAValueIsNotAvailable) {
+  const ScratchDir dir;
+  const std::string sweep = SampledSweep(dir, "na.yaml", 8, 42, "checks:\n  radial_error_m: {quantile: 0.5, max: 1}\n");
+  const CliResult text = RunCli({"check", sweep}, kSourceDir);
+  EXPECT_EQ(text.exit_code, 1) << text.out << text.err;
+  EXPECT_EQ(text.out.find("= inf"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("quantile 0.5 of radial_error_m @ controller.pattern.method=1 = n/a ("), std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find(": n/a: the quantile falls on one of the 8 of 8 samples without a value"), std::string::npos)
+      << text.out;
+  const CliResult json = RunCli({"check", sweep, "--json"}, kSourceDir);
+  const nlohmann::json result = nlohmann::json::parse(json.out).at("files").at(0).at("results").at(0);
+  EXPECT_TRUE(result.at("value").is_null()) << result.dump();
+  EXPECT_FALSE(result.at("passed").get<bool>()) << result.dump();
+}
+
 }  // namespace
 }  // namespace shapebench::bench

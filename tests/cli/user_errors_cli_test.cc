@@ -6,6 +6,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/support/bench_test_support.h"
 #include "common/closest_name.h"
@@ -211,6 +212,60 @@ TEST(UserErrors, StrokeAlarmIsAWarning) {
   const CliResult quiet = RunCli({"run", std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/method1.yaml"},
                                  dir.path().string());
   EXPECT_FALSE(HasText(quiet.err, "stroke alarm")) << quiet.err;
+}
+
+// Tests that a stroke alarm that cut the program fails a check `stroke_alarm: {max: 0}`
+// (exit 1) saying where it fired, and that run's table and JSON say where (issue 32 item
+// 15): the time, the axis at its limit, the block and its G-code line.
+TEST(UserErrors, StrokeAlarmCheckFailsAndTheTableSaysWhere) {
+  ScratchDir dir;
+  dir.Write("p.nc", "G1 Y100 F30000\nY600\n");
+  dir.Write("pg.yaml", "machine: " + std::string(SHAPEBENCH_SOURCE_DIR) +
+                           "/configs/machines/moving_column.yaml\n"
+                           "controller: {period_s: 0.001, feed_mm_min: 30000, accel_time_s: 0.3}\n"
+                           "program_file: p.nc\n"
+                           "checks: {stroke_alarm: {max: 0}}\n");
+  const CliResult check = RunCli({"check", "pg.yaml"}, dir.path().string());
+  EXPECT_EQ(check.exit_code, 1) << check.out << check.err;
+  EXPECT_TRUE(HasText(check.out, "FAIL pg.yaml stroke_alarm = 1 (max 0): above max 0 (the alarm fired at ")) << check.out;
+  EXPECT_TRUE(HasText(check.out, " s, Y = 0.5")) << check.out;
+  EXPECT_TRUE(HasText(check.out, " m (limit 0.5 m), block 2 (line 2))")) << check.out;
+  const CliResult run = RunCli({"run", "pg.yaml"}, dir.path().string());
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const std::size_t row = run.out.find("stroke_alarm ");
+  ASSERT_NE(row, std::string::npos) << run.out;
+  const std::string line = run.out.substr(row, run.out.find('\n', row) - row);
+  EXPECT_TRUE(HasText(line, "true (at ")) << line;
+  EXPECT_TRUE(HasText(line, "(limit 0.5 m), block 2 (line 2))")) << line;
+  const CliResult json = RunCli({"run", "pg.yaml", "--json"}, dir.path().string());
+  const nlohmann::json source = nlohmann::json::parse(json.out).at("stroke_alarm_source");
+  EXPECT_EQ(source.at("block"), 2);
+  EXPECT_EQ(source.at("line"), 2);
+  EXPECT_EQ(source.at("axis"), "y");
+  EXPECT_EQ(source.at("limit_m").get<double>(), 0.5);
+  EXPECT_GT(source.at("time_s").get<double>(), 0.2);
+  EXPECT_GE(source.at("position_m").get<double>(), 0.5);
+  // A run without an alarm has no such key, and its table row says only false.
+  const CliResult quiet = RunCli({"run", std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/method1.yaml", "--json"},
+                                 dir.path().string());
+  EXPECT_FALSE(nlohmann::json::parse(quiet.out).contains("stroke_alarm_source")) << quiet.out;
+}
+
+// Tests that the likely unit slips of issue 32 item 15 reach stderr as warnings naming the
+// file, the key, the value and the slip, while the run still exits 0.
+TEST(UserErrors, UnitSlipsAreWarningsOnStderr) {
+  ScratchDir dir;
+  dir.Write("slip.yaml",
+            "machine: {modes: [{frequency_hz: 0.01, damping_ratio: 0.03, gain: 1.0}]}\n"
+            "controller: {period_s: 1, feed_mm_min: 6000, accel_time_s: 200}\n"
+            "move: {distance_mm: 100}\n");
+  const CliResult r = RunCli({"run", "slip.yaml"}, dir.path().string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(HasText(r.err, "warning: slip.yaml: controller.period_s: 1 s is longer than any CNC's")) << r.err;
+  EXPECT_TRUE(HasText(r.err, "did you mean 1 ms (controller.period_s: 0.001)?")) << r.err;
+  EXPECT_TRUE(HasText(r.err, "warning: slip.yaml: controller.accel_time_s: 200 s")) << r.err;
+  EXPECT_TRUE(HasText(r.err, "warning: slip.yaml: machine.modes[0].frequency_hz: 0.01 Hz")) << r.err;
+  EXPECT_TRUE(HasText(r.err, "warning: slip.yaml: static_displacement_m: ")) << r.err;
 }
 
 }  // namespace

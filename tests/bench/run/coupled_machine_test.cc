@@ -52,7 +52,7 @@ Eigen::Vector3d ComplianceColumn(int a) {
 // tool along X, Y and Z by -C e_y a at the end of the acceleration, C the closed form: to
 // 1e-6 of each component (what is left of the start's transient is below 1e-13, the exact
 // integrator's error about 1e-12). The run's static_displacement_{x,y,z}_m are C e_y a
-// (oriented so that the Y view's component is positive) to 1e-12; static_displacement_m
+// (a taken along +Y, the axis it lies along) to 1e-12; static_displacement_m
 // is the Y one.
 TEST(CoupledMachine, YMoveDeflectsXByTheStaticCompliance) {
   ScratchDir dir;
@@ -80,6 +80,41 @@ TEST(CoupledMachine, YMoveDeflectsXByTheStaticCompliance) {
   EXPECT_NEAR(m.static_displacement_y_m, expected(kY), 1e-12 * expected(kY));
   EXPECT_NEAR(m.static_displacement_z_m, expected(kZ), 1e-12 * expected(kZ));
   EXPECT_EQ(m.static_displacement_m, m.static_displacement_y_m);
+}
+
+// Tests that the static deflection vector follows the machine and the move, not the output
+// view (issue 32 item 16: Z's entry changed sign with output.direction): a rocking mode
+// that deflects Z against Y gives C e_y a, Z negative, for the Y move viewed along Y, along
+// Z and as the magnitude, and for the reverse move.
+TEST(CoupledMachine, StaticVectorDoesNotDependOnTheOutputView) {
+  ScratchDir dir;
+  const std::string path = dir.Write(
+      "view.yaml",
+      "machine:\n"
+      "  modes:\n"
+      "    - {frequency_hz: 25.0, damping_ratio: 0.2, participation: {y: 49.0}, shape: {y: 2.4166e-3}}\n"
+      "    - {frequency_hz: 38.0, damping_ratio: 0.2, participation: {x: 3.0, y: 12.0},\n"
+      "       shape: {x: 1.5e-3, y: 0.8e-3, z: -3.0e-3}}\n"
+      "  driven_axis: y\n"
+      "controller: {period_s: 0.001, feed_mm_min: 6000, accel_time_s: 0.1}\n"
+      "move: {distance_mm: 50}\n");
+  const double w1 = 2.0 * kPi * 25.0;
+  const double w2 = 2.0 * kPi * 38.0;
+  const Eigen::Vector3d expected = Eigen::Vector3d(0.0, 2.4166e-3, 0.0) * 49.0 / (w1 * w1) +
+                                   Eigen::Vector3d(1.5e-3, 0.8e-3, -3.0e-3) * 12.0 / (w2 * w2);  // a = 1 m/s^2
+  ASSERT_LT(expected(kZ), 0.0);
+  ASSERT_GT(expected(kY), 0.0);
+  for (const char* direction : {"y", "z", "magnitude"}) {
+    for (const char* distance : {"50", "-50"}) {
+      SCOPED_TRACE(std::string(direction) + " " + distance);
+      const Metrics m = RunScenario(LoadScenario(path, {{"output.direction", direction}, {"move.distance_mm", distance}}),
+                                    RunOptions{false})
+                            .metrics;
+      EXPECT_NEAR(m.static_displacement_x_m, expected(kX), 1e-12 * expected.norm());
+      EXPECT_NEAR(m.static_displacement_y_m, expected(kY), 1e-12 * expected.norm());
+      EXPECT_NEAR(m.static_displacement_z_m, expected(kZ), 1e-12 * expected.norm());
+    }
+  }
 }
 
 // Tests that an X move on the coupled machine runs (its modes model every axis: no
