@@ -23,7 +23,6 @@ set(SHAPEBENCH_STD_HEADERS <algorithm> <cmath> <cstddef> <cstdio> <cstdlib> <fst
 # shapebench_build_fast(TARGET HEADER...): TARGET's files compiled in unity batches, with
 # HEADER... and the standard headers above precompiled.
 function(shapebench_build_fast target)
-  shapebench_sanitize(${target})
   if(SHAPEBENCH_PCH)
     target_precompile_headers(${target} PRIVATE ${ARGN} ${SHAPEBENCH_STD_HEADERS})
   endif()

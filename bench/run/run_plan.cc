@@ -4,6 +4,7 @@
 #include <cmath>
 #include <variant>
 
+#include "bench/run/single_axis.h"
 #include "common/math_constants.h"
 
 namespace shapebench::bench {
@@ -29,26 +30,19 @@ SingleModeCase FindSingleModeCase(const Scenario& scenario, const controller::Pa
                                   bool has_stroke) {
   const SingleModeCase none;
   if (scenario.drive.type != model::DriveType::kKinematic ||
-      scenario.integrator.method == model::IntegratorMethod::kCvode || has_stroke ||
-      path.elements().size() != 1 || view.magnitude || view.axis < 0) {
+      scenario.integrator.method == model::IntegratorMethod::kCvode) {
     return none;
   }
-  const controller::PathElement& line = path.elements().front();
-  const int axis = view.axis;
-  if (line.is_arc() || std::abs(line.direction(axis)) != 1.0) return none;
-  for (int a = 0; a < model::kNumAxes; ++a) {
-    if (a == axis) continue;
-    if (line.direction(a) != 0.0 || samples.axis_moves[a] || samples.positions.front()(a) != line.start_m(a)) {
-      return none;
-    }
-  }
+  const controller::PathElement* only = path.elements().size() == 1 ? &path.elements().front() : nullptr;
+  const int axis = FindSingleAxis(only, samples, view, has_stroke).axis;
+  if (axis < 0) return none;
   const model::ModalMode* mode = OnlyMode(scenario.machine, axis);
   if (mode == nullptr || !(mode->gain != 0.0) || !(mode->damping_ratio < 1.0) || !(mode->frequency_hz > 0.0)) {
     return none;
   }
   const double wd = 2.0 * kPi * mode->frequency_hz * std::sqrt(1.0 - mode->damping_ratio * mode->damping_ratio);
   if (!(wd * dt_s <= 0.5 * kPi)) return none;
-  return {mode, &line, axis};
+  return {mode, only, axis};
 }
 
 std::vector<double> SubstepTimes(double dt_s, int substeps) {

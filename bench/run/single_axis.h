@@ -20,7 +20,10 @@ struct SingleAxis {
   double length_m = 0.0;
 };
 
-// That axis, or axis -1 when the run is not such a run.
+// That axis, or axis -1 when the run is not such a run: `element` the path's only
+// element (null when it has more), or the gauge's.
+SingleAxis FindSingleAxis(const controller::PathElement* element, const CommandSamples& samples,
+                          const OutputView& view, bool has_stroke);
 SingleAxis FindSingleAxis(const CommandSamples& samples, const OutputView& view, const ContourGauge& gauge,
                           bool has_stroke);
 

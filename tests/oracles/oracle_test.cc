@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/run/run_scenario.h"
+#include "tests/support/cli_binary.h"
 #include "tests/support/sdof_fixture.h"
 #include "common/math_constants.h"
 

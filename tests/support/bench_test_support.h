@@ -18,6 +18,7 @@
 
 #include "bench/config/config_error.h"
 #include "common/csv.h"
+#include "tests/support/cli_binary.h"
 
 namespace shapebench::bench {
 
@@ -27,24 +28,6 @@ inline const std::string kSourceDir = SHAPEBENCH_SOURCE_DIR;
 }  // namespace shapebench::bench
 
 namespace shapebench::bench::testing {
-
-// AddressSanitizer reserves terabytes of address space for its shadow memory, so a child
-// run under an address-space limit (RLIMIT_AS, prlimit --as) cannot start in the
-// sanitizer build (make test-sanitize). There the memory bound is ASan's own: an RSS
-// limit in ASAN_OPTIONS (hard_rss_limit_mb), which ends the child like the limit would.
-// The test code itself is not instrumented there (cmake/sanitize.cmake): the build says so
-// with SHAPEBENCH_CLI_UNDER_ASAN.
-#if defined(SHAPEBENCH_CLI_UNDER_ASAN) || defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kUnderAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kUnderAddressSanitizer = true;
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
 
 // In a child about to exec the CLI: bound its memory to `bytes` (see kUnderAddressSanitizer).
 inline void LimitChildMemory(unsigned long bytes) {
