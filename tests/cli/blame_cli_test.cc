@@ -24,7 +24,7 @@ using testing::RunCli;
 using testing::ScratchDir;
 
 // Method 1 on one 25 Hz mode; feed_mm_min's value at 6:16, accel_time_s' at 7:17.
-constexpr const char* kScenario =
+constexpr const char* kBlameScenario =
     "machine:\n"
     "  modes:\n"
     "    - {frequency_hz: 25.0, damping_ratio: 0.02, gain: 1.0}\n"
@@ -38,13 +38,13 @@ constexpr const char* kScenario =
     "  peak_ratio: {max: 10}\n";
 
 bool StartsWith(const std::string& text, const std::string& start) { return text.rfind(start, 0) == 0; }
-bool HasText(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool Mentions(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // Tests that a feed set in m/min by mistake is blamed at its --set, not at the stroke
 // end's minute feed the user never wrote, which is named with its default.
 TEST(BlameTheCause, AFeedSetOnTheCommandLineIsBlamedNotTheMinuteFeed) {
   ScratchDir dir;
-  dir.Write("s.yaml", kScenario);
+  dir.Write("s.yaml", kBlameScenario);
   const CliResult r = RunCli({"run", "s.yaml", "--set", "controller.feed_mm_min=24"}, dir.path().string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_TRUE(StartsWith(r.err, "error: --set:1:1: controller.feed_mm_min: 24 mm/min is below "
@@ -64,15 +64,15 @@ TEST(BlameTheCause, AFeedSetOnTheCommandLineIsBlamedNotTheMinuteFeed) {
 // time it needs, not the feed (which does not enter the rule).
 TEST(BlameTheCause, APatternFrequencySetOnTheCommandLineIsBlamedNotTheFeed) {
   ScratchDir dir;
-  dir.Write("s.yaml", kScenario);
+  dir.Write("s.yaml", kBlameScenario);
   const CliResult r =
       RunCli({"run", "s.yaml", "--set", "controller.pattern.frequency_hz=0.5"}, dir.path().string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_TRUE(StartsWith(r.err, "error: --set:1:1: controller.pattern.frequency_hz: 0.5 Hz is too low for "
                                 "controller.accel_time_s = 0.1 s (s.yaml:7:17): "))
       << r.err;
-  EXPECT_TRUE(HasText(r.err, "at least the pattern's step 1 at each shaped end, 1 s")) << r.err;
-  EXPECT_FALSE(HasText(r.err, "a higher feed")) << r.err;
+  EXPECT_TRUE(Mentions(r.err, "at least the pattern's step 1 at each shaped end, 1 s")) << r.err;
+  EXPECT_FALSE(Mentions(r.err, "a higher feed")) << r.err;
   const CliResult time = RunCli({"run", "s.yaml", "--set", "controller.accel_time_s=0.01"}, dir.path().string());
   EXPECT_EQ(time.exit_code, 2) << time.err;
   EXPECT_TRUE(StartsWith(time.err, "error: --set:1:1: controller.accel_time_s: 0.01 s is too short for "
@@ -84,8 +84,8 @@ TEST(BlameTheCause, APatternFrequencySetOnTheCommandLineIsBlamedNotTheFeed) {
 // sweep's point blames its grid value, a --set renumbered among the --set options.
 TEST(BlameTheCause, BandAndGridValuesAreBlamedAtTheirPlace) {
   ScratchDir dir;
-  dir.Write("s.yaml", kScenario);
-  dir.Write("band.yaml", std::string(kScenario) +
+  dir.Write("s.yaml", kBlameScenario);
+  dir.Write("band.yaml", std::string(kBlameScenario) +
                              "  residual_ratio: {max: 10, band: {key: controller.feed_mm_min, from: 1, to: 6000}}\n");
   const CliResult band = RunCli({"check", "band.yaml"}, dir.path().string());
   EXPECT_EQ(band.exit_code, 2) << band.err;
@@ -114,27 +114,27 @@ TEST(BlameTheCause, BandAndGridValuesAreBlamedAtTheirPlace) {
 // swept key indexing a misspelt list gets "did you mean", and so does a word's other form.
 TEST(BlameTheCause, MisspeltKeysAreLocatedAndSuggested) {
   ScratchDir dir;
-  dir.Write("s.yaml", kScenario);
+  dir.Write("s.yaml", kBlameScenario);
   const std::string work = dir.path().string();
   const CliResult set = RunCli({"run", "s.yaml", "--set", "controller.patern.method=zvd"}, work);
   EXPECT_EQ(set.exit_code, 2) << set.err;
   EXPECT_TRUE(StartsWith(set.err, "error: --set:1:1: controller.patern: unknown key 'patern'")) << set.err;
-  EXPECT_TRUE(HasText(set.err, "did you mean 'pattern'?")) << set.err;
+  EXPECT_TRUE(Mentions(set.err, "did you mean 'pattern'?")) << set.err;
   dir.Write("sw.yaml", "base: s.yaml\ngrid:\n  machine.mode[0].frequency_hz: [20, 25]\n");
   const CliResult swept = RunCli({"sweep", "sw.yaml", "--out", "o"}, work);
   EXPECT_EQ(swept.exit_code, 2) << swept.err;
   EXPECT_TRUE(StartsWith(swept.err, "error: sw.yaml:3:34: machine.mode: unknown key 'mode'; allowed: modes, "))
       << swept.err;
-  EXPECT_TRUE(HasText(swept.err, "did you mean 'modes'?")) << swept.err;
+  EXPECT_TRUE(Mentions(swept.err, "did you mean 'modes'?")) << swept.err;
   // A key that is allowed but not written still says how to create it.
   const CliResult absent = RunCli({"run", "s.yaml", "--set", "controller.pattern.frequencies_hz[0]=3"}, work);
   EXPECT_TRUE(StartsWith(absent.err, "error: --set:1:1: controller.pattern.frequencies_hz[0]: cannot index "
                                      "'controller.pattern.frequencies_hz': it does not exist; set the whole sequence"))
       << absent.err;
-  dir.Write("settle.yaml", std::string(kScenario) + "  settle_time_s: {max: 1}\n");
+  dir.Write("settle.yaml", std::string(kBlameScenario) + "  settle_time_s: {max: 1}\n");
   const CliResult settle = RunCli({"check", "settle.yaml"}, work);
   EXPECT_EQ(settle.exit_code, 2) << settle.err;
-  EXPECT_TRUE(HasText(settle.err, "did you mean 'settling_time_s'?")) << settle.err;
+  EXPECT_TRUE(Mentions(settle.err, "did you mean 'settling_time_s'?")) << settle.err;
   EXPECT_EQ(DidYouMean("freq_hz", {"frequency_hz", "gain"}), "; did you mean 'frequency_hz'?");
   EXPECT_EQ(DidYouMean("peak_time_s", {"settling_time_s", "motion_time_s"}), "");
 }
@@ -143,7 +143,7 @@ TEST(BlameTheCause, MisspeltKeysAreLocatedAndSuggested) {
 // file and in a --set value.
 TEST(BlameTheCause, AnUnquotedBandKeySaysToQuoteIt) {
   ScratchDir dir;
-  dir.Write("band.yaml", std::string(kScenario) +
+  dir.Write("band.yaml", std::string(kBlameScenario) +
                              "  residual_ratio: {max: 1, band: {key: machine.modes[0].frequency_hz, from: 24, to: 26}}\n");
   const CliResult file = RunCli({"check", "band.yaml"}, dir.path().string());
   EXPECT_EQ(file.exit_code, 2) << file.err;
@@ -151,12 +151,12 @@ TEST(BlameTheCause, AnUnquotedBandKeySaysToQuoteIt) {
                                    "with [INDEX] inside { } or [ ] must be quoted: write "
                                    "\"machine.modes[0].frequency_hz\""))
       << file.err;
-  dir.Write("s.yaml", kScenario);
+  dir.Write("s.yaml", kBlameScenario);
   const CliResult set = RunCli({"check", "s.yaml", "--set",
                                 "checks.residual_ratio={max: 1, band: {key: machine.modes[0].frequency_hz, from: 24, to: 26}}"},
                                dir.path().string());
   EXPECT_EQ(set.exit_code, 2) << set.err;
-  EXPECT_TRUE(HasText(set.err, "must be quoted: write \"machine.modes[0].frequency_hz\"")) << set.err;
+  EXPECT_TRUE(Mentions(set.err, "must be quoted: write \"machine.modes[0].frequency_hz\"")) << set.err;
 }
 
 // Tests the one rule for relative paths: given by a --set (machine, program_file,
@@ -197,7 +197,7 @@ TEST(BlameTheCause, PathsOnTheCommandLineAreFromTheCurrentDirectory) {
   EXPECT_EQ(frf.exit_code, 0) << frf.err;
   const CliResult swept = RunCli({"sweep", "project/sweeps/x.yaml", "--out", "o"}, work);
   EXPECT_EQ(swept.exit_code, 0) << swept.err;
-  EXPECT_TRUE(HasText(swept.out, "1 points, 1 ok, 0 error") || HasText(swept.out, "1 point, 1 ok, 0 error"))
+  EXPECT_TRUE(Mentions(swept.out, "1 points, 1 ok, 0 error") || Mentions(swept.out, "1 point, 1 ok, 0 error"))
       << swept.out;
 }
 

@@ -244,7 +244,7 @@ TEST(SampledSweepCli, ShippedYieldStudyMatchesAnIndependentCount) {
   EXPECT_TRUE(results.at(1).at("passed").get<bool>());
 }
 
-std::size_t Lines(const std::string& path) {
+std::size_t LineCount(const std::string& path) {
   const std::string text = ReadText(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -255,7 +255,7 @@ std::pair<int, std::string> RunUntilRows(const std::vector<std::string>& args, c
                                          std::size_t lines, const ScratchDir& dir) {
   const pid_t pid = SpawnCli(args, kSourceDir, dir.File("err.txt"));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
-  while (std::chrono::steady_clock::now() < deadline && Lines(partial) <= lines) {
+  while (std::chrono::steady_clock::now() < deadline && LineCount(partial) <= lines) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   kill(pid, SIGTERM);
@@ -286,7 +286,7 @@ TEST(SampledSweepCli, TwentyMillionSamplesStartAtOnceAndResume) {
   ASSERT_TRUE(std::filesystem::exists(out + "/manifest.json"));
   EXPECT_LT(std::filesystem::file_size(out + "/manifest.json"), 64u << 10);
   const std::string first = ReadText(partial);
-  const std::size_t kept = Lines(partial) - 1;
+  const std::size_t kept = LineCount(partial) - 1;
   ASSERT_GE(kept, 3u);
 
   const auto [again, again_err] = RunUntilRows(args, partial, kept + 3, dir);
@@ -294,7 +294,7 @@ TEST(SampledSweepCli, TwentyMillionSamplesStartAtOnceAndResume) {
   EXPECT_EQ(again_err.find("manifest"), std::string::npos) << again_err;
   EXPECT_NE(again_err.find("run the same command again to resume"), std::string::npos) << again_err;
   const std::string resumed = ReadText(partial);
-  EXPECT_GT(Lines(partial), kept + 3);
+  EXPECT_GT(LineCount(partial), kept + 3);
   EXPECT_EQ(resumed.compare(0, first.size(), first), 0) << "the kept rows stay as they were";
 
   const Distribution normal{Distribution::Kind::kNormal, 25.0, 0.625, std::nullopt, std::nullopt};
