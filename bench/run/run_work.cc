@@ -1,6 +1,7 @@
 #include "bench/run/run_work.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -52,7 +53,23 @@ void CheckEstimatedWork(const RunPlan& plan, long period_work) {
                         Suggestion(10.0 * least) + ") to run it");
 }
 
+// limits.max_wall_s, off at 0: the host's verdict, never the default.
+void CheckWallClock(const RunPlan& plan, std::size_t tick) {
+  const double limit_s = plan.scenario.limits.max_wall_s;
+  if (!(limit_s > 0.0)) return;
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - plan.started).count();
+  if (!(elapsed_s > limit_s)) return;
+  throw model::SolverError(
+      "WALL_LIMIT", Prefix(plan) + "stopped at t = " + FormatNumber(plan.dt_s * static_cast<double>(tick), 6) +
+                        " s (period " + std::to_string(tick) + " of at least " +
+                        std::to_string(plan.window.window_end()) + ") after " + FormatNumber(elapsed_s, 3) +
+                        " s of wall-clock time, more than limits.max_wall_s (" + FormatNumber(limit_s) +
+                        " s): this host's speed and load decided it (limits.max_work is the same everywhere); "
+                        "raise limits.max_wall_s, or set it to 0 (no limit), to run it on");
+}
+
 void CheckWork(const RunPlan& plan, std::size_t tick, long integrator_work, std::string_view what) {
+  CheckWallClock(plan, tick);
   const long limit = plan.scenario.limits.max_work;
   const double work = RunWork(plan, tick, integrator_work);
   if (!(work > static_cast<double>(limit))) return;

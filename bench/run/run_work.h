@@ -10,7 +10,8 @@
 // bound already does (ticks of the motion and the residual window x (substeps + the
 // extremum grid's inner points)) is refused before it starts. The samplers look at the
 // count every few ticks (stride) and once at the end: the verdict is "the run's whole
-// count exceeds max_work", wherever it is seen.
+// count exceeds max_work", wherever it is seen. limits.max_wall_s (off by default) is
+// looked at in the same places, from RunPlan::started: that verdict is the host's.
 #pragma once
 
 #include <cstddef>
@@ -27,7 +28,8 @@ void CheckEstimatedWork(const RunPlan& plan, long period_work);
 
 // Throws model::SolverError("WORK_LIMIT") when a run through tick `tick` with
 // `integrator_work` (PlantIntegrator::Work; `what` names it) has done more than
-// limits.max_work, saying what was done and how to raise the limit.
+// limits.max_work, saying what was done and how to raise the limit; ("WALL_LIMIT") when
+// limits.max_wall_s is set and has passed.
 void CheckWork(const RunPlan& plan, std::size_t tick, long integrator_work, std::string_view what);
 
 // What PlantIntegrator::Work counts, for CheckWork's message.
