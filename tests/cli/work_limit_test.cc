@@ -105,7 +105,7 @@ TEST(WorkLimit, SweepPointOverBudgetIsAnErrorRow) {
   const CliResult one = RunCli(args, kSourceDir);
   EXPECT_EQ(one.exit_code, 0) << one.err;
   const std::string rows = ReadText(dir.File("one/results.csv"));
-  EXPECT_TRUE(Has(rows, "error,solver failed: WORK_LIMIT: scenario 'sdof_method1' stopped at t = ")) << rows;
+  EXPECT_TRUE(Has(rows, "error,\"solver failed: WORK_LIMIT: scenario 'sdof_method1' stopped at t = ")) << rows;
   EXPECT_TRUE(Has(rows, "more than limits.max_work (4350): ")) << rows;
   EXPECT_TRUE(Has(rows, "more than limits.max_work (4360): ")) << rows;
   EXPECT_TRUE(Has(rows, ",ok,")) << rows;
@@ -118,7 +118,8 @@ TEST(WorkLimit, SweepPointOverBudgetIsAnErrorRow) {
 
 // Tests that identify refuses a fit whose estimated work exceeds --max-work before fitting
 // (exit 3, naming the option and the sizes, nothing written), that --max-work takes only a
-// number >= 1, and that the shipped measurement fits the default.
+// number >= 1, that the shipped measurement fits the default, and that an frf_file
+// machine's max_work bounds its identification the same way.
 TEST(WorkLimit, IdentifyOverBudgetExits3) {
   ScratchDir dir;
   const std::string uff = "configs/measurements/column_y_accelerance.uff";
@@ -133,6 +134,12 @@ TEST(WorkLimit, IdentifyOverBudgetExits3) {
   EXPECT_TRUE(Has(bad.err, "--max-work: expected a number >= 1")) << bad.err;
   const CliResult shipped = RunCli({"identify", uff, "--out", dir.File("o")}, kSourceDir);
   EXPECT_EQ(shipped.exit_code, 0) << shipped.err;
+  // An frf_file machine's identification, bounded by its own key.
+  const CliResult machine =
+      RunCli({"run", "configs/scenarios/measured_frf.yaml", "--set", "machine.max_work=1000"}, kSourceDir);
+  EXPECT_EQ(machine.exit_code, 3) << machine.err;
+  EXPECT_TRUE(Has(machine.err, "more than machine.max_work (1e+03); nothing was fitted: raise machine.max_work"))
+      << machine.err;
 }
 
 }  // namespace
