@@ -25,7 +25,7 @@ namespace shapebench::model {
 std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, int derivative_order);
 
 // IdentificationOptions::max_work's default (docs/reliability.md#limits: 1e11, about 3,000 times
-// the shipped measurement's fit; ten copies of it at order 200 need 1.0e11).
+// the shipped measurement's fit; ten copies of it at order 200 need 1.05e11, above it).
 constexpr double kDefaultIdentificationWork = 1e11;
 
 struct IdentificationOptions {
