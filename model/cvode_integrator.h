@@ -52,6 +52,10 @@ class CvodeIntegrator final : public PlantIntegrator {
   Eigen::VectorXd PlantState() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
+  long Work() const override {
+    const IntegratorStats stats = Stats();
+    return stats.steps + stats.rhs_evals;
+  }
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return static_cast<int>(C_.rows()); }
   int substeps() const override { return substeps_; }

@@ -273,6 +273,7 @@ void ExactIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   std::fill(g_.begin(), g_.end(), 0.0);
   count_ = 0;
   tick_count_ = 0;
+  extremum_work_ = 0;
 }
 
 void ExactIntegrator::SetAccel(const double* drive_accel) {
@@ -455,6 +456,7 @@ void ExactIntegrator::AdvanceToEnd(const double* drive_accel, double* outputs) {
   d0 += block_forced_rate_;
   d1 += block_forced_rate_;
   period_extremum_ = extremum_->LargestInsideWithRates(z_start_.data(), drive_accel, d0, d1);
+  extremum_work_ += extremum_->last_work();
 }
 
 void ExactIntegrator::AdvancePeriodToEnd(const double* full_accel, double* outputs) {
@@ -487,6 +489,7 @@ void ExactIntegrator::AdvancePeriod(const double* full_accel, long /*same_input_
   std::copy(z_.begin(), z_.end(), z_start_.begin());
   AdvanceStates(drive_accel, outputs);
   period_extremum_ = extremum_->LargestInside(z_start_.data(), z_.data(), drive_accel);
+  extremum_work_ += extremum_->last_work();
 }
 
 bool ExactIntegrator::WatchExtremum(int row) {
@@ -576,5 +579,11 @@ Eigen::VectorXd ExactIntegrator::PlantState() const {
 double ExactIntegrator::Time() const { return static_cast<double>(count_) * period_s_ / substeps_; }
 
 IntegratorStats ExactIntegrator::Stats() const { return {count_, 0, 0}; }
+
+// Each period with an extremum grid of g steps evaluates y' at its g - 1 inner points at
+// least (TickExtremum::Inside); one step costs nothing where no sign change is seen.
+long ExactIntegrator::PeriodWorkAtLeast() const {
+  return extremum_ ? std::max(0, extremum_->grid_intervals() - 1) : 0;
+}
 
 }  // namespace shapebench::model

@@ -36,6 +36,8 @@ class ExactIntegrator final : public PlantIntegrator {
   Eigen::VectorXd PlantState() const override;
   double Time() const override;
   IntegratorStats Stats() const override;
+  long Work() const override { return extremum_work_; }
+  long PeriodWorkAtLeast() const override;
   int num_inputs() const override { return input_map_.empty() ? num_inputs_ : full_inputs_; }
   int num_outputs() const override { return num_outputs_; }
   int substeps() const override { return substeps_; }
@@ -155,6 +157,7 @@ class ExactIntegrator final : public PlantIntegrator {
   std::vector<double> z_start_;
   double period_extremum_ = 0.0;
   long count_ = 0;
+  long extremum_work_ = 0;     // TickExtremum::last_work() summed (Work())
   long tick_count_ = 0;        // count_ at the last tick AdvanceBlock ended on
   bool block_kernel_ = false;  // the block_* members are set up (a small plant)
   bool block_twin_ = false;    // the selection is one distinct row, twice

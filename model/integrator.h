@@ -155,6 +155,13 @@ class PlantIntegrator {
   virtual Eigen::VectorXd PlantState() const = 0;
   virtual double Time() const = 0;
   virtual IntegratorStats Stats() const { return {}; }
+  // The work it did beyond its output samples, for limits.max_work (bench/run/run_work.h):
+  // CVODE's internal steps plus right-hand-side evaluations, the exact path's passes over
+  // the poles in its in-tick extremum search (model/tick_extremum.h). Counted, never timed.
+  virtual long Work() const { return 0; }
+  // The least of that work every period costs, known before the first (the exact path's
+  // extremum grid: a pass per inner grid point), for the estimate before a run starts.
+  virtual long PeriodWorkAtLeast() const { return 0; }
   virtual int num_inputs() const = 0;
   virtual int num_outputs() const = 0;
   virtual int substeps() const = 0;  // output substeps per interpolation period

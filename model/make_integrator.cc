@@ -78,6 +78,8 @@ class InputSelectingIntegrator final : public PlantIntegrator {
   Eigen::VectorXd PlantState() const override { return inner_->PlantState(); }
   double Time() const override { return inner_->Time(); }
   IntegratorStats Stats() const override { return inner_->Stats(); }
+  long Work() const override { return inner_->Work(); }
+  long PeriodWorkAtLeast() const override { return inner_->PeriodWorkAtLeast(); }
   int num_inputs() const override { return num_inputs_; }
   int num_outputs() const override { return inner_->num_outputs(); }
   int substeps() const override { return inner_->substeps(); }

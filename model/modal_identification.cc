@@ -10,6 +10,7 @@
 #include "common/format.h"
 #include "common/math_constants.h"
 #include "common/validation_error.h"
+#include "model/integrator.h"
 
 namespace shapebench::model {
 namespace {
@@ -309,6 +310,7 @@ void IdentificationOptions::validate() const {
   if (!(min_stable_fraction >= 0.0 && min_stable_fraction <= 1.0)) {
     throw ValidationError("min_stable_fraction", "must be in [0, 1]");
   }
+  if (!(max_work >= 1.0)) throw ValidationError("max_work", "must be >= 1");
 }
 
 namespace {
@@ -330,7 +332,31 @@ void RequireFinite(const ModalIdentification& result) {
   }
 }
 
+// Refused before the fit starts when its work exceeds options.max_work (ten copies of a
+// record at order 200 took 40 s; a thousand records an estimated hour).
+void RequireWithinWork(int lines, int frfs, int max_order, const IdentificationOptions& options) {
+  const double work = IdentificationWork(lines, frfs, max_order);
+  if (!(work > options.max_work)) return;
+  const double suggested = std::pow(10.0, std::ceil(std::log10(work)));
+  throw SolverError("WORK_LIMIT", "identifying " + std::to_string(frfs) + " FRF" + (frfs == 1 ? "" : "s") + " of " +
+                                      std::to_string(lines) + " lines up to order " + std::to_string(max_order) +
+                                      " would take about " + FormatNumber(work, 3) +
+                                      " multiply-adds, more than " + options.max_work_key + " (" +
+                                      FormatNumber(options.max_work, 3) + "); nothing was fitted: raise " +
+                                      options.max_work_key + " (e.g. to " + FormatNumber(suggested, 3) +
+                                      "), or lower the order, narrow the band or take fewer records");
+}
+
 }  // namespace
+
+double IdentificationWork(int lines, int frfs, int max_order) {
+  const double l = lines;
+  const double r = frfs;
+  const double m = max_order;
+  double work = l * (4.0 * m + 1.0) * (r + 2.0) + r * 2.0 * l * (2.0 * m + 2.0) * (2.0 * m + 2.0);
+  for (int o = 1; o <= max_order; ++o) work += (2.0 * r + 12.0) * std::pow(2.0 * o + 1.0, 3);
+  return work;
+}
 
 ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
                                   const std::vector<std::vector<Complex>>& frfs, int derivative_order,
@@ -345,6 +371,7 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
   // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
   const int lines = static_cast<int>(band.omega.size());
   result.max_order = std::max(1, std::min(options.max_order, (lines - 2) / 4));
+  RequireWithinWork(lines, static_cast<int>(frfs.size()), result.max_order, options);
   const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
   const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
   result.diagram = BuildDiagram(band, options, band_lo, band_hi, result.max_order);

@@ -16,12 +16,17 @@
 
 #include <complex>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace shapebench::model {
 
 // Receptance from an FRF of the given form at `frequency_hz` (> 0): h / (j w)^order.
 std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, int derivative_order);
+
+// IdentificationOptions::max_work's default (docs/reliability.md#limits: 1e11, about 3,000 times
+// the shipped measurement's fit; ten copies of it at order 200 need 1.05e11, above it).
+constexpr double kDefaultIdentificationWork = 1e11;
 
 struct IdentificationOptions {
   // The band the poles are searched in and the modal constants fitted over, in Hz; lines
@@ -40,10 +45,21 @@ struct IdentificationOptions {
   // A mode is a cluster of stable poles (frequencies within frequency_tolerance of its
   // mean) found at this fraction of the orders at least (and at 3 orders at least).
   double min_stable_fraction = 0.2;
+  // The most work the fit may take, in multiply-adds estimated from its sizes before it
+  // starts (IdentificationWork); beyond, SolverError("WORK_LIMIT") naming max_work_key,
+  // the option or key that sets it. Counted, never timed: the same verdict on every host.
+  double max_work = kDefaultIdentificationWork;
+  std::string max_work_key = "--max-work";
 
   // Throws ValidationError naming the field.
   void validate() const;
 };
+
+// IdentifyModes' work in multiply-adds, from its sizes alone (lines in the band, FRFs,
+// highest order after the cap): the lag sums (lines x (4 M + 1) lags x (FRFs + 2)), at each
+// order o the normal equations and the companion matrix's eigenvalues ((2 FRFs + 12)
+// (2 o + 1)^3), and each FRF's modal constants (a QR of 2 lines x (2 M + 2)^2).
+double IdentificationWork(int lines, int frfs, int max_order);
 
 enum class PoleStability { kNew, kFrequency, kStable };
 

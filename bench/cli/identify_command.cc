@@ -25,6 +25,7 @@ struct IdentifyArgs {
   std::string axis;   // "", "x", "y", "z"
   std::string band;   // "", "MIN:MAX" in Hz
   int max_order = 30;
+  std::string max_work;  // "": the default
   bool json = false;
   std::string out_dir;  // "": identify_out/STEM
 };
@@ -53,6 +54,12 @@ int IdentifyCommand(const IdentifyArgs& args) {
   if (!args.axis.empty()) selection.axis = static_cast<int>(std::string("xyz").find(args.axis));
   if (!args.band.empty()) ParseBand(args.band, &selection);
   selection.max_order = args.max_order;
+  if (!args.max_work.empty() &&
+      (!ParseDecimal(args.max_work, &selection.max_work) || !(selection.max_work >= 1.0) ||
+       !std::isfinite(selection.max_work))) {
+    throw std::runtime_error("--max-work: expected a number >= 1 (multiply-adds, e.g. 1e12), got '" +
+                             TerminalSafe(args.max_work, false) + "'");
+  }
   const std::string out_dir =
       args.out_dir.empty() ? (std::filesystem::path("identify_out") / std::filesystem::path(args.file).stem()).string()
                            : args.out_dir;
@@ -92,6 +99,11 @@ Command AddIdentifyCommand(CLI::App* app) {
       ->type_name("MIN:MAX");
   identify->add_option("--max-order", args->max_order, "highest model order in pole pairs (default 30)")
       ->check(CLI::Range(1, 200))
+      ->type_name("N");
+  identify
+      ->add_option("--max-work", args->max_work,
+                   "the most work the fit may take, in multiply-adds estimated before it starts (default 1e11); "
+                   "beyond, exit 3")
       ->type_name("N");
   identify->add_flag("--json", args->json, "print one JSON object");
   identify

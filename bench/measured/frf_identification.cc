@@ -4,6 +4,7 @@
 #include "bench/config/config_error.h"
 #include "common/format.h"
 #include "common/validation_error.h"
+#include "model/integrator.h"
 
 namespace shapebench::bench {
 namespace {
@@ -96,10 +97,14 @@ IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& sele
   options.min_frequency_hz = selection.min_frequency_hz;
   options.max_frequency_hz = selection.max_frequency_hz;
   options.max_order = selection.max_order;
+  options.max_work = selection.max_work;
+  options.max_work_key = selection.max_work_key;
   try {
     result.identification = model::IdentifyModes(result.frequency_hz, result.frfs, first.DerivativeOrder(), options);
   } catch (const ValidationError& error) {
     throw ConfigError(path, first.record12_line, 1, "record 12", error.message());
+  } catch (const model::SolverError& error) {  // over its work limit: name the file
+    throw model::SolverError(error.flag_name(), path + ": " + error.what());
   }
   return result;
 }

@@ -17,6 +17,9 @@ struct FrfSelection {
   double min_frequency_hz = 0.0;
   double max_frequency_hz = std::numeric_limits<double>::infinity();
   int max_order = 30;  // pole pairs (model::IdentificationOptions::max_order)
+  // model::IdentificationOptions::max_work, and the option or key that sets it (messages).
+  double max_work = model::kDefaultIdentificationWork;
+  std::string max_work_key = "--max-work";
   // How the band was given, for messages ("--band 5:200", "band_hz"); "" when not given.
   std::string band_source;
 };

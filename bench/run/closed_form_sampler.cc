@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/run/deferred_substeps.h"
+#include "bench/run/run_work.h"
 #include "bench/run/finish_metrics.h"
 #include "common/math_constants.h"
 #include "model/band_crossing.h"
@@ -240,6 +241,11 @@ class ClosedFormSampler final : public Sampler {
   MetricTally Run() override;
   std::size_t Tick(std::size_t k);
   bool SettleTail(std::size_t k);
+  // limits.max_work (run_work.h): output samples only; a tick costs a few of them.
+  std::size_t CheckWork(std::size_t k) const {
+    bench::CheckWork(plan_, k, 0, {});
+    return 1024;
+  }
 
  private:
   template <RunPhase P> void TickIn(std::size_t k);
@@ -481,6 +487,7 @@ MetricTally ClosedFormSampler::Run() {
   result_.tail_in_closed_form = tail_closed_;
   result_.deferred_periods = deferred_;
   result_.stats.steps = static_cast<long>(tally_.last_tick) * kernel_.substeps_;
+  result_.work = RunWork(plan_, tally_.last_tick, 0);
   result_.substeps = kernel_.substeps_;
   const model::ModalMode& mode = *plan_.single_mode.mode;
   result_.residual_modes = {{mode.frequency_hz, mode.damping_ratio, tally_.residual_m}};

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "bench/run/finish_metrics.h"
+#include "bench/run/run_work.h"
 #include "common/format.h"
 #include "model/cvode_cross_check.h"
 #include "model/nonlinear_integrator.h"
@@ -84,9 +85,11 @@ void PlantSampler::SetUpPlant() {
     }
     if (nonlinear_ || model::ResolveMethod(integrator_config_.method, plant) == model::IntegratorMethod::kCvode) {
       result_.integrator_rtol_used = integrator_config_.rtol;
+      work_stride_ = 1;
     }
     integrator_->Reset(Eigen::VectorXd::Zero(plant.num_inputs()));
     holds_ = integrator_->Capabilities().input_holds;
+    CheckEstimatedWork(plan_, integrator_->PeriodWorkAtLeast());  // the extremum's grid known now
   }
   rows_ = plant.num_outputs();
   width_ = rows_;
@@ -363,10 +366,20 @@ void PlantSampler::Conclude() {
   }
 }
 
+std::size_t PlantSampler::CheckWork(std::size_t k) const {
+  if (!integrator_) {
+    bench::CheckWork(plan_, k, 0, {});
+    return 1024;
+  }
+  bench::CheckWork(plan_, k, integrator_->Work(), work_stride_ == 1 ? kCvodeWork : kExtremumWork);
+  return work_stride_;
+}
+
 MetricTally PlantSampler::Run() {
   RunTicks(*this, window_, &tally_);
   Conclude();
   if (integrator_) result_.stats = integrator_->Stats();
+  result_.work = RunWork(plan_, tally_.last_tick, integrator_ ? integrator_->Work() : 0);
   if (!unchecked_.empty()) {
     if (plan_.scenario.integrator.cross_check == model::CrossCheckPolicy::kRefuse) {
       throw model::SolverError("CROSS_CHECK_FAILED", unchecked_);

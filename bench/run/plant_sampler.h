@@ -37,6 +37,8 @@ class PlantSampler final : public Sampler {
   // After tick k: at the residual window's end, the settling tail in closed form when the
   // plant allows (DampedTail); then the run ends where the simulated tail would.
   bool SettleTail(std::size_t k);
+  // limits.max_work through tick k (run_work.h); the ticks until the next look.
+  std::size_t CheckWork(std::size_t k) const;
 
  private:
   void SetUpPlant();
@@ -98,6 +100,9 @@ class PlantSampler final : public Sampler {
   int tool_error_at_ = 0;
   bool holds_ = false;           // the integrator integrates across held inputs (SameInput)
   bool exact_extrema_ = false;   // the integrator finds the view's extrema inside a period
+  // Ticks between looks at the work: CVODE's tick can be long (stiff elements), the exact
+  // path's is bounded (model/tick_extremum.h) and cheap enough that a look would show.
+  std::size_t work_stride_ = 64;  // 1 on CVODE (SetUpPlant)
   std::size_t next_change_ = 0;  // the first tick after k whose acceleration differs from a_k
   // A plant with nonlinear elements (docs/nonlinear.md): its free response after motion
   // end, sample by sample (the residual and the dead band), and its quadrant glitches.

@@ -3,6 +3,7 @@
 // the output substeps, and which samplers can take the run.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <string_view>
 #include <vector>
@@ -65,6 +66,8 @@ class RunPlan {
   const bool has_stroke;               // any stroke limit
   const bool record_trace;
   const SingleModeCase single_mode;    // what the closed form takes, if it can
+  // When the plan was made: limits.max_wall_s counts from here (run_work.h).
+  const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 
   // The time of sample `count` (from t = 0) on the run's grid, dt count / substeps.
   double SampleTime(long count) const { return dt_s * static_cast<double>(count) / substeps; }

@@ -46,6 +46,7 @@ struct RunResult {
   // for a machine without states.
   std::vector<model::PoleAmplitude> residual_modes;
   model::IntegratorStats stats;
+  double work = 0.0;  // limits.max_work's count for the run (bench/run/run_work.h)
   int substeps = 0;
   double simulated_s = 0.0;  // the time of the last sample (motion and tail)
   bool tail_in_closed_form = false;  // the settling tail found without simulating it

@@ -8,6 +8,7 @@
 #include "bench/run/finish_metrics.h"
 #include "bench/scenario/run_memory.h"
 #include "bench/run/run_plan.h"
+#include "bench/run/run_work.h"
 #include "bench/run/plant_sampler.h"
 #include "bench/run/sampler.h"
 #include "bench/run/unit_slips.h"
@@ -54,6 +55,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   // The prepared run: samples, view, modes, window, substeps (constant from here on).
   const CommandSamples* shared = options.command != nullptr ? options.samples : nullptr;
   const RunPlan plan(scenario, command, path, shared, options.record_trace);
+  CheckEstimatedWork(plan, 0);  // its samples alone; the exact path adds its extremum grid
   // The sampler, its ticks, the metrics.
   if (!options.record_trace || options.fastest_sampler != SamplerKind::kClosedForm ||
       plan.single_mode.mode == nullptr) {

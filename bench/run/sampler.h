@@ -22,15 +22,21 @@ class Sampler {
 // The one tick loop (FMI order inside each Tick: set the input, step, read the outputs).
 // S::Tick(k) returns the last tick it advanced through (k, or more for a sampler that
 // steps stretches of ticks in one go); S::SettleTail(k) ends the run at the residual
-// window's end when the tail is known without simulating it.
+// window's end when the tail is known without simulating it. S::CheckWork(k) throws when
+// the run's work through tick k exceeds limits.max_work (run_work.h) and returns how many
+// ticks later to look again; the last look is at the end, so the verdict is the whole
+// count's, wherever the looks fell.
 template <class S>
 void RunTicks(S& sampler, const RunWindow& window, MetricTally* tally) {
+  std::size_t next_work_check = 1;
   for (std::size_t k = 1; k <= window.max_ticks; ++k) {
     k = sampler.Tick(k);
     tally->last_tick = k;
+    if (k >= next_work_check) next_work_check = k + sampler.CheckWork(k);
     if (window.Done(k, tally->quiet_since_tick, &tally->settled)) break;
     if (sampler.SettleTail(k)) break;
   }
+  sampler.CheckWork(tally->last_tick);
 }
 
 }  // namespace shapebench::bench

@@ -1,11 +1,14 @@
 // ReadFrfMachine (bench/scenario/frf_machine_reader.h).
 #include "bench/scenario/frf_machine_reader.h"
 
+#include <cmath>
+#include <filesystem>
 #include <optional>
 
 #include "bench/measured/frf_identification.h"
 #include "bench/config/input_path.h"
 #include "bench/config/override.h"
+#include "common/format.h"
 
 namespace shapebench::bench {
 namespace {
@@ -55,6 +58,14 @@ FrfSelection ReadSelection(const NodeReader& machine, int axis) {
     }
     selection.max_order = static_cast<int>(value);
   }
+  selection.max_work_key = (machine.path().empty() ? "" : machine.path() + ".") + "max_work";
+  if (const auto work = machine.Child("max_work")) {
+    selection.max_work = work->AsNumber();
+    if (!(selection.max_work >= 1.0) || !std::isfinite(selection.max_work)) {
+      throw work->Error("expected a number >= 1 (multiply-adds the identification may take; default " +
+                        FormatNumber(model::kDefaultIdentificationWork) + ")");
+    }
+  }
   return selection;
 }
 
@@ -62,7 +73,7 @@ FrfSelection ReadSelection(const NodeReader& machine, int axis) {
 
 const std::vector<std::string>& FrfFormKeys() {
   static const std::vector<std::string> kKeys = {"frf_file", "moving_mass_kg", "band_hz", "max_order",
-                                                 "response_node"};
+                                                 "max_work", "response_node"};
   return kKeys;
 }
 

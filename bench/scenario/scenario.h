@@ -47,6 +47,10 @@ struct OutputConfig {
   OutputDirection direction = OutputDirection::kAuto;
 };
 
+// limits.max_work's default (docs/reliability.md#limits: how it was chosen, from the costliest
+// shipped scenario's count and a 2-hour program at a 1 ms period).
+constexpr long kDefaultMaxWork = 2'000'000'000;
+
 // Guard rails (docs/reliability.md), `limits:` in a scenario. A run whose simulated time (motion and
 // the residual window) would exceed max_simulated_s, or whose command would exceed
 // max_ticks interpolation periods, is refused (exit 2) before anything is generated, from
@@ -56,11 +60,19 @@ struct OutputConfig {
 // max_memory_mb bounds the memory one run needs for its command, per-tick samples and
 // trace (bench/scenario/run_memory.h), estimated from the same lower bound of its length; a
 // sweep's peak is about --jobs times it.
+// max_work bounds the work a run does, counted, never timed (bench/run/run_work.h: output
+// samples, CVODE's steps and right-hand-side evaluations, the exact path's extremum
+// passes): beyond it the run stops with exit 3 (WORK_LIMIT), or is refused before it
+// starts where its lower bound already exceeds it. The verdict is the count's, whatever
+// the host or --jobs. max_wall_s (0: off, the default) stops a run after that many seconds
+// of wall-clock time, looked at where max_work is (exit 3, WALL_LIMIT): the host's verdict.
 struct RunLimits {
   double max_simulated_s = 600.0;
   long max_ticks = 10'000'000;
   long max_trace_rows = 1'000'000;
   long max_memory_mb = 1024;
+  long max_work = kDefaultMaxWork;
+  double max_wall_s = 0.0;
 
   template <typename Archive>
   void Serialize(Archive* a) {  // the field list (common/field_list.h)
@@ -68,6 +80,8 @@ struct RunLimits {
     a->Visit("max_ticks", &max_ticks);
     a->Visit("max_trace_rows", &max_trace_rows);
     a->Visit("max_memory_mb", &max_memory_mb);
+    a->Visit("max_work", &max_work);
+    a->Visit("max_wall_s", &max_wall_s);
   }
 };
 

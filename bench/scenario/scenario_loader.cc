@@ -304,6 +304,10 @@ RunLimits ReadLimits(const NodeReader& limits) {
   if (config.max_ticks < 1) throw limits.Child("max_ticks")->Error("must be >= 1");
   if (config.max_trace_rows < 2) throw limits.Child("max_trace_rows")->Error("must be >= 2");
   if (config.max_memory_mb < 1) throw limits.Child("max_memory_mb")->Error("must be >= 1");
+  if (config.max_work < 1) throw limits.Child("max_work")->Error("must be >= 1");
+  if (!(config.max_wall_s >= 0.0) || !std::isfinite(config.max_wall_s)) {
+    throw limits.Child("max_wall_s")->Error("must be >= 0 s (0: no wall-clock limit)");
+  }
   return config;
 }
 
