@@ -2,7 +2,6 @@
 #include "bench/scenario/frf_machine_reader.h"
 
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
 #include "bench/measured/frf_identification.h"
