@@ -12,19 +12,10 @@
 
 #include "bench/scenario/scenario_loader.h"
 #include "bench/run/run_scenario.h"
+#include "tests/support/shipped_scenarios.h"
 
 namespace shapebench::bench {
 namespace {
-
-std::vector<std::string> GoldenScenarios() {
-  const std::string top = SHAPEBENCH_SOURCE_DIR;
-  std::vector<std::string> files = {top + "/configs/demo.yaml"};
-  for (const auto& entry : std::filesystem::directory_iterator(top + "/configs/scenarios")) {
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // The names of the metrics (both tables) a run defines.
 std::set<std::string> Defined(const Metrics& m) {
@@ -73,13 +64,13 @@ std::string ScenarioName(const ::testing::TestParamInfo<std::string>& info) {
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Golden, SamplerGuard, ::testing::ValuesIn(GoldenScenarios()), ScenarioName);
+INSTANTIATE_TEST_SUITE_P(Golden, SamplerGuard, ::testing::ValuesIn(testing::ShippedScenarios()), ScenarioName);
 
 // Tests that the golden scenarios exercise every sampler (the guard above is not empty
 // for any of them) and that a run takes the fastest that qualifies by default.
 TEST(SamplerGuard, GoldenScenariosExerciseEverySampler) {
   std::set<SamplerKind> taken;
-  for (const std::string& file : GoldenScenarios()) {
+  for (const std::string& file : testing::ShippedScenarios()) {
     const Scenario scenario = LoadScenario(file, {});
     for (const SamplerKind kind : kAllSamplers) {
       if (RunWith(scenario, kind).sampler == kind) taken.insert(kind);

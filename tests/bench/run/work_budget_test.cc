@@ -14,19 +14,10 @@
 #include "bench/scenario/scenario_loader.h"
 #include "model/integrator.h"
 #include "model/modal_identification.h"
+#include "tests/support/shipped_scenarios.h"
 
 namespace shapebench::bench {
 namespace {
-
-std::vector<std::string> ShippedScenarios() {
-  const std::string top = SHAPEBENCH_SOURCE_DIR;
-  std::vector<std::string> files = {top + "/configs/demo.yaml"};
-  for (const auto& entry : std::filesystem::directory_iterator(top + "/configs/scenarios")) {
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // Tests that the default limits.max_work admits every shipped scenario ten times over, with
 // and without a trace (the general sampler then steps the whole tail), and a 2-hour program
@@ -36,7 +27,7 @@ TEST(WorkBudget, DefaultAdmitsTenTimesTheCostliestShippedRun) {
   double per_period = 0.0;
   std::string which;
   std::string densest;
-  for (const std::string& file : ShippedScenarios()) {
+  for (const std::string& file : testing::ShippedScenarios()) {
     const Scenario scenario = LoadScenario(file, {});
     EXPECT_EQ(scenario.limits.max_work, kDefaultMaxWork);
     for (const bool trace : {false, true}) {
