@@ -17,7 +17,7 @@ using testing::ReadText;
 using testing::RunCli;
 using testing::ScratchDir;
 
-bool Has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool Says(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // Tests that a run over its work budget stops with exit 3 saying what it did, the limit and
 // the key that raises it, on CVODE and on the exact path, and that the same run fits a
@@ -31,9 +31,9 @@ TEST(WorkLimit, RunOverBudgetExits3NamingTheLimit) {
     EXPECT_EQ(over.exit_code, 3) << method << over.err;
     EXPECT_EQ(over.err.rfind("error: solver failed: WORK_LIMIT: scenario 'sdof_method1' stopped at t = ", 0), 0u)
         << over.err;
-    EXPECT_TRUE(Has(over.err, "units of work, more than limits.max_work (4350): ")) << over.err;
-    EXPECT_TRUE(Has(over.err, " output samples")) << over.err;
-    EXPECT_TRUE(Has(over.err, "raise limits.max_work (e.g. --set limits.max_work=100000) to run it on")) << over.err;
+    EXPECT_TRUE(Says(over.err, "units of work, more than limits.max_work (4350): ")) << over.err;
+    EXPECT_TRUE(Says(over.err, " output samples")) << over.err;
+    EXPECT_TRUE(Says(over.err, "raise limits.max_work (e.g. --set limits.max_work=100000) to run it on")) << over.err;
     const CliResult within = RunCli({"run", scenario, "--set", std::string("integrator.method=") + method, "--set",
                                      "integrator.cross_check=off", "--set", "limits.max_work=2000000"},
                                     kSourceDir);
@@ -42,10 +42,10 @@ TEST(WorkLimit, RunOverBudgetExits3NamingTheLimit) {
   const CliResult cvode = RunCli({"run", scenario, "--set", "integrator.method=cvode", "--set",
                                   "integrator.cross_check=off", "--set", "limits.max_work=4350"},
                                  kSourceDir);
-  EXPECT_TRUE(Has(cvode.err, "CVODE steps and right-hand-side evaluations")) << cvode.err;
+  EXPECT_TRUE(Says(cvode.err, "CVODE steps and right-hand-side evaluations")) << cvode.err;
   const CliResult zero = RunCli({"run", scenario, "--set", "limits.max_work=0"}, kSourceDir);
   EXPECT_EQ(zero.exit_code, 2) << zero.err;
-  EXPECT_TRUE(Has(zero.err, "--set:1:1: limits.max_work: must be >= 1")) << zero.err;
+  EXPECT_TRUE(Says(zero.err, "--set:1:1: limits.max_work: must be >= 1")) << zero.err;
 }
 
 // Tests that limits.max_wall_s (off by default) stops a run past it with exit 3 naming the
@@ -56,14 +56,14 @@ TEST(WorkLimit, WallClockLimitStopsARunPastIt) {
   EXPECT_EQ(over.exit_code, 3) << over.err;
   EXPECT_EQ(over.err.rfind("error: solver failed: WALL_LIMIT: scenario 'sdof_method1' stopped at t = ", 0), 0u)
       << over.err;
-  EXPECT_TRUE(Has(over.err, "s of wall-clock time, more than limits.max_wall_s (1e-09 s): this host's speed and "
+  EXPECT_TRUE(Says(over.err, "s of wall-clock time, more than limits.max_wall_s (1e-09 s): this host's speed and "
                             "load decided it (limits.max_work is the same everywhere); raise limits.max_wall_s, or "
                             "set it to 0 (no limit), to run it on\n"))
       << over.err;
   EXPECT_EQ(RunCli({"run", scenario, "--set", "limits.max_wall_s=0"}, kSourceDir).exit_code, 0);
   const CliResult bad = RunCli({"run", scenario, "--set", "limits.max_wall_s=-1"}, kSourceDir);
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  EXPECT_TRUE(Has(bad.err, "--set:1:1: limits.max_wall_s: must be >= 0 s (0: no wall-clock limit)")) << bad.err;
+  EXPECT_TRUE(Says(bad.err, "--set:1:1: limits.max_wall_s: must be >= 0 s (0: no wall-clock limit)")) << bad.err;
 }
 
 // Tests that a run whose least work (periods x (output samples + the exact path's extremum
@@ -88,8 +88,8 @@ TEST(WorkLimit, EstimateRefusesBeforeStarting) {
   const CliResult samples = RunCli({"run", DataPath("sweeps/sdof_method1.yaml"), "--set", "limits.max_work=10"},
                                    kSourceDir);
   EXPECT_EQ(samples.exit_code, 3) << samples.err;
-  EXPECT_TRUE(Has(samples.err, "would do at least ")) << samples.err;
-  EXPECT_TRUE(Has(samples.err, "more than limits.max_work (10): ")) << samples.err;
+  EXPECT_TRUE(Says(samples.err, "would do at least ")) << samples.err;
+  EXPECT_TRUE(Says(samples.err, "more than limits.max_work (10): ")) << samples.err;
 }
 
 // Tests that a sweep point over its budget becomes an error row naming the limit while the
@@ -105,10 +105,10 @@ TEST(WorkLimit, SweepPointOverBudgetIsAnErrorRow) {
   const CliResult one = RunCli(args, kSourceDir);
   EXPECT_EQ(one.exit_code, 0) << one.err;
   const std::string rows = ReadText(dir.File("one/results.csv"));
-  EXPECT_TRUE(Has(rows, "error,\"solver failed: WORK_LIMIT: scenario 'sdof_method1' stopped at t = ")) << rows;
-  EXPECT_TRUE(Has(rows, "more than limits.max_work (4350): ")) << rows;
-  EXPECT_TRUE(Has(rows, "more than limits.max_work (4360): ")) << rows;
-  EXPECT_TRUE(Has(rows, ",ok,")) << rows;
+  EXPECT_TRUE(Says(rows, "error,\"solver failed: WORK_LIMIT: scenario 'sdof_method1' stopped at t = ")) << rows;
+  EXPECT_TRUE(Says(rows, "more than limits.max_work (4350): ")) << rows;
+  EXPECT_TRUE(Says(rows, "more than limits.max_work (4360): ")) << rows;
+  EXPECT_TRUE(Says(rows, ",ok,")) << rows;
   args = {"sweep", sweep, "--jobs", "2", "--out", dir.File("two")};
   args.insert(args.end(), cvode.begin(), cvode.end());
   const CliResult two = RunCli(args, kSourceDir);
@@ -125,20 +125,20 @@ TEST(WorkLimit, IdentifyOverBudgetExits3) {
   const std::string uff = "configs/measurements/column_y_accelerance.uff";
   const CliResult over = RunCli({"identify", uff, "--max-work", "1e6", "--out", dir.File("o")}, kSourceDir);
   EXPECT_EQ(over.exit_code, 3) << over.err;
-  EXPECT_TRUE(Has(over.err, "error: solver failed: WORK_LIMIT: " + uff + ": identifying 1 FRF of ")) << over.err;
-  EXPECT_TRUE(Has(over.err, " lines up to order 30 would take about ")) << over.err;
-  EXPECT_TRUE(Has(over.err, "more than --max-work (1e+06); nothing was fitted: raise --max-work (e.g. to ")) << over.err;
+  EXPECT_TRUE(Says(over.err, "error: solver failed: WORK_LIMIT: " + uff + ": identifying 1 FRF of ")) << over.err;
+  EXPECT_TRUE(Says(over.err, " lines up to order 30 would take about ")) << over.err;
+  EXPECT_TRUE(Says(over.err, "more than --max-work (1e+06); nothing was fitted: raise --max-work (e.g. to ")) << over.err;
   EXPECT_FALSE(std::filesystem::exists(dir.File("o/modes.json")));
   const CliResult bad = RunCli({"identify", uff, "--max-work", "0x10", "--out", dir.File("o")}, kSourceDir);
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  EXPECT_TRUE(Has(bad.err, "--max-work: expected a number >= 1")) << bad.err;
+  EXPECT_TRUE(Says(bad.err, "--max-work: expected a number >= 1")) << bad.err;
   const CliResult shipped = RunCli({"identify", uff, "--out", dir.File("o")}, kSourceDir);
   EXPECT_EQ(shipped.exit_code, 0) << shipped.err;
   // An frf_file machine's identification, bounded by its own key.
   const CliResult machine =
       RunCli({"run", "configs/scenarios/measured_frf.yaml", "--set", "machine.max_work=1000"}, kSourceDir);
   EXPECT_EQ(machine.exit_code, 3) << machine.err;
-  EXPECT_TRUE(Has(machine.err, "more than machine.max_work (1e+03); nothing was fitted: raise machine.max_work"))
+  EXPECT_TRUE(Says(machine.err, "more than machine.max_work (1e+03); nothing was fitted: raise machine.max_work"))
       << machine.err;
 }
 
