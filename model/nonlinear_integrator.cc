@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <variant>
 
@@ -94,11 +95,16 @@ NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, 
     probe_values_.assign(dynamics_.num_elements(), 0.0);
     probe_rates_.assign(dynamics_.num_elements(), 0.0);
   } else {
-    // Whole state: a following error e is integrated as the motor position e + u, whose
-    // rate s' = e' + v is exactly 0 while friction holds the motor (e = -u would take
-    // CVODE's rtol |u| into the tool position: issue 32). Split, e stays a correction.
+    // Whole state: a following error e and its rate e' are integrated as the motor's
+    // position e + u and velocity e' + v, exactly 0 while friction holds the motor (e = -u
+    // would take CVODE's rtol |u| into the tool position: issue 32). Split, e stays a
+    // correction.
     for (std::size_t i = 0; i < plant.following_error_axis.size(); ++i) {
-      if (plant.following_error_axis[i] >= 0) lags_.emplace_back(static_cast<int>(i), plant.following_error_axis[i]);
+      const int axis = plant.following_error_axis[i];
+      if (axis < 0) continue;
+      // e' (a velocity) as the motor's velocity e' + v, exactly 0 while the motor is held.
+      auto* kind = plant.linear.state_kinds[i] == StateKind::kVelocity ? &velocity_lags_ : &lags_;
+      kind->emplace_back(static_cast<int>(i), axis);
     }
     plant_y_.assign(dynamics_.size(), 0.0);
     if (!lags_.empty()) {
@@ -136,21 +142,27 @@ int NonlinearCvodeIntegrator::Rhs(double t, N_Vector y, N_Vector ydot, void* use
   self->dynamics_.Rhs(self->PlantY(t, state), rate);
   // (e + u)' = e' + v, v the drive velocity state.
   for (const auto& [i, axis] : self->lags_) rate[i] += state[self->num_states_ + axis];
+  for (const auto& [i, axis] : self->velocity_lags_) rate[i] += rate[self->num_states_ + axis];
   return 0;
 }
 
-// CVODE's weights rtol |y_i| + atol_i, but for a motor position e + u from |e|: the error
-// allowed on e stays what it was as a state of its own (rtol of a following error of
-// millimetres, not of the distance travelled). A held motor's position does not change at
-// all, so it keeps that exactly whatever the weight.
+// CVODE's weights rtol |y_i| + atol_i, but for a motor position s = e + u from the smaller
+// of |s| and |e|: a moving motor's e keeps the accuracy it had as a state of its own (rtol
+// of a following error of millimetres, not of the distance travelled), a held motor's
+// position that of a position near 0. The position's own rounding is always allowed (an e
+// of 0, full feedforward, has a 1e-20 m atol; 1e-17 of u is what a double holds: CVODE
+// would stop, too much accuracy requested).
 int NonlinearCvodeIntegrator::ErrorWeights(N_Vector y, N_Vector ewt, void* user_data) {
   auto* self = static_cast<NonlinearCvodeIntegrator*>(user_data);
   double t = 0.0;
   if (CVodeGetCurrentTime(self->memory_->cvode(), &t) < 0) return -1;  // the step's start
-  const double* state = self->PlantY(t, N_VGetArrayPointer(y));
+  const double* whole = N_VGetArrayPointer(y);
+  const double* state = self->PlantY(t, whole);
   double* weight = N_VGetArrayPointer(ewt);
   for (Eigen::Index i = 0; i < self->atol_.size(); ++i) {
-    const double allowed = self->rtol_ * std::abs(state[i]) + self->atol_(i);
+    const double rounding = 100.0 * std::numeric_limits<double>::epsilon() * std::abs(whole[i]);
+    const double size = std::min(std::abs(state[i]), std::abs(whole[i]));
+    const double allowed = self->rtol_ * size + self->atol_(i) + rounding;
     if (!(allowed > 0.0)) return -1;
     weight[i] = 1.0 / allowed;
   }
@@ -179,6 +191,7 @@ double NonlinearCvodeIntegrator::CommandAt(int axis, double t) const {
 
 void NonlinearCvodeIntegrator::ShiftFollowingErrors(double t, double sign, double* y) const {
   for (const auto& [i, axis] : lags_) y[i] += sign * CommandAt(axis, t);
+  for (const auto& [i, axis] : velocity_lags_) y[i] += sign * y[num_states_ + axis];
 }
 
 const double* NonlinearCvodeIntegrator::PlantY(double t, const double* y) {
@@ -206,6 +219,10 @@ int NonlinearCvodeIntegrator::LinSys(double t, N_Vector y, N_Vector /*fy*/, SUNM
   if (!jok) self->OffsetsAt(t);
   if (!jok) {
     self->dynamics_.Jacobian(self->PlantY(t, N_VGetArrayPointer(y)), self->jacobian_.data());
+    // In the shifted states (e' + v: column v less column e'; v' = a has no row to add).
+    for (const auto& [i, axis] : self->velocity_lags_) {
+      self->jacobian_.col(self->num_states_ + axis) -= self->jacobian_.col(i);
+    }
     for (const auto& [i, axis] : self->lags_) self->jacobian_(i, self->num_states_ + axis) += 1.0;
   }
   *jcur = jok ? SUNFALSE : SUNTRUE;

@@ -127,6 +127,7 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
 
   // Integrated as motor positions: (state, axis) per following error (whole state only).
   std::vector<std::pair<int, int>> lags_;
+  std::vector<std::pair<int, int>> velocity_lags_;  // (e' state, axis): integrated as e' + v
   double command_t_ = 0.0;              // when the held input last changed
   Eigen::VectorXd command_position_;    // per axis u then
   Eigen::VectorXd command_velocity_;    // per axis u' then

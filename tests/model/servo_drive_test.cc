@@ -340,12 +340,11 @@ TEST(ServoDrive, IdealFullFeedforwardIsKinematic) {
 // against 1000 N of Coulomb friction holds the motor still through a 200 mm move (the
 // repro of issue 32 item 16), so the motor, the command u plus the following error (the
 // tool-error row less the deflection row), stays at 0, and the structure, which sees no
-// motion, stays at rest. Before the motor position was integrated in place of e = -u,
-// CVODE's rtol 1e-8 on e put the motor 2 nm off (rtol x 200 mm). What is left is rounding:
-// the holding force cancels the velocity loop's integral, which winds up against the stuck
-// motor to ~1e8 m/s^2 over its 40 kg, and 1e-16 of that creeps the motor by picometres (4
-// measured): 10 pm is that room. The structure's 1e-10 m (1e-5 of its static 8 um) is
-// CVODE's room on it for the same rounding (40 pm measured).
+// motion, stays at rest. Before CVODE integrated the motor's position and velocity in place
+// of e = -u and e' = -v, its rtol 1e-8 on them put the motor 2 nm off (rtol x 200 mm).
+// 10 pm is rounding's room (the holding force, refined, cancels the velocity loop's
+// integral wound up to ~1e8 m/s^2 on the motor); the structure's 1e-10 m (1e-5 of its
+// static 8 um) is CVODE's room on it.
 TEST(ServoDrive, StuckDriveStaysAtTheStart) {
   MultiAxisMachineConfig machine;
   machine.axes[kY] = MovingColumnY();
