@@ -115,7 +115,7 @@ CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfi
       // elements' forces, which the split leaves to it.
       IntegratorConfig whole = c;
       whole.tuning.split_linear_part = false;
-      integrator = std::make_unique<NonlinearCvodeIntegrator>(NonlinearPlant{plant, {}}, whole, period_s, substeps,
+      integrator = std::make_unique<NonlinearCvodeIntegrator>(NonlinearPlant{plant, {}, {}}, whole, period_s, substeps,
                                                               scale_accel_m_s2, scale_velocity_m_s);
     } else {
       integrator = MakeIntegrator(plant, c, period_s, substeps, scale_accel_m_s2, scale_velocity_m_s);

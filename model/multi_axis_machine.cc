@@ -63,6 +63,17 @@ void AppendElements(const std::vector<NonlinearElement>& elements, int axis, int
   }
 }
 
+// Axis `axis`' following-error states (NonlinearPlant::following_error_axis) appended to
+// `out`, which covers the machine's states before the block; `out` stays empty while no
+// axis has any.
+void AppendFollowingErrors(const NonlinearPlant& block, int axis, int n, std::vector<int>* out) {
+  if (block.following_error_axis.empty() && out->empty()) return;
+  const int n0 = n - block.linear.num_states();
+  out->resize(n0, -1);
+  for (int lag : block.following_error_axis) out->push_back(lag < 0 ? -1 : axis);
+  out->resize(n, -1);
+}
+
 // Grows `plant` to n states (the new rows and columns zero), keeping its inputs (one per
 // axis) and output rows (kNumOutputRows).
 void GrowPlant(int n, LinearPlant* plant) {
@@ -277,6 +288,7 @@ MachinePlant BuildMachinePlant(const MultiAxisMachineConfig& machine, const Driv
       const NonlinearPlant block = BuildAxisPlant(structure, drive);
       const int n0 = plant.num_states();
       AppendAxis(block.linear, axis, &plant);
+      AppendFollowingErrors(block, axis, plant.num_states(), &result.following_error_axis);
       for (NonlinearElement& e : result.nonlinear) {  // earlier axes': the states grew
         e.row_x.conservativeResizeLike(Eigen::VectorXd::Zero(plant.num_states()));
         e.column_x.conservativeResizeLike(Eigen::VectorXd::Zero(plant.num_states()));

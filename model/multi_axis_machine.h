@@ -67,6 +67,8 @@ struct MachinePlant {
   // The nonlinear elements of every axis (friction, backlash, the servo's force limit:
   // docs/nonlinear.md) over plant's augmented state; empty for a linear machine.
   std::vector<NonlinearElement> nonlinear;
+  // NonlinearPlant::following_error_axis over plant's states (empty: no servo axis).
+  std::vector<int> following_error_axis;
   // Structural deflection per held commanded acceleration, entry (b, a): deflection along
   // b per m/s^2 along a. Diagonal for uncoupled axes; a coupled machine's cross terms off it.
   Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();

@@ -147,6 +147,26 @@ void NonlinearDynamics::Rhs(const double* y, double* ydot) {
     for (std::size_t k = 0; k < e.column.index.size(); ++k) ydot[e.column.index[k]] += e.column.value[k] * force_[i];
     if (e.bristle >= 0) ydot[nz_ + e.bristle] = rate_[i];
   }
+  if (!stuck_.empty()) RefineStuck(ydot);
+}
+
+// One step of iterative refinement of the holding forces, from the rates just summed: F*
+// cancels terms of the size of the loop's gains times its states (a servo's velocity
+// integral winding up against a stuck motor reaches 1e8 m/s^2 on it), whose rounding would
+// leave a stuck w' of 1e-8 m/s^2 and let a held motor creep by nanometres (issue 32).
+void NonlinearDynamics::RefineStuck(double* ydot) {
+  const int s = static_cast<int>(stuck_.size());
+  for (int a = 0; a < s; ++a) {
+    const int i = stuck_[a];
+    stuck_rhs_(a) = -(elements_[i].row.Dot(ydot) + offset_rate_[i]);
+  }
+  const Eigen::VectorXd f = s == 1 ? Eigen::VectorXd(stuck_rhs_ / coupling_(stuck_[0], stuck_[0]))
+                                   : Eigen::VectorXd(stuck_solver_.solve(stuck_rhs_));
+  for (int a = 0; a < s; ++a) {
+    const Element& e = elements_[stuck_[a]];
+    for (std::size_t k = 0; k < e.column.index.size(); ++k) ydot[e.column.index[k]] += e.column.value[k] * f(a);
+    force_[stuck_[a]] += f(a);
+  }
 }
 
 void NonlinearDynamics::Roots(const double* y, double* g) {

@@ -99,6 +99,8 @@ class NonlinearDynamics {
   // non-stuck element.
   double Force(const Element& e, double w, const double* y, double* dw, double* dzeta) const;
   void SolveStuck(const double* y);
+  // Corrects the stuck forces (and ydot) by the rate their rows still have in ydot.
+  void RefineStuck(double* ydot);
   // Gives every stuck element the impulse that makes its w 0 (jointly).
   void Project(double* y);
   // Releases stuck elements whose holding force exceeds F_s until the stuck set holds.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <variant>
 
@@ -93,6 +94,24 @@ NonlinearCvodeIntegrator::NonlinearCvodeIntegrator(const NonlinearPlant& plant, 
     Check(CVodeSetDeltaGammaMaxLSetup(mem, 1.0), "CVodeSetDeltaGammaMaxLSetup");
     probe_values_.assign(dynamics_.num_elements(), 0.0);
     probe_rates_.assign(dynamics_.num_elements(), 0.0);
+  } else {
+    // Whole state: a following error e and its rate e' are integrated as the motor's
+    // position e + u and velocity e' + v, exactly 0 while friction holds the motor (e = -u
+    // would take CVODE's rtol |u| into the tool position: issue 32). Split, e stays a
+    // correction.
+    for (std::size_t i = 0; i < plant.following_error_axis.size(); ++i) {
+      const int axis = plant.following_error_axis[i];
+      if (axis < 0) continue;
+      // e' (a velocity) as the motor's velocity e' + v, exactly 0 while the motor is held.
+      auto* kind = plant.linear.state_kinds[i] == StateKind::kVelocity ? &velocity_lags_ : &lags_;
+      kind->emplace_back(static_cast<int>(i), axis);
+    }
+    plant_y_.assign(dynamics_.size(), 0.0);
+    if (!lags_.empty()) {
+      rtol_ = config.rtol;
+      atol_ = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(memory_->atol()), dynamics_.size());
+      Check(CVodeWFtolerances(mem, ErrorWeights), "CVodeWFtolerances");
+    }
   }
   Reset(Eigen::VectorXd::Zero(num_inputs_));
 }
@@ -118,14 +137,42 @@ Eigen::VectorXd NonlinearCvodeIntegrator::AbsoluteTolerances(const NonlinearPlan
 int NonlinearCvodeIntegrator::Rhs(double t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* self = static_cast<NonlinearCvodeIntegrator*>(user_data);
   self->OffsetsAt(t);
-  self->dynamics_.Rhs(N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  const double* state = N_VGetArrayPointer(y);
+  double* rate = N_VGetArrayPointer(ydot);
+  self->dynamics_.Rhs(self->PlantY(t, state), rate);
+  // (e + u)' = e' + v, v the drive velocity state.
+  for (const auto& [i, axis] : self->lags_) rate[i] += state[self->num_states_ + axis];
+  for (const auto& [i, axis] : self->velocity_lags_) rate[i] += rate[self->num_states_ + axis];
+  return 0;
+}
+
+// CVODE's weights rtol |y_i| + atol_i, but for a motor position s = e + u from the smaller
+// of |s| and |e|: a moving motor's e keeps the accuracy it had as a state of its own (rtol
+// of a following error of millimetres, not of the distance travelled), a held motor's
+// position that of a position near 0. The position's own rounding is always allowed (an e
+// of 0, full feedforward, has a 1e-20 m atol; 1e-17 of u is what a double holds: CVODE
+// would stop, too much accuracy requested).
+int NonlinearCvodeIntegrator::ErrorWeights(N_Vector y, N_Vector ewt, void* user_data) {
+  auto* self = static_cast<NonlinearCvodeIntegrator*>(user_data);
+  double t = 0.0;
+  if (CVodeGetCurrentTime(self->memory_->cvode(), &t) < 0) return -1;  // the step's start
+  const double* whole = N_VGetArrayPointer(y);
+  const double* state = self->PlantY(t, whole);
+  double* weight = N_VGetArrayPointer(ewt);
+  for (Eigen::Index i = 0; i < self->atol_.size(); ++i) {
+    const double rounding = 100.0 * std::numeric_limits<double>::epsilon() * std::abs(whole[i]);
+    const double size = std::min(std::abs(state[i]), std::abs(whole[i]));
+    const double allowed = self->rtol_ * size + self->atol_(i) + rounding;
+    if (!(allowed > 0.0)) return -1;
+    weight[i] = 1.0 / allowed;
+  }
   return 0;
 }
 
 int NonlinearCvodeIntegrator::RootFn(double t, N_Vector y, double* gout, void* user_data) {
   auto* self = static_cast<NonlinearCvodeIntegrator*>(user_data);
   self->OffsetsAt(t);
-  self->dynamics_.Roots(N_VGetArrayPointer(y), gout);
+  self->dynamics_.Roots(self->PlantY(t, N_VGetArrayPointer(y)), gout);
   return 0;
 }
 
@@ -135,6 +182,23 @@ void NonlinearCvodeIntegrator::OffsetsAt(double t, bool with_rates) {
   particular_->Probe(t - TickStart(), probe_values_.data(),
                      with_rates || dynamics_.ReadsRates() ? probe_rates_.data() : nullptr);
   dynamics_.SetOffsets(probe_values_.data(), probe_rates_.data());
+}
+
+double NonlinearCvodeIntegrator::CommandAt(int axis, double t) const {
+  const double tau = t - command_t_;
+  return command_position_(axis) + tau * (command_velocity_(axis) + 0.5 * tau * accel_(axis));
+}
+
+void NonlinearCvodeIntegrator::ShiftFollowingErrors(double t, double sign, double* y) const {
+  for (const auto& [i, axis] : lags_) y[i] += sign * CommandAt(axis, t);
+  for (const auto& [i, axis] : velocity_lags_) y[i] += sign * y[num_states_ + axis];
+}
+
+const double* NonlinearCvodeIntegrator::PlantY(double t, const double* y) {
+  if (lags_.empty()) return y;
+  std::copy(y, y + plant_y_.size(), plant_y_.begin());
+  ShiftFollowingErrors(t, -1.0, plant_y_.data());
+  return plant_y_.data();
 }
 
 void NonlinearCvodeIntegrator::SyncParticular(long tick) {
@@ -153,7 +217,14 @@ int NonlinearCvodeIntegrator::LinSys(double t, N_Vector y, N_Vector /*fy*/, SUNM
                                      N_Vector /*tmp2*/, N_Vector /*tmp3*/) {
   auto* self = static_cast<NonlinearCvodeIntegrator*>(user_data);
   if (!jok) self->OffsetsAt(t);
-  if (!jok) self->dynamics_.Jacobian(N_VGetArrayPointer(y), self->jacobian_.data());
+  if (!jok) {
+    self->dynamics_.Jacobian(self->PlantY(t, N_VGetArrayPointer(y)), self->jacobian_.data());
+    // In the shifted states (e' + v: column v less column e'; v' = a has no row to add).
+    for (const auto& [i, axis] : self->velocity_lags_) {
+      self->jacobian_.col(self->num_states_ + axis) -= self->jacobian_.col(i);
+    }
+    for (const auto& [i, axis] : self->lags_) self->jacobian_(i, self->num_states_ + axis) += 1.0;
+  }
   *jcur = jok ? SUNFALSE : SUNTRUE;
   const Eigen::Index n = self->jacobian_.rows();
   Eigen::Map<Eigen::MatrixXd> m(SUNDenseMatrix_Data(a), n, n);
@@ -191,9 +262,12 @@ void NonlinearCvodeIntegrator::Reset(const Eigen::VectorXd& drive_velocity) {
   } else {
     std::copy(drive_velocity.data(), drive_velocity.data() + num_inputs_, y + num_states_);
   }
+  command_t_ = 0.0;
+  command_position_ = Eigen::VectorXd::Zero(num_inputs_);
+  command_velocity_ = drive_velocity;
   count_ = 0;
   events_ = 0;
-  dynamics_.InitModes(y);
+  dynamics_.InitModes(y);  // e = s = 0: the same in either form
   Check(CVodeReInit(memory_->cvode(), 0.0, memory_->y()), "CVodeReInit");
   stop_set_ = false;
   finished_ = {};
@@ -224,6 +298,12 @@ void NonlinearCvodeIntegrator::ApplyInput(const double* drive_accel) {
   const Eigen::Map<const Eigen::VectorXd> accel(drive_accel, num_inputs_);
   if (particular_) SyncParticular(count_ / substeps_);  // under the input held so far
   if (accel == accel_) return;
+  if (!lags_.empty()) {  // the command so far, before the new input takes over
+    const double t = Time();
+    for (int axis = 0; axis < num_inputs_; ++axis) command_position_(axis) = CommandAt(axis, t);
+    command_velocity_ += (t - command_t_) * accel_;
+    command_t_ = t;
+  }
   if (particular_) {
     // The jump goes into z_p; e's equation has no forcing. Only a stuck element's holding
     // force jumps with the input (its rate offset): it may break loose.
@@ -246,7 +326,7 @@ void NonlinearCvodeIntegrator::ApplyInput(const double* drive_accel) {
   accel_ = accel;
   dynamics_.SetForcing(B_z_ * accel_);
   // The new forcing may break a stuck element loose (its holding force jumps with it).
-  const bool modes = dynamics_.ReleaseOverloaded(N_VGetArrayPointer(memory_->y()));
+  const bool modes = dynamics_.ReleaseOverloaded(PlantY(Time(), N_VGetArrayPointer(memory_->y())));
   if (!small || modes) need_reinit_ = true;
 }
 
@@ -339,7 +419,10 @@ void NonlinearCvodeIntegrator::ApplyEvent(N_Vector state, long* events) {
   ++events_;
   if (state != memory_->y()) N_VScale(1.0, state, memory_->y());
   OffsetsAt(event_s_, true);  // the modes may change: a new stuck element reads its rate
-  dynamics_.HandleRoots(roots_found_.data(), N_VGetArrayPointer(memory_->y()));
+  double* y = N_VGetArrayPointer(memory_->y());
+  ShiftFollowingErrors(event_s_, -1.0, y);  // the impulses act on the plant's state
+  dynamics_.HandleRoots(roots_found_.data(), y);
+  ShiftFollowingErrors(event_s_, 1.0, y);
   RestartAt(event_s_);
 }
 
@@ -372,7 +455,7 @@ void NonlinearCvodeIntegrator::AdvancePeriod(const double* drive_accel, long sam
       all_outputs_.setZero();
     }
     // C y over C's entries that are not 0 (an axis' rows read that axis' states).
-    const double* y = N_VGetArrayPointer(memory_->y());
+    const double* y = PlantY(Time(), N_VGetArrayPointer(memory_->y()));
     for (const OutputEntry& c : c_entries_) all_outputs_(c.row) += c.value * y[c.column];
     WriteSelected(all_outputs_.data(), outputs + static_cast<std::ptrdiff_t>(j) * width);
   }
@@ -383,7 +466,8 @@ Eigen::VectorXd NonlinearCvodeIntegrator::Output() const {
 }
 
 Eigen::VectorXd NonlinearCvodeIntegrator::PlantState() const {
-  const Eigen::Map<const Eigen::VectorXd> e(N_VGetArrayPointer(memory_->y()), num_states_);
+  Eigen::VectorXd e = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(memory_->y()), num_states_);
+  ShiftFollowingErrors(Time(), -1.0, e.data());
   return particular_ ? Eigen::VectorXd(e + ParticularState()) : Eigen::VectorXd(e);
 }
 

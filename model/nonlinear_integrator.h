@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -66,6 +67,7 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
  private:
   static int Rhs(double t, N_Vector y, N_Vector ydot, void* user_data);
   static int RootFn(double t, N_Vector y, double* gout, void* user_data);
+  static int ErrorWeights(N_Vector y, N_Vector ewt, void* user_data);
   static int LinSys(double t, N_Vector y, N_Vector fy, SUNMatrix a, booleantype jok, booleantype* jcur,
                     double gamma, void* user_data, N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
   static void RecordError(int code, const char* module, const char* function, char* msg, void* user_data);
@@ -86,6 +88,13 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   int CallCvode(double t_out, N_Vector out, int mode, double* t_reached);
   static bool OnSubstepEnd(double t_out, double t);
   void Check(int flag, const char* call) const;
+  // The motor-position states (NonlinearPlant::following_error_axis): the commanded
+  // position at t (the held input integrated exactly from the last change), and CVODE's
+  // state y turned into the plant's (e = s - u) in place, or back (`sign` -1, +1).
+  double CommandAt(int axis, double t) const;
+  void ShiftFollowingErrors(double t, double sign, double* y) const;
+  // CVODE's state at t as the plant's (a scratch copy; y itself without such states).
+  const double* PlantY(double t, const double* y);
   Eigen::VectorXd AbsoluteTolerances(const NonlinearPlant& plant, const IntegratorConfig& config,
                                      double scale_accel_m_s2, double scale_velocity_m_s) const;
 
@@ -119,6 +128,16 @@ class NonlinearCvodeIntegrator final : public PlantIntegrator {
   // Split mode (null without it): the linear part's response and the tick it starts.
   std::unique_ptr<HeldInputResponse> particular_;
   long particular_tick_ = 0;
+
+  // Integrated as motor positions: (state, axis) per following error (whole state only).
+  std::vector<std::pair<int, int>> lags_;
+  std::vector<std::pair<int, int>> velocity_lags_;  // (e' state, axis): integrated as e' + v
+  double command_t_ = 0.0;              // when the held input last changed
+  Eigen::VectorXd command_position_;    // per axis u then
+  Eigen::VectorXd command_velocity_;    // per axis u' then
+  std::vector<double> plant_y_;         // scratch: PlantY
+  double rtol_ = 0.0;                   // ErrorWeights
+  Eigen::VectorXd atol_;
 
   std::vector<double> probe_values_;
   std::vector<double> probe_rates_;

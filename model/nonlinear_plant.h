@@ -38,6 +38,13 @@ struct NonlinearElement {
 struct NonlinearPlant {
   LinearPlant linear;  // backlash springs included as linear springs, friction left out
   std::vector<NonlinearElement> elements;
+  // Per state of `linear`: the input (axis) whose command the state is taken relative to
+  // (a servo's following error e = s - u, and its rate e' = s' - v, a velocity state:
+  // servo_drive.h), -1 for the others; empty: none. The nonlinear integrator integrates
+  // the motor's position e + u and velocity e' + v in their place: a motor held by friction
+  // or a force limit then keeps states of exactly 0, where e = -u, e' = -v would carry
+  // CVODE's relative error rtol |u| into the tool's position.
+  std::vector<int> following_error_axis;
   bool IsLinear() const { return elements.empty(); }
 };
 

@@ -253,6 +253,12 @@ NonlinearPlant BuildServoAxis(const MachineConfig* structure, const ServoConfig&
   ServoCoupling c;
   NonlinearPlant axis;
   axis.linear = BuildServoAxisModel(structure, servo, &c);
+  // e (the first servo state, after the structure's) lags the command: see nonlinear_plant.h.
+  const int num_states = axis.linear.num_states();
+  const int num_servo = servo.velocity_loop_hz == 0.0 ? 1 : 3;
+  axis.following_error_axis.assign(num_states, -1);
+  axis.following_error_axis[num_states - num_servo] = 0;
+  if (num_servo == 3) axis.following_error_axis[num_states - 2] = 0;  // e', a velocity
   if (structure != nullptr) {
     for (NonlinearElement& e : BuildStructureElements(*structure)) {
       axis.elements.push_back(OnServoAxis(std::move(e), c));

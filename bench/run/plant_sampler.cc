@@ -65,7 +65,7 @@ void PlantSampler::SetUpPlant() {
     CrossCheckCvode(plant, scale_accel);
     if (nonlinear_) {
       // CVODE with events; its free response is read sample by sample (TrackFreeResponse).
-      integrator_ = model::MakePlantIntegrator({plant, integrated_.nonlinear}, integrator_config_, dt_, substeps_,
+      integrator_ = model::MakePlantIntegrator({plant, integrated_.nonlinear, integrated_.following_error_axis}, integrator_config_, dt_, substeps_,
                                                scale_accel, samples_.max_speed_m_s);
     } else {
       integrator_ = model::MakeIntegrator(plant, integrator_config_, dt_, substeps_, scale_accel,

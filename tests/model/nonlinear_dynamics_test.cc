@@ -36,7 +36,7 @@ NonlinearPlant EveryKind(FrictionModel drive_friction) {
                           5.0, 0.0, 0.0};
   drive.servo.force_limit_n = 2000.0;
   const MachinePlant built = BuildMachinePlant(machine, drive);
-  return {built.plant, built.nonlinear};
+  return {built.plant, built.nonlinear, built.following_error_axis};
 }
 
 // Central differences of the right-hand side, column by column.

@@ -4,6 +4,7 @@
 #include "common/math_constants.h"
 #include "model/servo_drive.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@
 #include "common/validation_error.h"
 #include "model/integrator.h"
 #include "model/multi_axis_machine.h"
+#include "model/nonlinear_integrator.h"
 #include "tests/support/axes.h"
 
 namespace shapebench::model {
@@ -332,6 +334,51 @@ TEST(ServoDrive, IdealFullFeedforwardIsKinematic) {
     ASSERT_NEAR(ra.outputs[k](kToolErrorRow + kY), rb.outputs[k](kToolErrorRow + kY),
                 1e-9 * static_m);
   }
+}
+
+// Tests that a drive that never breaks free stays at its start: a force limit of 100 N
+// against 1000 N of Coulomb friction holds the motor still through a 200 mm move (the
+// repro of issue 32 item 16), so the motor, the command u plus the following error (the
+// tool-error row less the deflection row), stays at 0, and the structure, which sees no
+// motion, stays at rest. Before CVODE integrated the motor's position and velocity in place
+// of e = -u and e' = -v, its rtol 1e-8 on them put the motor 2 nm off (rtol x 200 mm).
+// 10 pm is rounding's room (the holding force, refined, cancels the velocity loop's
+// integral wound up to ~1e8 m/s^2 on the motor); the structure's 1e-10 m (1e-5 of its
+// static 8 um) is CVODE's room on it.
+TEST(ServoDrive, StuckDriveStaysAtTheStart) {
+  MultiAxisMachineConfig machine;
+  machine.axes[kY] = MovingColumnY();
+  DriveConfig drive = Servo(0.0, 200.0);
+  drive.servo.force_limit_n = 100.0;
+  drive.servo.friction.model = FrictionModel::kCoulomb;
+  drive.servo.friction.coulomb_n = 1000.0;
+  const MachinePlant built = BuildMachinePlant(machine, drive);
+  ASSERT_FALSE(built.nonlinear.empty());
+  const double dt = 1e-3, accel = 0.5 / 0.3;  // 30 m/min reached in 300 ms
+  const int substeps = 4;
+  auto integrator = MakePlantIntegrator({built.plant, built.nonlinear, built.following_error_axis},
+                                        IntegratorConfig{}, dt, substeps, accel, 0.5);
+  integrator->Reset(Eigen::VectorXd::Zero(kNumAxes));
+  std::vector<double> outputs(static_cast<std::size_t>(substeps) * kNumOutputRows);
+  double u = 0.0, v = 0.0, max_motor_m = 0.0, max_deflection_m = 0.0;
+  const double h = dt / substeps;
+  for (int tick = 0; tick < 800; ++tick) {  // 300 ms up, 100 ms at speed, 300 ms down, rest
+    Eigen::VectorXd input = Eigen::VectorXd::Zero(kNumAxes);
+    input(kY) = tick < 300 ? accel : tick < 400 ? 0.0 : tick < 700 ? -accel : 0.0;
+    integrator->AdvancePeriod(input.data(), 1, outputs.data());
+    for (int j = 0; j < substeps; ++j) {
+      u += h * (v + 0.5 * h * input(kY));
+      v += h * input(kY);
+      const double* out = &outputs[static_cast<std::size_t>(j) * kNumOutputRows];
+      max_motor_m = std::max(max_motor_m, std::abs(u + out[kToolErrorRow + kY] - out[kDeflectionRow + kY]));
+      max_deflection_m = std::max(max_deflection_m, std::abs(out[kDeflectionRow + kY]));
+    }
+  }
+  EXPECT_NEAR(u, 0.2, 1e-9);  // the command did move 200 mm
+  EXPECT_LE(max_motor_m, 1e-11);
+  EXPECT_LE(max_deflection_m, 1e-10);
+  const Eigen::VectorXd last = integrator->Output();  // PlantState's e as well
+  EXPECT_LE(std::abs(u + last(kToolErrorRow + kY) - last(kDeflectionRow + kY)), 1e-11);
 }
 
 // Tests that a velocity loop refuses a structure the rigid motion stretches (a damper from

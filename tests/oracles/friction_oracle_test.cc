@@ -52,7 +52,7 @@ NonlinearPlant BodyOnGround(const FrictionConfig& friction, double spring_n_m, d
   MultiAxisMachineConfig machine;
   machine.axes[kY] = MachineConfig{lumped};
   const MachinePlant built = BuildMachinePlant(machine, DriveConfig{});
-  return {built.plant, built.nonlinear};
+  return {built.plant, built.nonlinear, built.following_error_axis};
 }
 
 std::unique_ptr<PlantIntegrator> Integrator(const NonlinearPlant& plant, double period_s, int substeps = 1) {

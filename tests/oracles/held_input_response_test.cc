@@ -38,7 +38,7 @@ NonlinearPlant ColumnWithTip() {
   MultiAxisMachineConfig machine;
   machine.axes[kY] = MachineConfig{lumped};
   const MachinePlant built = BuildMachinePlant(machine, DriveConfig{});
-  return {built.plant, built.nonlinear};
+  return {built.plant, built.nonlinear, built.following_error_axis};
 }
 
 // z_p(tau) = [Phi(tau) z + Gamma(tau) a] from exp([[A_z, B_z a], [0, 0]] tau) applied to
