@@ -466,9 +466,12 @@ Eigen::VectorXd NonlinearCvodeIntegrator::Output() const {
 }
 
 Eigen::VectorXd NonlinearCvodeIntegrator::PlantState() const {
-  Eigen::VectorXd e = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(memory_->y()), num_states_);
-  ShiftFollowingErrors(Time(), -1.0, e.data());
-  return particular_ ? Eigen::VectorXd(e + ParticularState()) : Eigen::VectorXd(e);
+  // The whole of CVODE's state: a motor velocity is shifted by the integrated input v,
+  // stored after the plant's states (ShiftFollowingErrors reads it there).
+  Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(memory_->y()), dynamics_.size());
+  ShiftFollowingErrors(Time(), -1.0, y.data());
+  const Eigen::VectorXd e = y.head(num_states_);
+  return particular_ ? Eigen::VectorXd(e + ParticularState()) : e;
 }
 
 IntegratorStats NonlinearCvodeIntegrator::Stats() const {
