@@ -22,9 +22,7 @@ void WriteRowText(std::FILE* file, const std::string& text, const fs::path& path
 SweepRows::SweepRows(const fs::path& dir, const std::vector<std::string>& columns, std::future<ResumedRows>* ready,
                      Durability durability, const std::vector<std::uint64_t>& ahead_on_disk)
     : partial_path_(dir / kSweepPartialFile), ahead_path_(dir / kSweepAheadFile), header_(CsvRecord(columns)),
-      ready_(ready), durability_(durability), ahead_rows_(ahead_on_disk.begin(), ahead_on_disk.end()) {
-  flusher_ = std::thread([this] { FlushLoop(); });
-}
+      ready_(ready), durability_(durability), ahead_rows_(ahead_on_disk.begin(), ahead_on_disk.end()) {}
 
 SweepRows::~SweepRows() {
   StopFlusher();
@@ -79,6 +77,7 @@ void SweepRows::OpenIfReady() {
 void SweepRows::Add(std::uint64_t k, const std::string& row) {
   std::lock_guard<std::mutex> lock(mutex_);
   ThrowIfFailed();
+  StartFlusherIfDue();
   next_ = k + 1;
   if (!ahead_rows_.empty()) ahead_rows_.erase(k);
   if (partial_ == nullptr && !Prepared(false)) {
@@ -94,6 +93,7 @@ void SweepRows::Ahead(std::uint64_t k, const std::string& row) {
   std::lock_guard<std::mutex> lock(mutex_);
   ThrowIfFailed();
   if (k < next_ || ahead_rows_.count(k) > 0) return;  // its turn came, or written ahead already
+  StartFlusherIfDue();
   Prepared(true);
   if (ahead_ == nullptr) OpenAhead();
   WriteRowText(ahead_, row, ahead_path_);
@@ -104,6 +104,11 @@ void SweepRows::Ahead(std::uint64_t k, const std::string& row) {
 std::uint64_t SweepRows::WaitingAhead() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return ahead_rows_.size();
+}
+
+void SweepRows::StartFlusherIfDue() {
+  if (flusher_.joinable() || stopping_ || std::chrono::steady_clock::now() - started_ < kFlushEvery) return;
+  flusher_ = std::thread([this] { FlushLoop(); });  // it waits for mutex_, held here
 }
 
 void SweepRows::FlushLoop() {
