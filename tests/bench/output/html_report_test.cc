@@ -1,4 +1,5 @@
 // --report FILE.html (bench/output/html_report.h) through the CLI and its pieces.
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -88,8 +89,9 @@ TEST(HtmlReport, CheckReportShowsPassAndFail) {
   EXPECT_NE(failed.find("<p class=\"subtitle\">FAIL: "), std::string::npos);
 }
 
-// Tests that `sweep --report` has the ratio plot against the numeric key and every point's
-// row in the results table.
+// Tests that `sweep --report` draws the sweep's own plots (its `plots:`: residual_ratio
+// and peak_ratio by method, as its PNGs), lists the robust bands (bands.csv's rows) and
+// has every point's row in the results table.
 TEST(HtmlReport, SweepReportHasPlotAndTable) {
   ScratchDir dir;
   const CliResult r = RunCli({"sweep", "configs/sweeps/natural_period.yaml", "--jobs", "2", "--out",
@@ -97,11 +99,16 @@ TEST(HtmlReport, SweepReportHasPlotAndTable) {
                              kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = ReadText(dir.File("sweep.html"));
-  EXPECT_EQ(Count(html, "<svg"), 1u);
-  EXPECT_NE(html.find("<h2>Ratios against machine.modes[0].frequency_hz</h2>"), std::string::npos);
+  EXPECT_EQ(Count(html, "<svg"), 2u);
+  EXPECT_NE(html.find("<h2>residual_ratio-vs-frequency_hz-by-method.png</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>peak_ratio-vs-frequency_hz-by-method.png</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>Robust bands</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<th>contains_design</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>residual_ratio</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>motion_time_s [ms]</th>"), std::string::npos);
-  EXPECT_EQ(Count(html, "<tr>"), 1u + 603u);  // the header and 3 x 201 points
+  const std::string bands = ReadText(dir.File("out/bands.csv"));
+  const auto band_rows = static_cast<std::size_t>(std::count(bands.begin(), bands.end(), '\n'));  // with its header
+  EXPECT_EQ(Count(html, "<tr>"), band_rows + 1u + 603u);  // the bands, the header and 3 x 201 points
 }
 
 // Tests that `compare --report` shows both sides' metrics and the overlaid plot.

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/output/html_report.h"
 #include "bench/output/plot_labels.h"
 #include "bench/output/report.h"
 #include "bench/scenario/scenario.h"
@@ -110,7 +111,7 @@ TEST(PlotLegend, LinePlotDrawsRobustBands) {
   const std::string svg = SweepPlotSvg(layout, line, csv);
   const std::vector<std::string> written = WriteSweepPlots(dir.File(""), layout, csv);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
-  EXPECT_TRUE(HasText(svg, "robust bands <= 0.05 (strips)")) << svg;
+  EXPECT_TRUE(HasText(svg, "robust bands &lt;= 0.05 (strips)")) << svg;  // as SVG escapes it
   ASSERT_EQ(written.size(), 2u);
   EXPECT_EQ(testing::ReadText(written[1]),
             "metric,x,series,value,threshold,design,rank,from,to,contains_design\n"
