@@ -18,9 +18,9 @@ name: long_keys
 base: $top/configs/scenarios/sdof_method1.yaml
 grid:
   controller.pattern:
-    - "{method: zv, mode: both, frequency_hz: 25, design_damping_ratio: 0.02}"
-    - "{method: zvd, mode: both, frequency_hz: 25, design_damping_ratio: 0.02}"
-    - "{method: ei, mode: both, frequency_hz: 25, design_damping_ratio: 0.02, vibration_tolerance: 0.02}"
+    - {method: zv, mode: both, frequency_hz: 25, design_damping_ratio: 0.02}
+    - {method: zvd, mode: both, frequency_hz: 25, design_damping_ratio: 0.02}
+    - {method: ei, mode: both, frequency_hz: 25, design_damping_ratio: 0.02, vibration_tolerance: 0.02}
   machine.modes[0].damping_ratio: [0.02]
   machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 201}
 metrics: [residual_ratio, pattern_frequency_hz]
@@ -38,4 +38,4 @@ shot() {  # PAGE PNG HEIGHT
   echo "wrote $2"
 }
 shot "$work/sweep.html" "$top/docs/img/sweep_bands.png" 1150
-shot "$work/check.html" "$top/docs/img/check_sweep.png" 900
+shot "$work/check.html" "$top/docs/img/check_sweep.png" 320
