@@ -175,6 +175,10 @@ std::string RelativeText(const MetricChange& change) {
   return FormatPercent(change.relative_change);
 }
 
+std::string FavoursText(const MetricChange& change) {
+  return ChangeText(change) == "same" ? "same" : std::string(VerdictName(change.better));
+}
+
 std::string GateDetail(const Gate& gate, const MetricChange& change) {
   const std::string limit = " (gate " + FormatNumber(gate.max_worsening * 100.0) + "%)";
   if (std::isnan(change.baseline) || std::isnan(change.candidate)) {

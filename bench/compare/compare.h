@@ -88,6 +88,9 @@ std::string FormatPercent(double fraction);
 std::string ChangeText(const MetricChange& change);
 // The relative change a table shows: "same" within the noise floor, else FormatPercent.
 std::string RelativeText(const MetricChange& change);
+// The favours column of a table: "same" within the noise floor (the JSON keeps the exact
+// verdict), else VerdictName.
+std::string FavoursText(const MetricChange& change);
 // The largest |candidate - baseline| of `info` that is numerical noise, for these
 // values: the unit's absolute floor (1 pm, 1 ns, 1e-9 Hz or of a ratio, 1e-12 m/s^2; a
 // count or bool none) or 1e-9 of the larger magnitude, whichever is larger.

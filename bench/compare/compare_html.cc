@@ -17,7 +17,7 @@ HtmlTable ChangesTable(const ScenarioComparison& comparison) {
     const MetricInfo& info = *change.info;
     table.rows.push_back({std::string(info.name), EngineeringText(change.baseline, info.unit),
                           EngineeringText(change.candidate, info.unit), ChangeText(change),
-                          RelativeText(change), std::string(VerdictName(change.better))});
+                          RelativeText(change), FavoursText(change)});
   }
   return table;
 }

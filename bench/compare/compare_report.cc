@@ -120,7 +120,7 @@ void PrintComparison(std::ostream& out, const ScenarioComparison& comparison) {
     const MetricInfo& info = *change.info;
     rows.push_back({std::string(info.name), std::string(info.unit), std::string(BetterName(info.better)),
                     Value(info, change.baseline), Value(info, change.candidate), ChangeText(change),
-                    RelativeText(change), std::string(VerdictName(change.better))});
+                    RelativeText(change), FavoursText(change)});
   }
   PrintRows(out, rows);
   if (!comparison.gates.empty()) out << "\n";
