@@ -6,6 +6,7 @@
 
 #include "common/csv.h"
 #include "common/ends_with.h"
+#include "bench/output/json_number.h"
 #include "bench/output/report.h"
 #include "bench/scenario/metrics.h"
 #include "bench/sweep/sweep_slice.h"
@@ -143,6 +144,24 @@ std::string BandsCsv(const std::vector<SeriesBands>& bands) {
     }
   }
   return csv;
+}
+
+std::string BandsJson(const std::vector<SeriesBands>& bands) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const SeriesBands& series : bands) {
+    nlohmann::ordered_json intervals = nlohmann::ordered_json::array();
+    for (const RobustBand& band : series.bands) {
+      intervals.push_back({{"from", band.from}, {"to", band.to}, {"contains_design", band.contains_design}});
+    }
+    all.push_back({{"metric", series.spec.metric},
+                   {"x", series.spec.x},
+                   {"series", series.spec.series},
+                   {"value", series.series_value},
+                   {"threshold", series.spec.threshold},
+                   {"design", JsonNumber(series.design)},
+                   {"intervals", intervals}});
+  }
+  return nlohmann::ordered_json{{"bands", all}}.dump(2) + "\n";
 }
 
 std::vector<std::string> BandsSummary(const std::vector<SeriesBands>& bands) {

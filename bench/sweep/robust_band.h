@@ -66,6 +66,10 @@ class BandTally {
 // per band (rank 1 the first named), a series with none one row with empty from and to.
 std::string BandsCsv(const std::vector<SeriesBands>& bands);
 
+// bands.json: {"bands": [{metric, x, series, value, threshold, design (null when
+// unknown), "intervals": [{from, to, contains_design}, ...] in bands.csv's order}, ...]}.
+std::string BandsJson(const std::vector<SeriesBands>& bands);
+
 // "residual_ratio <= 0.05: method=zvd 23.1 to 27.4 (holds the design 25); ..." per spec.
 std::vector<std::string> BandsSummary(const std::vector<SeriesBands>& bands);
 

@@ -471,6 +471,10 @@ std::vector<std::string> WriteSweepPlots(const std::string& out_dir, const Sweep
     const std::string csv = BandsCsv(bands);
     WriteFileAtomically(path, [&](std::ostream& out) { out << csv; });
     written.push_back(path);
+    const std::string json_path = (std::filesystem::path(out_dir) / "bands.json").string();
+    const std::string json = BandsJson(bands);
+    WriteFileAtomically(json_path, [&](std::ostream& out) { out << json; });
+    written.push_back(json_path);
   }
   return written;
 }

@@ -19,7 +19,7 @@ namespace shapebench::bench {
 bool LogMetricAxis(const SweepPlot& plot, const std::vector<double>& values);
 
 // Draws every plot of `layout` from `results_csv` into `out_dir`, the robust bands on
-// the line plots, and writes bands.csv when the layout has bands; returns the paths
+// the line plots, and writes bands.csv and bands.json when the layout has bands; returns the paths
 // written. Throws std::runtime_error when gnuplot is missing or fails.
 std::vector<std::string> WriteSweepPlots(const std::string& out_dir, const SweepLayout& layout,
                                          const std::string& results_csv);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "bench/output/html_report.h"
 #include "bench/output/plot_labels.h"
@@ -97,7 +98,7 @@ TEST(PlotLegend, SweepPlotsNameSeriesByWhatDiffers) {
 }
 
 // Tests that the line plot draws each series' robust band as a strip and names it in the
-// legend with its threshold, and that bands.csv is written beside the PNGs.
+// legend with its threshold, and that bands.csv and bands.json are written beside the PNGs.
 TEST(PlotLegend, LinePlotDrawsRobustBands) {
   const ScratchDir dir;
   const std::string csv = LongKeyResults(dir);
@@ -112,7 +113,15 @@ TEST(PlotLegend, LinePlotDrawsRobustBands) {
   const std::vector<std::string> written = WriteSweepPlots(dir.File(""), layout, csv);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
   EXPECT_TRUE(HasText(svg, "robust bands &lt;= 0.05 (strips)")) << svg;  // as SVG escapes it
-  ASSERT_EQ(written.size(), 2u);
+  ASSERT_EQ(written.size(), 3u);
+  const nlohmann::json json = nlohmann::json::parse(testing::ReadText(written[2]));
+  ASSERT_EQ(json.at("bands").size(), 3u);
+  EXPECT_EQ(json["bands"][0]["value"], kPatterns[0]);
+  EXPECT_EQ(json["bands"][0]["threshold"], 0.05);
+  EXPECT_TRUE(json["bands"][0]["design"].is_null());
+  EXPECT_EQ(json["bands"][0]["intervals"][0]["from"], 22.5);
+  EXPECT_EQ(json["bands"][0]["intervals"][0]["to"], 27.5);
+  EXPECT_EQ(json["bands"][0]["intervals"][0]["contains_design"], false);
   EXPECT_EQ(testing::ReadText(written[1]),
             "metric,x,series,value,threshold,design,rank,from,to,contains_design\n"
             "residual_ratio,machine.modes[0].frequency_hz,controller.pattern,\"" + kPatterns[0] +
