@@ -1,5 +1,6 @@
 // `shapebench sweep SWEEP.yaml`: a grid of scenarios into an output directory
 // (bench/sweep/sweep.h, bench/sweep/sweep_runner.h): results.csv, plots, --report.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "bench/cli/commands.h"
 #include "bench/output/output_path.h"
 #include "bench/sweep/distribute.h"
+#include "bench/sweep/robust_band.h"
 #include "bench/sweep/slurm_array.h"
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_files.h"
@@ -59,6 +61,15 @@ void PrintSweepSummary(const Sweep& sweep, const SweepRunOptions& options, const
   PrintWrote(std::cout, {(std::filesystem::path(summary.results).parent_path() / kSweepManifestFile).string(),
                         summary.results});
   PrintWrote(std::cout, summary.plots);
+  // The robust bands, when this run drew them (an unsharded, complete sweep: bands.csv).
+  const bool bands = std::any_of(summary.plots.begin(), summary.plots.end(), [](const std::string& path) {
+    return std::filesystem::path(path).filename() == "bands.csv";
+  });
+  if (bands) {
+    for (const std::string& line : BandsSummary(SweepBands(SweepLayout::Of(sweep), summary.results))) {
+      std::cout << Safe(line) << "\n";
+    }
+  }
   std::cout.flush();
 }
 

@@ -150,6 +150,35 @@ std::string FormatPercent(double fraction) {
   return text;
 }
 
+double NoiseFloor(const MetricInfo& info, double baseline, double candidate) {
+  double floor = 0.0;
+  if (info.unit == "m") floor = 1e-12;
+  if (info.unit == "s") floor = 1e-9;
+  if (info.unit == "Hz" || info.unit == "1") floor = 1e-9;
+  if (info.unit == "m/s^2") floor = 1e-12;
+  if (info.unit == "count" || info.is_bool()) return 0.0;
+  return std::max(floor, 1e-9 * std::max(std::fabs(baseline), std::fabs(candidate)));
+}
+
+std::string ChangeText(const MetricChange& change) {
+  if (std::isnan(change.change)) return "n/a";
+  if (std::fabs(change.change) <= NoiseFloor(*change.info, change.baseline, change.candidate)) return "same";
+  const std::string text = EngineeringText(change.change, change.info->shown_unit());
+  return change.change > 0.0 ? "+" + text : text;
+}
+
+std::string RelativeText(const MetricChange& change) {
+  if (!std::isnan(change.change) &&
+      std::fabs(change.change) <= NoiseFloor(*change.info, change.baseline, change.candidate)) {
+    return "same";
+  }
+  return FormatPercent(change.relative_change);
+}
+
+std::string FavoursText(const MetricChange& change) {
+  return ChangeText(change) == "same" ? "same" : std::string(VerdictName(change.better));
+}
+
 std::string GateDetail(const Gate& gate, const MetricChange& change) {
   const std::string limit = " (gate " + FormatNumber(gate.max_worsening * 100.0) + "%)";
   if (std::isnan(change.baseline) || std::isnan(change.candidate)) {

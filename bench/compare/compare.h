@@ -82,4 +82,18 @@ std::string GateDetail(const Gate& gate, const MetricChange& change);
 // "-99.56%", "0%"; "n/a" for NaN.
 std::string FormatPercent(double fraction);
 
+// The change a table shows: "same" when |change| is within the metric's noise floor
+// (NoiseFloor: rounding, not a change), else the signed change in engineering units
+// ("+87.0475 um"); n/a when undefined.
+std::string ChangeText(const MetricChange& change);
+// The relative change a table shows: "same" within the noise floor, else FormatPercent.
+std::string RelativeText(const MetricChange& change);
+// The favours column of a table: "same" within the noise floor (the JSON keeps the exact
+// verdict), else VerdictName.
+std::string FavoursText(const MetricChange& change);
+// The largest |candidate - baseline| of `info` that is numerical noise, for these
+// values: the unit's absolute floor (1 pm, 1 ns, 1e-9 Hz or of a ratio, 1e-12 m/s^2; a
+// count or bool none) or 1e-9 of the larger magnitude, whichever is larger.
+double NoiseFloor(const MetricInfo& info, double baseline, double candidate);
+
 }  // namespace shapebench::bench

@@ -16,8 +16,8 @@ HtmlTable ChangesTable(const ScenarioComparison& comparison) {
   for (const MetricChange& change : comparison.changes) {
     const MetricInfo& info = *change.info;
     table.rows.push_back({std::string(info.name), EngineeringText(change.baseline, info.unit),
-                          EngineeringText(change.candidate, info.unit), EngineeringText(change.change, info.unit),
-                          FormatPercent(change.relative_change), std::string(VerdictName(change.better))});
+                          EngineeringText(change.candidate, info.unit), ChangeText(change),
+                          RelativeText(change), FavoursText(change)});
   }
   return table;
 }

@@ -1,5 +1,7 @@
 #include "bench/compare/compare_report.h"
 
+#include "common/format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -37,17 +39,10 @@ void PrintRows(std::ostream& out, const std::vector<TableRow>& rows) {
   }
 }
 
-std::string Number(double value, bool sign = false) {
-  if (std::isnan(value)) return "n/a";
-  if (sign && value == 0.0) return "0";
-  char text[32];
-  std::snprintf(text, sizeof text, sign ? "%+.6g" : "%.6g", value);
-  return text;
-}
-
+// In engineering units: "87.0475 um", "726 ms", "0.0123".
 std::string Value(const MetricInfo& info, double value) {
   if (info.is_bool() && !std::isnan(value)) return value != 0.0 ? "true" : "false";
-  return Number(value);
+  return EngineeringText(value, info.shown_unit());
 }
 
 Json JsonValue(const MetricInfo& info, double value) {
@@ -124,8 +119,8 @@ void PrintComparison(std::ostream& out, const ScenarioComparison& comparison) {
   for (const MetricChange& change : comparison.changes) {
     const MetricInfo& info = *change.info;
     rows.push_back({std::string(info.name), std::string(info.unit), std::string(BetterName(info.better)),
-                    Value(info, change.baseline), Value(info, change.candidate), Number(change.change, true),
-                    FormatPercent(change.relative_change), std::string(VerdictName(change.better))});
+                    Value(info, change.baseline), Value(info, change.candidate), ChangeText(change),
+                    RelativeText(change), FavoursText(change)});
   }
   PrintRows(out, rows);
   if (!comparison.gates.empty()) out << "\n";
@@ -185,8 +180,8 @@ void PrintComparison(std::ostream& out, const SweepComparison& comparison) {
     if (summary.has_worst) {
       const MetricChange& worst = summary.worst.change;
       row.insert(row.end(),
-                 {Value(info, worst.baseline), Value(info, worst.candidate), Number(worst.change, true),
-                  FormatPercent(worst.relative_change), summary.worst.label});
+                 {Value(info, worst.baseline), Value(info, worst.candidate), ChangeText(worst),
+                  RelativeText(worst), summary.worst.label});
     } else {
       row.insert(row.end(), {"n/a", "n/a", "n/a", "n/a", ""});
     }

@@ -6,6 +6,7 @@
 
 #include "bench/output/gnuplot.h"
 #include "bench/output/html_report.h"
+#include "bench/output/plot_labels.h"
 #include "bench/output/report.h"
 
 namespace shapebench::bench {
@@ -139,10 +140,15 @@ void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
   const auto colour = [](std::size_t r) { return kColours[r % 4]; };
   WriteFrame(gnuplot, output_path, title, svg);
   std::fprintf(gnuplot, "set grid\n");
-  // The legend names files and --set options: one entry a line in a strip under the plot.
+  // The legend names files and --set options: one entry a line in a strip under the plot,
+  // a long one cut there and written whole in the caption under it.
+  std::vector<std::string> titles;
+  for (const OverlaidRun& run : runs) titles.push_back(run.title);
+  const FittedLegend legend = FitLegend(titles, titles, 110);
+  const std::size_t caption_rows = WriteCaption(gnuplot, legend.caption, 600);
   std::fprintf(gnuplot,
-               "set bmargin %zu\nset key at screen 0.5, screen 0.02 center bottom vertical Left reverse box\n",
-               5 + 2 * runs.size());
+               "set bmargin %zu\nset key at screen 0.5, screen %.6f center bottom vertical Left reverse box\n",
+               5 + 2 * runs.size() + caption_rows, CaptionHeight(caption_rows, 600) + 0.02);
   double end_s = 0.0;
   bool rigid = true;
   for (std::size_t r = 0; r < runs.size(); ++r) {
@@ -161,7 +167,7 @@ void WriteOverlayScript(std::FILE* gnuplot, const std::string& output_path,
   std::string plot;
   for (std::size_t r = 0; r < runs.size(); ++r) {
     plot += (plot.empty() ? "plot " : ", \\\n     ") + std::string("$run") + std::to_string(r) +
-            " using 1:2 with lines lw 1.5 lc rgb '" + colour(r) + "' title " + GnuplotQuoted(runs[r].title);
+            " using 1:2 with lines lw 1.5 lc rgb '" + colour(r) + "' title " + GnuplotQuoted(legend.titles[r]);
   }
   plot += ", \\\n     NaN with lines dt 3 lc rgb '#888888' "
           "title 'end of commanded motion (dotted, in the run''s colour)'";

@@ -108,6 +108,38 @@ std::vector<XySeries> SweepSeries(const SweepHtmlData& data, const std::string& 
   return series;
 }
 
+// A sweep's check results: per check one line (points passing, the bound, the worst
+// value and where), then the failing points in a closed <details> table.
+void SweepCheckSummary(const std::vector<CheckResult>& results, HtmlSection* section) {
+  std::vector<std::string> metrics;
+  for (const CheckResult& result : results) {
+    if (std::find(metrics.begin(), metrics.end(), result.metric) == metrics.end()) metrics.push_back(result.metric);
+  }
+  section->details.header = {"point", "check", "value", "bound", "why"};
+  for (const std::string& metric : metrics) {
+    std::size_t total = 0;
+    std::size_t passing = 0;
+    const CheckResult* worst = nullptr;
+    for (const CheckResult& result : results) {
+      if (result.metric != metric) continue;
+      ++total;
+      passing += result.passed ? 1 : 0;
+      if (!result.passed) {
+        section->details.rows.push_back({result.point, metric, result.value_text, result.bound, result.message});
+        // The worst: the largest value above a max, the smallest below a min.
+        const bool above = result.message.rfind("above", 0) == 0;
+        if (worst == nullptr || (above ? result.value > worst->value : result.value < worst->value)) worst = &result;
+      }
+    }
+    std::string text = metric + ": " + std::to_string(passing) + " of " + std::to_string(total) + " points pass";
+    if (worst != nullptr) text += " (" + worst->bound + "); worst " + worst->value_text + " @ " + worst->point;
+    section->checks.push_back({passing == total, text});
+  }
+  section->details_summary =
+      std::to_string(section->details.rows.size()) + " failing point-checks (click to list them)";
+  if (section->details.rows.empty()) section->details.header.clear();
+}
+
 }  // namespace
 
 std::string EffectiveScenarioYaml(const std::string& path, const std::vector<Override>& overrides) {
@@ -180,10 +212,14 @@ HtmlReport CheckHtmlReport(const std::vector<ScenarioCheckReport>& reports) {
       section.checks.push_back({false, "error @ " + point + ": " + message});
       ++errors;
     }
-    for (const HtmlCheck& check : HtmlChecks(file.results)) {
-      section.checks.push_back(check);
-      ++(check.passed ? passed : failed);
+    const bool sweep = std::any_of(file.results.begin(), file.results.end(),
+                                   [](const CheckResult& result) { return !result.point.empty(); });
+    if (sweep) {
+      SweepCheckSummary(file.results, &section);  // a line per check, the failures folded
+    } else {
+      section.checks = HtmlChecks(file.results);
     }
+    for (const CheckResult& result : file.results) ++(result.passed ? passed : failed);
     report.sections.push_back(section);
   }
   const bool ok = failed == 0 && errors == 0;
@@ -197,8 +233,23 @@ HtmlReport SweepHtmlReport(const SweepHtmlData& data) {
   HtmlReport report;
   report.title = "shapebench sweep: " + data.name;
   report.subtitle = data.file + ": " + std::to_string(data.rows.size()) + " points";
+  for (const auto& [heading, svg] : data.plots) {  // the sweep's own plots, as its PNGs
+    HtmlSection plot;
+    plot.heading = heading;
+    plot.svg = svg;
+    report.sections.push_back(plot);
+  }
+  if (!data.bands.header.empty()) {
+    HtmlSection bands;
+    bands.heading = "Robust bands";
+    bands.note = "Per series, the intervals of the swept key where the metric stays at or below the threshold "
+                 "(the check's max, band_threshold: or its 5% level); rank 1 holds the design frequency when one "
+                 "does (bands.csv).";
+    bands.table = data.bands;
+    report.sections.push_back(bands);
+  }
   const std::string x_key = NumericKey(data);
-  const std::vector<XySeries> series = SweepSeries(data, x_key);
+  const std::vector<XySeries> series = data.plots.empty() ? SweepSeries(data, x_key) : std::vector<XySeries>{};
   if (!series.empty()) {
     HtmlSection plot;
     plot.heading = "Ratios against " + x_key;

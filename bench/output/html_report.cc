@@ -64,6 +64,11 @@ void RenderSection(std::ostream& out, const HtmlSection& section) {
     }
     out << "</ul>\n";
   }
+  if (!section.details.header.empty()) {
+    out << "<details>\n<summary>" << HtmlEscape(section.details_summary) << "</summary>\n";
+    RenderTable(out, section.details);
+    out << "</details>\n";
+  }
   if (!section.svg.empty()) out << "<div class=\"plot\">\n" << section.svg << "\n</div>\n";
   if (!section.preformatted.empty()) out << "<pre>" << HtmlEscape(section.preformatted) << "</pre>\n";
   out << "</section>\n";

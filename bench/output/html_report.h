@@ -37,6 +37,10 @@ struct HtmlSection {
   HtmlTable table;            // shown when it has a header
   std::vector<HtmlCheck> checks;
   std::string svg;            // an <svg> element from gnuplot (ours, inlined as is)
+  // A collapsible table (<details>, closed) under `details_summary`, after the checks: a
+  // sweep's failing points, which may be hundreds.
+  std::string details_summary;
+  HtmlTable details;
   std::string preformatted;   // verbatim text (the effective scenario's YAML)
 };
 
@@ -97,6 +101,10 @@ struct SweepHtmlData {
   std::vector<std::string> keys;     // the swept keys (the first is the plots' x)
   std::vector<std::string> columns;  // results.csv's header
   std::vector<std::vector<std::string>> rows;
+  // The sweep's own plots (its `plots:`, log scales, thresholds and robust bands), each
+  // (heading, inline <svg>); empty: a plot of every ratio against the first key.
+  std::vector<std::pair<std::string, std::string>> plots;
+  HtmlTable bands;  // bands.csv's rows (bench/sweep/robust_band.h); no header: none
   std::string base_yaml;  // the base scenario with the --set overrides applied
 };
 

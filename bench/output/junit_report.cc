@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/atomic_file.h"
+#include "common/csv.h"
 #include "bench/output/report.h"
 #include "common/format.h"
 
@@ -64,10 +65,12 @@ namespace {
 // A band check's worst value and where, as properties (for tools) and the sentence (for
 // people): "worst residual_ratio 0.061 at machine.modes[0].frequency_hz = 24.37 in [24, 26]".
 void WriteBandDetails(std::ostream& out, const CheckResult& result) {
+  // The shortest text that reads back as the same double: 18.15, not 18.149999999999999.
+  const auto number = [](double value) { return std::isfinite(value) ? ShortestDouble(value) : FormatValue(value, 17); };
   out << "      <properties>\n"
       << "        <property name=\"band_key\" value=\"" << XmlEscape(result.band_key) << "\"/>\n"
-      << "        <property name=\"worst_value\" value=\"" << FormatValue(result.value, 17) << "\"/>\n"
-      << "        <property name=\"worst_at\" value=\"" << FormatValue(result.worst_at, 17) << "\"/>\n"
+      << "        <property name=\"worst_value\" value=\"" << number(result.value) << "\"/>\n"
+      << "        <property name=\"worst_at\" value=\"" << number(result.worst_at) << "\"/>\n"
       << "        <property name=\"runs\" value=\"" << result.band_runs << "\"/>\n"
       << "      </properties>\n"
       << "      <system-out>" << XmlEscape(BandText(result)) << "</system-out>\n";

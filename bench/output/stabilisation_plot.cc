@@ -72,7 +72,12 @@ void WriteStabilisationPlot(const std::string& path_png, const IdentifiedFrfs& f
                  GnuplotQuoted(title).c_str());
     std::fprintf(gnuplot, "set tmargin 7\nset bmargin 6\nset rmargin 12\n");
     std::fprintf(gnuplot, "set xlabel 'frequency [Hz]'\nset ylabel 'model order [pole pairs]'\n");
-    std::fprintf(gnuplot, "set y2label %s\n", GnuplotQuoted("|H| [" + units + "], log").c_str());
+    // The right axis: |H| in the file's unit, ticks as 1e-08 rather than 0.00000001 (which
+    // pushed the label off the page).
+    std::fprintf(gnuplot, "set y2label %s\n",
+                 GnuplotQuoted("|H| [" + (units.empty() ? std::string("no unit in the file") : units) + "], log scale")
+                     .c_str());
+    std::fprintf(gnuplot, "set format y2 '%%g'\n");
     std::fprintf(gnuplot, "set xrange [%.10g:%.10g]\nset yrange [0:%d]\n", id.frequency_hz.front(),
                  id.frequency_hz.back(), id.max_order + 1);
     std::fprintf(gnuplot, "set logscale y2\nset y2tics\nset ytics nomirror\nset grid xtics ytics\n");

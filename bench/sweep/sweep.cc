@@ -37,7 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kSweepKeys = {"name",   "base",    "grid", "metrics", "plots",
-                                             "checks", "samples", "seed", "design"};
+                                             "checks", "samples", "seed", "design", "band_threshold"};
 
 std::string WithThousands(std::uint64_t n) {
   std::string digits = std::to_string(n);
@@ -227,6 +227,12 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
     if (sweep.sampling) sweep.plots = DefaultCdfPlots(sweep.plots, sweep.axes, sweep.sample_axis);
   }
   if (const auto checks = top.Child("checks")) ReadSweepChecks(*checks, &sweep);
+  if (const auto level = top.Child("band_threshold")) {
+    double value = 0.0;
+    top.Read("band_threshold", &value);
+    if (!(value > 0.0)) throw level->Error("expected a number > 0 (the level of the robust bands, e.g. 0.05)");
+    sweep.band_threshold = value;
+  }
   SetCdfLimits(&sweep);
 
   static std::atomic<std::uint64_t> next_id{1};

@@ -15,12 +15,16 @@
 #include "bench/scenario/checks.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/point_loop.h"
+#include "bench/sweep/robust_band.h"
 #include "bench/sweep/sweep_runner.h"
 #include "common/sample_math.h"
 #include "common/exit_codes.h"
 
 namespace shapebench::bench {
 namespace {
+
+// How many failing point-checks `check` of a sweep prints under its summary.
+constexpr std::uint64_t kShownFailures = 20;
 
 
 struct CheckTally {
@@ -179,6 +183,35 @@ class GateTally {
   std::vector<std::vector<std::vector<double>>> values_;  // [group][gate] the samples' values
 };
 
+// Per check: how many points pass, the bound, the worst value and its point.
+void PrintCheckSummary(std::ostream& out, const Sweep& sweep, const std::vector<CheckTally>& tallies,
+                       std::uint64_t failed_points, bool yield_gated) {
+  for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
+    const CheckTally& tally = tallies[c];
+    const std::uint64_t run = tally.passed + tally.failed;
+    const char* verdict = yield_gated ? "     " : tally.failed == 0 && failed_points == 0 ? "PASS " : "FAIL ";
+    out << verdict << sweep.file << " "
+        << sweep.checks[c].metric << ": " << tally.passed << " of " << sweep.points
+        << " points pass";
+    if (!tally.bound.empty()) out << " (" << tally.bound << ")";
+    if (failed_points > 0) out << ", " << failed_points << " failed to run";
+    if (run > 0) out << "; worst " << tally.worst_value << " @ " << tally.worst_point;
+    out << "\n";
+  }
+}
+
+// The robust bands, then the first failing point-checks (`failing` in all).
+void PrintBandsAndFailures(std::ostream& out, const std::vector<SeriesBands>& bands, std::uint64_t failing,
+                           const std::vector<std::string>& failing_lines) {
+  for (const std::string& line : BandsSummary(bands)) out << TerminalSafe(line, true) << "\n";
+  if (failing > 0) {
+    out << "failing points: " << (failing > kShownFailures ? "the first " + std::to_string(kShownFailures) + " of " : "")
+        << failing << " failing point-checks" << (failing > kShownFailures ? " (--junit and --json list every one)" : "")
+        << ":\n";
+    for (const std::string& line : failing_lines) out << line << "\n";
+  }
+}
+
 }  // namespace
 
 void ServeCheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs) {
@@ -203,6 +236,11 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
   const bool yield_gated = std::any_of(sweep.gates.begin(), sweep.gates.end(), [](const SampleGate& gate) {
     return gate.kind == SampleGate::Kind::kYield;
   });
+  BandTally bands(sweep);
+  // The failing point-checks are printed after the summary, the first kShownFailures of
+  // them (a sweep can fail hundreds; --junit and --json list every one).
+  std::vector<std::string> failing_lines;
+  std::uint64_t failing = 0;
   const PointCodec<TimedOutcome> codec{EncodeOutcome, DecodeOutcome};
   ForEachSweepPoint<TimedOutcome>(
       0, sweep.points, jobs, [&](std::uint64_t point) { return TimedRun(sweep, sets, point); },
@@ -218,6 +256,7 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
           gates.Add(point, outcome, false);
           return;
         }
+        bands.Add(point, outcome.metrics);
         std::vector<CheckResult> results = EvaluateChecks(sweep.checks, outcome.metrics);
         gates.Add(point, outcome, std::all_of(results.begin(), results.end(),
                                               [](const CheckResult& result) { return result.passed; }));
@@ -236,25 +275,15 @@ int CheckSweep(const Sweep& sweep, const std::vector<Override>& sets, int jobs,
           }
           if (yield_gated) continue;  // the yield's input, not a verdict of its own
           if (!result.passed) {
-            out << TerminalSafe(FormatCheckLine(sweep.file, result), true) << "\n";
+            if (failing++ < kShownFailures) failing_lines.push_back(TerminalSafe(FormatCheckLine(sweep.file, result), true));
             raise(kExitCheckFailed);
           }
           report->results.push_back(std::move(result));
         }
       },
       {}, &codec);
-  for (std::size_t c = 0; c < sweep.checks.size(); ++c) {
-    const CheckTally& tally = tallies[c];
-    const std::uint64_t run = tally.passed + tally.failed;
-    const char* verdict = yield_gated ? "     " : tally.failed == 0 && failed_points == 0 ? "PASS " : "FAIL ";
-    out << verdict << sweep.file << " "
-        << sweep.checks[c].metric << ": " << tally.passed << " of " << sweep.points
-        << " points pass";
-    if (!tally.bound.empty()) out << " (" << tally.bound << ")";
-    if (failed_points > 0) out << ", " << failed_points << " failed to run";
-    if (run > 0) out << "; worst " << tally.worst_value << " @ " << tally.worst_point;
-    out << "\n";
-  }
+  PrintCheckSummary(out, sweep, tallies, failed_points, yield_gated);
+  PrintBandsAndFailures(out, bands.Bands(), failing, failing_lines);
   for (CheckResult& result : gates.Results()) {
     out << TerminalSafe(FormatCheckLine(sweep.file, result), true) << "\n";
     if (!result.passed) raise(kExitCheckFailed);

@@ -85,6 +85,9 @@ struct Sweep {
   std::vector<SweepPlot> plots;
   std::vector<Check> checks;
   std::vector<SampleGate> gates;  // a sampled sweep's quantile and yield gates
+  // `band_threshold:`: the level of the robust bands of ratio metrics without a max check
+  // (bench/sweep/robust_band.h); nullopt: their 5% level.
+  std::optional<double> band_threshold;
   std::uint64_t points = 0;
   std::uint64_t id = 0;  // unique to this load of the sweep (RunPoint's shared commands)
   // The base scenario's participating modes (pattern_defaults.h): every point's pattern

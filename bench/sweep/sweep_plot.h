@@ -5,40 +5,12 @@
 // axes are held at their first value (the title says which).
 #pragma once
 
-#include <cstdint>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "bench/sweep/sweep.h"
+#include "bench/sweep/sweep_layout.h"
 
 namespace shapebench::bench {
-
-// What plotting needs to know about a sweep besides results.csv; kept in manifest.json.
-struct SweepLayout {
-  std::string name;
-  std::vector<std::string> keys;        // results.csv's key columns
-  std::vector<std::uint64_t> key_axis;  // the axis of each key
-  std::vector<bool> key_log;            // log-spaced range
-  std::vector<std::uint64_t> axis_sizes;
-  std::vector<std::string> metrics;     // results.csv's metric columns
-  std::vector<SweepPlot> plots;
-
-  static SweepLayout Of(const Sweep& sweep);
-  nlohmann::ordered_json ToJson() const;
-  static SweepLayout FromJson(const nlohmann::json& json);  // throws std::runtime_error
-};
-
-// The shortest dotted suffix of `key` that no other of `keys` ends with (whole
-// components): "frequency_hz" for machine.modes[0].frequency_hz unless another key ends
-// in frequency_hz, then "modes[0].frequency_hz".
-std::string ShortKey(const std::string& key, const std::vector<std::string>& keys);
-
-// The file name of a plot, each key by its ShortKey among the sweep's `keys`:
-// "residual_ratio-vs-frequency_hz-by-method.png", "peak_ratio-over-frequency_hz-and-
-// feed_mm_min.png"; characters other than [A-Za-z0-9._-] replaced by '_'.
-std::string SweepPlotFileName(const SweepPlot& plot, const std::vector<std::string>& keys);
 
 // Whether the metric's axis (a heat map's colour scale) is drawn in log: the plot's
 // `log:` when given; else for a ratio metric whose positive `values` span more than two
@@ -46,13 +18,13 @@ std::string SweepPlotFileName(const SweepPlot& plot, const std::vector<std::stri
 // Non-positive values are then left out (gaps).
 bool LogMetricAxis(const SweepPlot& plot, const std::vector<double>& values);
 
-// Draws every plot of `layout` from `results_csv` into `out_dir`; returns the PNG paths.
-// Throws std::runtime_error when gnuplot is missing or fails.
+// Draws every plot of `layout` from `results_csv` into `out_dir`, the robust bands on
+// the line plots, and writes bands.csv and bands.json when the layout has bands; returns the paths
+// written. Throws std::runtime_error when gnuplot is missing or fails.
 std::vector<std::string> WriteSweepPlots(const std::string& out_dir, const SweepLayout& layout,
                                          const std::string& results_csv);
 
-// The 5% level of a metric, or NaN when it has none: 0.05 for residual ratios, 1.05 for
-// peak_ratio.
-double FivePercentLevel(const std::string& metric);
+// One plot of `layout` as an SVG element (the HTML report, tests): the PNG's drawing.
+std::string SweepPlotSvg(const SweepLayout& layout, const SweepPlot& plot, const std::string& results_csv);
 
 }  // namespace shapebench::bench

@@ -46,7 +46,7 @@ TEST(CompareCli, GateFailsForTheWorseAndPassesForTheBetter) {
   std::size_t width = 0;
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   EXPECT_NE(better.out.find("motion_time_s" + std::string(width + 2 - 13, ' ') +
-                            "s      lower   0.7          0.74         +0.04"),
+                            "s      lower   700 ms      740 ms        +40 ms"),  // engineering units
             std::string::npos)
       << better.out;
 

@@ -39,6 +39,25 @@ std::string ErrorText(Call call) {
   return "";
 }
 
+// Tests that the tables show values and changes in engineering units and a change within
+// the metric's noise floor (rounding: 1e-14 relative, 0.1 pm) as "same", not as a change.
+TEST(CompareArithmetic, TablesShowEngineeringUnitsAndSameWithinNoise) {
+  MetricChange c = CompareMetric(Info("residual_amplitude_m"), 8.70475e-05, 8.70475e-05 * (1.0 + 1e-14));
+  EXPECT_EQ(ChangeText(c), "same");
+  EXPECT_EQ(RelativeText(c), "same");
+  c = CompareMetric(Info("stroke_overshoot_m"), 0.0, 1e-13);
+  EXPECT_EQ(ChangeText(c), "same");
+  c = CompareMetric(Info("residual_amplitude_m"), 8e-05, 9e-05);
+  EXPECT_EQ(ChangeText(c), "+10 um");
+  EXPECT_EQ(RelativeText(c), "+12.5%");
+  c = CompareMetric(Info("motion_time_s"), 0.726, 0.746);
+  EXPECT_EQ(ChangeText(c), "+20 ms");
+  c = CompareMetric(Info("peak_ratio"), 2.0, 1.5);
+  EXPECT_EQ(ChangeText(c), "-0.5");
+  c = CompareMetric(Info("peak_ratio"), NAN, 1.5);
+  EXPECT_EQ(ChangeText(c), "n/a");
+}
+
 // Tests that a change, its relative amount against max(|baseline|, the unit's floor), the
 // worsening and the verdict are what hand arithmetic gives: a ratio 2 -> 1.5 is -25%; a
 // length 4 um -> 5 um +25%; from 0 m to 0.5 nm +50% of the 1 nm floor; a settling time

@@ -1,4 +1,5 @@
 // --report FILE.html (bench/output/html_report.h) through the CLI and its pieces.
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -88,8 +89,9 @@ TEST(HtmlReport, CheckReportShowsPassAndFail) {
   EXPECT_NE(failed.find("<p class=\"subtitle\">FAIL: "), std::string::npos);
 }
 
-// Tests that `sweep --report` has the ratio plot against the numeric key and every point's
-// row in the results table.
+// Tests that `sweep --report` draws the sweep's own plots (its `plots:`: residual_ratio
+// and peak_ratio by method, as its PNGs), lists the robust bands (bands.csv's rows) and
+// has every point's row in the results table.
 TEST(HtmlReport, SweepReportHasPlotAndTable) {
   ScratchDir dir;
   const CliResult r = RunCli({"sweep", "configs/sweeps/natural_period.yaml", "--jobs", "2", "--out",
@@ -97,11 +99,40 @@ TEST(HtmlReport, SweepReportHasPlotAndTable) {
                              kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = ReadText(dir.File("sweep.html"));
-  EXPECT_EQ(Count(html, "<svg"), 1u);
-  EXPECT_NE(html.find("<h2>Ratios against machine.modes[0].frequency_hz</h2>"), std::string::npos);
+  EXPECT_EQ(Count(html, "<svg"), 2u);
+  EXPECT_NE(html.find("<h2>residual_ratio-vs-frequency_hz-by-method.png</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>peak_ratio-vs-frequency_hz-by-method.png</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<h2>Robust bands</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<th>contains_design</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>residual_ratio</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>motion_time_s [ms]</th>"), std::string::npos);
-  EXPECT_EQ(Count(html, "<tr>"), 1u + 603u);  // the header and 3 x 201 points
+  const std::string bands = ReadText(dir.File("out/bands.csv"));
+  const auto band_rows = static_cast<std::size_t>(std::count(bands.begin(), bands.end(), '\n'));  // with its header
+  EXPECT_EQ(Count(html, "<tr>"), band_rows + 1u + 603u);  // the bands, the header and 3 x 201 points
+}
+
+// Tests that `check` of a sweep whose every point fails summarises: on the terminal the
+// check's summary line and the robust bands first, then the first 20 failing point-checks
+// with their count stated (not 603 FAIL lines); in the report one line per check and the
+// failing points in a closed <details> table with a row each.
+TEST(HtmlReport, CheckOfASweepIsSummarised) {
+  ScratchDir dir;
+  const CliResult r = RunCli({"check", "configs/sweeps/natural_period.yaml", "--set", "controller.feed_mm_min=20000",
+                              "--report", dir.File("check.html")},
+                             kSourceDir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.out.rfind("FAIL configs/sweeps/natural_period.yaml motion_time_s: 0 of 603 points pass", 0), 0u) << r.out;
+  const std::size_t bands = r.out.find("\nrobust band residual_ratio <= 0.05 along machine.modes[0].frequency_hz:\n");
+  const std::size_t failing =
+      r.out.find("\nfailing points: the first 20 of 603 failing point-checks (--junit and --json list every one):\n");
+  ASSERT_NE(bands, std::string::npos) << r.out;
+  ASSERT_NE(failing, std::string::npos) << r.out;
+  EXPECT_LT(bands, failing);
+  EXPECT_EQ(Count(r.out.substr(failing), "\nFAIL "), 20u);
+  const std::string html = ReadText(dir.File("check.html"));
+  EXPECT_EQ(Count(html, "class=\"fail\">FAIL</span>"), 1u);
+  EXPECT_NE(html.find("<details>\n<summary>603 failing point-checks (click to list them)</summary>"), std::string::npos);
+  EXPECT_EQ(Count(html, "<tr>"), 1u + 603u);  // the details table's header and a row per failing point
 }
 
 // Tests that `compare --report` shows both sides' metrics and the overlaid plot.

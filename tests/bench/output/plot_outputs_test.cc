@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,23 @@ TEST(PlotOutputs, SingleAxisMoveHasNoPathPlot) {
   ASSERT_EQ(xy.exit_code, 0) << xy.err;
   EXPECT_EQ(PngDefect(dir.File("xy/path.png")), "");
   EXPECT_EQ(xy.err.find("no path.png"), std::string::npos) << xy.err;
+}
+
+// Tests that the stabilisation diagram of `identify --out` labels its right axis with the
+// FRF's unit and log scale and ticks it as 1e-08 (not 0.00000001, which pushed the label
+// off the page), and that gnuplot says nothing on stderr.
+TEST(PlotOutputs, StabilisationRightAxisHasItsUnit) {
+  ScratchDir dir;
+  const std::string path = ScriptCopyingGnuplot(dir);
+  const CliResult r = RunCli({"identify", "configs/measurements/column_y_accelerance.uff", "--out", dir.File("out")},
+                             kSourceDir, path);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(PngDefect(dir.File("out/stabilisation.png")), "");
+  const std::string script = ReadText(dir.File("scripts.gp"));
+  EXPECT_TRUE(std::regex_search(script, std::regex("set y2label '\\|H\\| \\[[^\\]]+\\], log scale'")))
+      << script.substr(0, 800);
+  EXPECT_NE(script.find("set format y2 '%g'"), std::string::npos);
+  EXPECT_EQ(r.err.find("arning"), std::string::npos) << r.err;
 }
 
 // Tests that `run --out` on a rigid machine (no states, deflection identically 0) writes

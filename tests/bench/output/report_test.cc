@@ -108,6 +108,25 @@ TEST(Report, JUnitCounts) {
             std::string::npos) << xml;
 }
 
+// Tests that a band check's JUnit properties carry the shortest text that reads back as
+// the same double ("18.15", not "18.149999999999999").
+TEST(Report, JUnitBandNumbersAreShortest) {
+  ScratchDir dir;
+  ScenarioCheckReport report{"a.yaml", "a", {}, "", 0.5, {}};
+  CheckResult band{"residual_ratio", 0.061, "0.061", "max 0.05", false, "above max 0.05", ""};
+  band.band_key = "machine.modes[0].frequency_hz";
+  band.band_from = 15.0;
+  band.band_to = 35.0;
+  band.worst_at = 18.15;
+  band.band_runs = 40;
+  report.results = {band};
+  const std::string path = dir.File("junit.xml");
+  WriteJUnit(path, {report});
+  const std::string xml = ReadText(path);
+  EXPECT_NE(xml.find("<property name=\"worst_at\" value=\"18.15\"/>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<property name=\"worst_value\" value=\"0.061\"/>"), std::string::npos) << xml;
+}
+
 // Tests that atomic writes leave only the final file, and nothing when writing fails.
 TEST(Report, AtomicWriteLeavesNoTemporaries) {
   ScratchDir dir;

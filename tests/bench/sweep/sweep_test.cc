@@ -16,6 +16,7 @@
 #include "bench/sweep/sweep.h"
 #include "bench/sweep/sweep_runner.h"
 #include "tests/support/bench_test_support.h"
+#include "bench/sweep/sweep_layout.h"
 #include "tests/support/sweep_file.h"
 
 namespace shapebench::bench {
@@ -135,6 +136,32 @@ struct ErrorCase {
   std::string message;  // a part of it
 };
 
+// Tests that the robust bands' threshold is a ratio metric's max check, else the sweep's
+// band_threshold:, else its 5% level; that a checked ratio metric not plotted gets a band
+// along the first line plot's keys, and a metric that is no ratio none.
+TEST(SweepBands, ThresholdFromCheckThenBandThresholdThenFivePercent) {
+  const std::string grid =
+      "grid:\n  controller.pattern.method: [none, 1]\n  machine.modes[0].frequency_hz: [20, 25, 30]\n"
+      "plots:\n  - {metric: residual_ratio, x: \"machine.modes[0].frequency_hz\", series: controller.pattern.method}\n"
+      "  - {metric: peak_ratio, x: \"machine.modes[0].frequency_hz\", series: controller.pattern.method}\n"
+      "  - {metric: motion_time_s, x: \"machine.modes[0].frequency_hz\"}\n";
+  const SweepFile plain(grid);
+  const std::vector<BandSpec> five = SweepLayout::Of(plain.Load()).bands;
+  ASSERT_EQ(five.size(), 2u);
+  EXPECT_EQ(five[0].metric, "residual_ratio");
+  EXPECT_EQ(five[0].series, "controller.pattern.method");
+  EXPECT_DOUBLE_EQ(five[0].threshold, 0.05);
+  EXPECT_DOUBLE_EQ(five[1].threshold, 1.05);
+  const SweepFile mixed(grid + "band_threshold: 0.02\nchecks: {peak_ratio: {max: 1.2}, cruise_residual_ratio: {max: 0.1}}\n");
+  const std::vector<BandSpec> bands = SweepLayout::Of(mixed.Load()).bands;
+  ASSERT_EQ(bands.size(), 3u);
+  EXPECT_DOUBLE_EQ(bands[0].threshold, 0.02);  // band_threshold: no check on residual_ratio
+  EXPECT_DOUBLE_EQ(bands[1].threshold, 1.2);   // the check's max
+  EXPECT_EQ(bands[2].metric, "cruise_residual_ratio");
+  EXPECT_EQ(bands[2].x, "machine.modes[0].frequency_hz");
+  EXPECT_DOUBLE_EQ(bands[2].threshold, 0.1);
+}
+
 // Tests that every error in a sweep file is a ConfigError at its FILE:LINE:COL with the
 // key path and a message that says what is allowed.
 TEST(SweepFileErrors, LocatedAtFileLineColumn) {
@@ -165,6 +192,8 @@ TEST(SweepFileErrors, LocatedAtFileLineColumn) {
        "plots:\n  - {metric: peak_ratio, x: controller.feed_mm_min, series: controller.accel_time_s}\n",
        7, 61, "plots[0].series", "moves with 'controller.feed_mm_min'"},
       {"not a key path", "grid:\n  controller..feed: [1]\n", 3, 3, "grid.controller..feed", "not a key path"},
+      {"band_threshold not above 0", "grid:\n  controller.feed_mm_min: [6000]\nband_threshold: -1\n", 4, 17,
+       "band_threshold", "expected a number > 0 (the level of the robust bands"},
       {"a scalar instead of values", "grid:\n  controller.feed_mm_min: 6000\n", 3, 27,
        "grid.controller.feed_mm_min", "expected a list of values [a, b, ...] or a range"},
       {"empty grid", "grid: {}\n", 2, 7, "grid", "expected at least one key"},
