@@ -289,6 +289,57 @@ double RefinementWork(int lines, int frfs, int modes) {
   return 50.0 * 2.0 * lines * frfs * unknowns * unknowns;
 }
 
+// The refinement may carry a pole past its neighbour: modes in ascending frequency again.
+void SortByFrequency(ModalModel* model, std::vector<IdentifiedMode>* modes) {
+  const std::size_t m = model->poles.size();
+  std::vector<std::size_t> order(m);
+  for (std::size_t r = 0; r < m; ++r) order[r] = r;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return std::abs(model->poles[a]) < std::abs(model->poles[b]); });
+  const ModalModel before = *model;
+  const std::vector<IdentifiedMode> modes_before = *modes;
+  for (std::size_t r = 0; r < m; ++r) {
+    model->poles[r] = before.poles[order[r]];
+    (*modes)[r] = modes_before[order[r]];
+    for (std::size_t o = 0; o < model->linear.size(); ++o) {
+      model->linear[o][2 * r] = before.linear[o][2 * order[r]];
+      model->linear[o][2 * r + 1] = before.linear[o][2 * order[r] + 1];
+    }
+  }
+}
+
+// Poles the diagram missed (AddMissedPoles); each mode keeps the diagram's metadata of
+// the mode nearest its pole, an added one its error drop.
+void AddMissed(const BandData& band, int derivative_order, const IdentificationOptions& options,
+               const std::vector<double>& x, ModalModel* model, ModalIdentification* result) {
+  if (options.max_added_modes <= 0) return;
+  const ModalModel before = *model;
+  const std::vector<double> drops =
+      AddMissedPoles(x, band.frfs, derivative_order, options.max_damping_ratio, options.min_prominence,
+                     options.min_error_drop, options.max_added_modes, model);
+  if (model->poles.size() == before.poles.size()) {
+    *model = before;  // nothing added: the refined model as it was
+    return;
+  }
+  result->refined = true;
+  std::vector<IdentifiedMode> modes;
+  for (std::size_t r = 0; r < model->poles.size(); ++r) {
+    IdentifiedMode mode;
+    if (drops[r] > 0.0 || before.poles.empty()) {
+      mode.error_drop = drops[r];
+    } else {
+      std::size_t nearest = 0;
+      for (std::size_t q = 1; q < before.poles.size(); ++q) {
+        if (std::abs(before.poles[q] - model->poles[r]) < std::abs(before.poles[nearest] - model->poles[r])) nearest = q;
+      }
+      mode = result->modes[nearest];
+    }
+    mode.prominence = Prominence(x, band.frfs, derivative_order, *model, r);
+    modes.push_back(mode);
+  }
+  result->modes = std::move(modes);
+}
+
 // The picked modes fitted to the band: LSFD, the hidden ones dropped, the rest refined by
 // nonlinear least squares (then checked again), in normalised units (model/modal_refinement.h).
 ModalModel FitModes(const BandData& band, int derivative_order, const IdentificationOptions& options,
@@ -314,6 +365,8 @@ ModalModel FitModes(const BandData& band, int derivative_order, const Identifica
   if (model.poles.size() != before && result->refined) {
     RefineModalModel(x, band.frfs, derivative_order, options.max_damping_ratio, x_lo, x_hi, &model);
   }
+  AddMissed(band, derivative_order, options, x, &model, result);
+  SortByFrequency(&model, &result->modes);
   return model;
 }
 
@@ -377,6 +430,7 @@ void IdentificationOptions::validate() const {
   }
   if (!(max_work >= 1.0)) throw ValidationError("max_work", "must be >= 1");
   if (!(min_prominence >= 0.0 && min_prominence < 1.0)) throw ValidationError("min_prominence", "must be in [0, 1)");
+  if (!(min_error_drop > 0.0 && min_error_drop < 1.0)) throw ValidationError("min_error_drop", "must be in (0, 1)");
 }
 
 namespace {
@@ -384,7 +438,9 @@ namespace {
 // A fit whose error or modes are not numbers (lines 1e-300 Hz apart: the LSCF basis
 // degenerates) is refused rather than reported as "fit error -nan %" with exit 0.
 void RequireFinite(const ModalIdentification& result) {
-  bool finite = std::isfinite(result.fit_error_percent);
+  // The lower residual's term LR / w^2 at the lowest line must be a number too.
+  const double w_lo = kTwoPi * result.frequency_hz.front();
+  bool finite = std::isfinite(result.fit_error_percent) && std::isfinite(1.0 / (w_lo * w_lo));
   for (const IdentifiedMode& mode : result.modes) {
     finite = finite && std::isfinite(mode.frequency_hz) && std::isfinite(mode.damping_ratio);
     for (const Complex& c : mode.modal_constants) finite = finite && std::isfinite(c.real()) && std::isfinite(c.imag());

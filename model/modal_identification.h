@@ -53,6 +53,11 @@ struct IdentificationOptions {
   // Poles and residues refined together by nonlinear least squares on the FRFs after
   // LSFD (model/modal_refinement.h).
   bool refine = true;
+  // After the refinement, poles the diagram missed are added while one lowers the squared
+  // error by this fraction at least and shows in the data (AddMissedPoles), at most
+  // max_added_modes of them.
+  double min_error_drop = 0.1;
+  int max_added_modes = 5;
   // The most work the fit may take, in multiply-adds estimated from its sizes before it
   // starts (IdentificationWork); beyond, SolverError("WORK_LIMIT") naming max_work_key,
   // the option or key that sets it. Counted, never timed: the same verdict on every host.
@@ -87,6 +92,9 @@ struct IdentifiedMode {
   std::vector<std::complex<double>> modal_constants;  // R_r, one per FRF (receptance)
   int stable_orders = 0;  // the orders its cluster has a stable pole at
   double prominence = 0.0;  // IdentificationOptions::min_prominence's measure, after the fit
+  // 0 for a mode of the diagram; for one the diagram missed (model/modal_refinement.h,
+  // AddMissedPoles), the fraction of the squared error its addition removed.
+  double error_drop = 0.0;
 };
 
 // A cluster of stable poles that PickModes found and the data did not show: its pole from

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
@@ -198,6 +199,87 @@ bool RefineModalModel(const std::vector<double>& x, const std::vector<std::vecto
   if (!(after <= before) || !Physical(refined, max_damping_ratio, x_lo, x_hi)) return false;
   *model = std::move(refined);
   return true;
+}
+
+namespace {
+
+// `model` with `poles` as its poles, fitted; its squared error, or infinity when a pole is
+// not physical or does not show in the data.
+double Candidate(const std::vector<double>& x, const std::vector<std::vector<Complex>>& data, int d,
+                 double max_damping_ratio, double min_prominence, std::vector<Complex> poles, ModalModel* model) {
+  std::sort(poles.begin(), poles.end(), [](Complex a, Complex b) { return std::abs(a) < std::abs(b); });
+  model->poles = std::move(poles);
+  FitLinear(x, data, d, model);
+  RefineModalModel(x, data, d, max_damping_ratio, x.front(), x.back(), model);
+  for (std::size_t r = 0; r < model->poles.size(); ++r) {
+    if (Prominence(x, data, d, *model, r) < min_prominence) return std::numeric_limits<double>::infinity();
+  }
+  return Physical(*model, max_damping_ratio, x.front(), x.back()) ? SquaredError(x, data, d, *model)
+                                                                  : std::numeric_limits<double>::infinity();
+}
+
+Complex PoleAt(double x, double zeta) { return {-zeta * x, x * std::sqrt(1.0 - zeta * zeta)}; }
+
+}  // namespace
+
+std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vector<std::vector<Complex>>& data, int d,
+                                   double max_damping_ratio, double min_prominence, double min_drop, int max_added,
+                                   ModalModel* model) {
+  std::vector<double> drops(model->poles.size(), 0.0);
+  double energy = 0.0;
+  for (const auto& frf : data) {
+    for (const Complex& h : frf) energy += std::norm(h);
+  }
+  for (int added = 0; added < max_added; ++added) {
+    const double error = SquaredError(x, data, d, *model);
+    if (!(error > 1e-8 * energy)) break;  // fitted to 0.01 %: nothing is missing
+    std::vector<std::vector<Complex>> candidates;
+    for (std::size_t r = 0; r < model->poles.size(); ++r) {
+      const Complex mu = model->poles[r];
+      const double zeta = -mu.real() / std::abs(mu);
+      const double delta = std::max(zeta, 0.005);
+      std::vector<Complex> poles = model->poles;
+      poles[r] = PoleAt(std::abs(mu) * (1.0 - delta), zeta);
+      poles.push_back(PoleAt(std::abs(mu) * (1.0 + delta), zeta));
+      candidates.push_back(poles);
+    }
+    std::size_t worst = 0;
+    double largest = -1.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      double misfit = 0.0;
+      for (std::size_t o = 0; o < data.size(); ++o) misfit += std::norm(ModelValue(*model, o, x[k], d) - data[o][k]);
+      if (misfit > largest) largest = misfit, worst = k;
+    }
+    candidates.push_back(model->poles);
+    candidates.back().push_back(PoleAt(x[worst], 0.01));
+    ModalModel best;
+    double best_error = std::numeric_limits<double>::infinity();
+    for (const std::vector<Complex>& poles : candidates) {
+      ModalModel trial = *model;
+      const double trial_error = Candidate(x, data, d, max_damping_ratio, min_prominence, poles, &trial);
+      if (trial_error < best_error) best_error = trial_error, best = std::move(trial);
+    }
+    if (!(best_error < (1.0 - min_drop) * error)) break;
+    // The new pole is the one of `best` farthest from every pole of `model`.
+    std::size_t fresh = 0;
+    double farthest = -1.0;
+    for (std::size_t r = 0; r < best.poles.size(); ++r) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Complex& old : model->poles) nearest = std::min(nearest, std::abs(best.poles[r] - old));
+      if (nearest > farthest) farthest = nearest, fresh = r;
+    }
+    std::vector<double> new_drops;
+    for (std::size_t r = 0; r < best.poles.size(); ++r) {
+      std::size_t closest = 0;
+      for (std::size_t q = 0; q < model->poles.size(); ++q) {
+        if (std::abs(best.poles[r] - model->poles[q]) < std::abs(best.poles[r] - model->poles[closest])) closest = q;
+      }
+      new_drops.push_back(r == fresh ? 1.0 - best_error / error : (model->poles.empty() ? 0.0 : drops[closest]));
+    }
+    drops = new_drops;
+    *model = std::move(best);
+  }
+  return drops;
 }
 
 }  // namespace shapebench::model

@@ -46,4 +46,16 @@ double Prominence(const std::vector<double>& x, const std::vector<std::vector<st
 bool RefineModalModel(const std::vector<double>& x, const std::vector<std::vector<std::complex<double>>>& data, int d,
                       double max_damping_ratio, double x_lo, double x_hi, ModalModel* model);
 
+// Poles the diagram missed (two close modes in one cluster, a mode its orders did not
+// stabilise): candidates are each pole split in two (at its frequency times 1 -+ max(zeta,
+// 0.5 %)) and a new pole at the line of the largest residual; each is fitted (LSFD, then
+// RefineModalModel) and the best kept when it lowers the squared error by `min_drop` (a
+// fraction) and all its poles show (Prominence >= min_prominence); repeated up to
+// `max_added` times. Returns, per pole of the result, the drop its addition brought (0 for
+// the poles given).
+std::vector<double> AddMissedPoles(const std::vector<double>& x,
+                                   const std::vector<std::vector<std::complex<double>>>& data, int d,
+                                   double max_damping_ratio, double min_prominence, double min_drop, int max_added,
+                                   ModalModel* model);
+
 }  // namespace shapebench::model

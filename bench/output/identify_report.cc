@@ -38,6 +38,11 @@ namespace {
 
 // Why a mode is reported, and why a cluster of stable poles is not (the JSON and the table).
 std::string KeptWhy(const model::IdentifiedMode& mode) {
+  if (mode.error_drop > 0.0) {
+    return "missed by the diagram, added: it lowers the squared fit error by " +
+           FormatNumber(100.0 * mode.error_drop, 3) + " % and its term peaks at " + FormatNumber(mode.prominence, 3) +
+           " x the data's RMS in its band";
+  }
   return "stable at " + std::to_string(mode.stable_orders) + " orders; its term peaks at " +
          FormatNumber(mode.prominence, 3) + " x the data's RMS in its band (at least " +
          FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")";

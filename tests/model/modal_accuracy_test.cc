@@ -127,6 +127,12 @@ Case SeededCase(unsigned seed) {
 // Expects every true mode within the bounds (frequency 0.2 %, damping 10 %, modal
 // constant 10 %) or four Cramér-Rao standard deviations where those are larger.
 void ExpectWithinBounds(const Case& c, const ModalIdentification& id, const std::vector<double>& sigma) {
+  std::string found = "found:";
+  for (const IdentifiedMode& m : id.modes) found += " " + std::to_string(m.frequency_hz) + " Hz " + std::to_string(m.damping_ratio);
+  for (const RejectedMode& m : id.rejected) found += "; rejected " + std::to_string(m.frequency_hz) + " Hz";
+  std::string truth = "true:";
+  for (const TrueMode& m : c.modes) truth += " " + std::to_string(m.frequency_hz) + " Hz " + std::to_string(m.damping_ratio);
+  SCOPED_TRACE(truth + "; " + found);
   ASSERT_EQ(id.modes.size(), c.modes.size());
   for (std::size_t r = 0; r < c.modes.size(); ++r) {
     SCOPED_TRACE("mode " + std::to_string(r + 1) + " at " + std::to_string(c.modes[r].frequency_hz) + " Hz, zeta " +
