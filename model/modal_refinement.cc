@@ -205,12 +205,31 @@ namespace {
 
 // `model` with `poles` as its poles, fitted; its squared error, or infinity when a pole is
 // not physical or does not show in the data.
+// Two poles closer than two lines: the data cannot tell them apart (a lightly damped mode
+// narrower than a line is fitted by a pair straddling it).
+double MinimumGap(const std::vector<double>& x) {
+  return x.size() > 1 ? 2.0 * (x.back() - x.front()) / static_cast<double>(x.size() - 1) : 0.0;
+}
+
+bool TooClose(const std::vector<Complex>& poles, double gap) {
+  for (std::size_t a = 0; a < poles.size(); ++a) {
+    for (std::size_t b = a + 1; b < poles.size(); ++b) {
+      if (std::abs(std::abs(poles[a]) - std::abs(poles[b])) < gap) return true;
+    }
+  }
+  return false;
+}
+
 double Candidate(const std::vector<double>& x, const std::vector<std::vector<Complex>>& data, int d,
                  double max_damping_ratio, double min_prominence, std::vector<Complex> poles, ModalModel* model) {
+  if (TooClose(poles, MinimumGap(x))) return std::numeric_limits<double>::infinity();
   std::sort(poles.begin(), poles.end(), [](Complex a, Complex b) { return std::abs(a) < std::abs(b); });
   model->poles = std::move(poles);
   FitLinear(x, data, d, model);
   RefineModalModel(x, data, d, max_damping_ratio, x.front(), x.back(), model);
+  // After the fit, a line apart at least (a pair between one and two lines apart may part
+  // when the next pole is added).
+  if (TooClose(model->poles, 0.5 * MinimumGap(x))) return std::numeric_limits<double>::infinity();
   for (std::size_t r = 0; r < model->poles.size(); ++r) {
     if (Prominence(x, data, d, *model, r) < min_prominence) return std::numeric_limits<double>::infinity();
   }
@@ -237,7 +256,7 @@ std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vect
     for (std::size_t r = 0; r < model->poles.size(); ++r) {
       const Complex mu = model->poles[r];
       const double zeta = -mu.real() / std::abs(mu);
-      const double delta = std::max(zeta, 0.005);
+      const double delta = std::max({zeta, 0.005, MinimumGap(x) / std::abs(mu)});
       std::vector<Complex> poles = model->poles;
       poles[r] = PoleAt(std::abs(mu) * (1.0 - delta), zeta);
       poles.push_back(PoleAt(std::abs(mu) * (1.0 + delta), zeta));
@@ -250,8 +269,13 @@ std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vect
       for (std::size_t o = 0; o < data.size(); ++o) misfit += std::norm(ModelValue(*model, o, x[k], d) - data[o][k]);
       if (misfit > largest) largest = misfit, worst = k;
     }
+    // At the largest residual, or two gaps beside the pole it is too close to.
+    double at = x[worst];
+    for (const Complex& mu : model->poles) {
+      if (std::abs(std::abs(mu) - at) < MinimumGap(x)) at = std::abs(mu) + (at < std::abs(mu) ? -2.0 : 2.0) * MinimumGap(x);
+    }
     candidates.push_back(model->poles);
-    candidates.back().push_back(PoleAt(x[worst], 0.01));
+    candidates.back().push_back(PoleAt(at, 0.01));
     ModalModel best;
     double best_error = std::numeric_limits<double>::infinity();
     for (const std::vector<Complex>& poles : candidates) {

@@ -50,7 +50,9 @@ bool RefineModalModel(const std::vector<double>& x, const std::vector<std::vecto
 // stabilise): candidates are each pole split in two (at its frequency times 1 -+ max(zeta,
 // 0.5 %)) and a new pole at the line of the largest residual; each is fitted (LSFD, then
 // RefineModalModel) and the best kept when it lowers the squared error by `min_drop` (a
-// fraction) and all its poles show (Prominence >= min_prominence); repeated up to
+// fraction), all its poles show (Prominence >= min_prominence) and no two of them lie
+// closer than two lines before the fit and one line after it (the data cannot tell such a
+// pair from one mode); repeated up to
 // `max_added` times. Returns, per pole of the result, the drop its addition brought (0 for
 // the poles given).
 std::vector<double> AddMissedPoles(const std::vector<double>& x,
