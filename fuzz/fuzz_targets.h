@@ -443,7 +443,7 @@ inline void RowsTarget(const std::string& bytes) {
 }
 
 // UFF dataset 58 reader (bench/measured/uff58_reader.h): any bytes are FRF records or a
-// ConfigError at a line of the file; the records read are finite, ascending in frequency,
+// ConfigError at a line of the file; the records read list their non-finite values, are ascending in frequency,
 // as long as their values; a short one goes through the identification (low orders), which
 // returns modes inside the band or refuses the band with a ValidationError naming it.
 inline void Uff58Target(const std::string& bytes) {
@@ -459,15 +459,21 @@ inline void Uff58Target(const std::string& bytes) {
     if (record.values.size() != record.frequency_hz.size() || record.values.empty()) {
       throw Violation{"values and frequencies differ in length"};
     }
+    std::size_t listed = 0;  // the non-finite values are exactly the points listed
     for (std::size_t i = 0; i < record.values.size(); ++i) {
-      if (!std::isfinite(record.values[i].real()) || !std::isfinite(record.values[i].imag()) ||
-          !std::isfinite(record.frequency_hz[i]) || (i > 0 && !(record.frequency_hz[i] > record.frequency_hz[i - 1]))) {
-        throw Violation{"a record read with a non-finite value or a frequency not ascending"};
+      const bool finite = std::isfinite(record.values[i].real()) && std::isfinite(record.values[i].imag());
+      if (!finite && !(listed < record.non_finite.size() && record.non_finite[listed].point == i)) {
+        throw Violation{"a record read with a non-finite value it does not list"};
+      }
+      if (!finite) ++listed;
+      if (!std::isfinite(record.frequency_hz[i]) || (i > 0 && !(record.frequency_hz[i] > record.frequency_hz[i - 1]))) {
+        throw Violation{"a record read with a non-finite or not ascending frequency"};
       }
     }
+    if (listed != record.non_finite.size()) throw Violation{"a finite value listed as not finite"};
   }
   const bench::Uff58Record& first = file.records.front();
-  if (first.values.size() > 512) return;
+  if (first.values.size() > 512 || !first.non_finite.empty()) return;
   model::IdentificationOptions options;
   options.max_order = 4;
   try {

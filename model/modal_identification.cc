@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 #include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
+#include "model/modal_refinement.h"
 
 namespace shapebench::model {
 namespace {
@@ -185,6 +187,44 @@ double Median(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// The cluster stable[begin, end) as a mode when seen at `needed` orders. Two close modes
+// fall in one cluster (within frequency_tolerance of its mean): when `needed` orders hold
+// two poles of it, it is split at its widest frequency gap and each part tried.
+void AddClusterModes(const std::vector<DiagramPole>& stable, std::size_t begin, std::size_t end, int needed,
+                     std::vector<IdentifiedMode>* modes) {
+  std::vector<double> frequencies, dampings;
+  std::vector<int> orders;
+  for (std::size_t i = begin; i < end; ++i) {
+    frequencies.push_back(stable[i].frequency_hz);
+    dampings.push_back(stable[i].damping_ratio);
+    orders.push_back(stable[i].order);
+  }
+  std::sort(orders.begin(), orders.end());
+  int doubled = 0;
+  for (std::size_t i = 1; i < orders.size(); ++i) {
+    if (orders[i] == orders[i - 1] && (i < 2 || orders[i - 2] != orders[i])) ++doubled;
+  }
+  if (doubled >= needed && end - begin >= 2) {
+    std::size_t split = begin + 1;
+    for (std::size_t i = begin + 1; i < end; ++i) {
+      if (stable[i].frequency_hz - stable[i - 1].frequency_hz >
+          stable[split].frequency_hz - stable[split - 1].frequency_hz) {
+        split = i;
+      }
+    }
+    AddClusterModes(stable, begin, split, needed, modes);
+    AddClusterModes(stable, split, end, needed, modes);
+    return;
+  }
+  const int distinct = static_cast<int>(std::unique(orders.begin(), orders.end()) - orders.begin());
+  if (distinct < needed) return;
+  IdentifiedMode mode;
+  mode.frequency_hz = Median(frequencies);
+  mode.damping_ratio = Median(dampings);
+  mode.stable_orders = distinct;
+  modes->push_back(mode);
+}
+
 // The modes: clusters of stable poles (each within frequency_tolerance of its cluster's
 // mean frequency) seen at enough orders; a mode is its cluster's median frequency and
 // damping.
@@ -208,22 +248,7 @@ std::vector<IdentifiedMode> PickModes(const std::vector<DiagramPole>& diagram, c
       sum += stable[end].frequency_hz;
       ++end;
     }
-    std::vector<double> frequencies, dampings;
-    std::vector<int> orders;
-    for (std::size_t i = begin; i < end; ++i) {
-      frequencies.push_back(stable[i].frequency_hz);
-      dampings.push_back(stable[i].damping_ratio);
-      orders.push_back(stable[i].order);
-    }
-    std::sort(orders.begin(), orders.end());
-    const int distinct = static_cast<int>(std::unique(orders.begin(), orders.end()) - orders.begin());
-    if (distinct >= needed) {
-      IdentifiedMode mode;
-      mode.frequency_hz = Median(frequencies);
-      mode.damping_ratio = Median(dampings);
-      mode.stable_orders = distinct;
-      modes.push_back(mode);
-    }
+    AddClusterModes(stable, begin, end, needed, &modes);
     begin = end;
   }
   return modes;
@@ -235,59 +260,152 @@ Complex Pole(const IdentifiedMode& mode) {
   return {-zeta * w, w * std::sqrt(1.0 - zeta * zeta)};
 }
 
-// LSFD of one FRF (measured form, scaled): Re and Im of each residue A_r, then LR and UR,
-// fitted as real unknowns over the real and imaginary parts of every line; the columns
-// are normalised for the solve. Returns the modal constants R_r = 2 j w_d A_r and fills `fit`.
-std::vector<Complex> FitConstants(const BandData& band, std::size_t o, const std::vector<IdentifiedMode>& modes,
-                                  int derivative_order, FrfFit* fit) {
-  const int lines = static_cast<int>(band.omega.size());
-  const int unknowns = 2 * static_cast<int>(modes.size()) + 2;
-  Eigen::MatrixXcd basis(lines, unknowns);
-  for (int k = 0; k < lines; ++k) {
-    const Complex jw(0.0, band.omega[k]);
-    const Complex form = std::pow(jw, derivative_order);
-    for (std::size_t r = 0; r < modes.size(); ++r) {
-      const Complex lambda = Pole(modes[r]);
-      const Complex g = form / (jw - lambda);
-      const Complex g_conjugate = form / (jw - std::conj(lambda));
-      basis(k, 2 * r) = g + g_conjugate;                       // Re A_r
-      basis(k, 2 * r + 1) = Complex(0.0, 1.0) * (g - g_conjugate);  // Im A_r
+// The modes that show in the data: the least prominent below options.min_prominence is
+// dropped (kept in `rejected`) and the linear terms refitted, until none is.
+void DropHidden(const std::vector<double>& x, const BandData& band, int derivative_order,
+                const IdentificationOptions& options, std::vector<IdentifiedMode>* modes, ModalModel* model,
+                std::vector<RejectedMode>* rejected) {
+  while (!modes->empty()) {
+    std::size_t weakest = 0;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < modes->size(); ++r) {
+      const double prominence = Prominence(x, band.frfs, derivative_order, *model, r);
+      (*modes)[r].prominence = prominence;
+      if (prominence < lowest) lowest = prominence, weakest = r;
     }
-    basis(k, unknowns - 2) = -form / (band.omega[k] * band.omega[k]);  // LR: -LR / w^2
-    basis(k, unknowns - 1) = form;                                        // UR
+    if (!(lowest < options.min_prominence)) return;
+    const IdentifiedMode& mode = (*modes)[weakest];
+    rejected->push_back({mode.frequency_hz, mode.damping_ratio, mode.stable_orders, lowest});
+    modes->erase(modes->begin() + static_cast<std::ptrdiff_t>(weakest));
+    model->poles.erase(model->poles.begin() + static_cast<std::ptrdiff_t>(weakest));
+    FitLinear(x, band.frfs, derivative_order, model);
   }
-  Eigen::MatrixXd real_rows(2 * lines, unknowns);
-  Eigen::VectorXd measured(2 * lines);
-  real_rows << basis.real(), basis.imag();
-  for (int k = 0; k < lines; ++k) {
-    measured(k) = band.frfs[o][k].real();
-    measured(lines + k) = band.frfs[o][k].imag();
+}
+
+// Refinement's work estimate (multiply-adds): 50 iterations of a dense QR of every
+// residual by every unknown.
+double RefinementWork(int lines, int frfs, int modes) {
+  const double unknowns = 2.0 * modes + frfs * (2.0 * modes + 2.0);
+  return 50.0 * 2.0 * lines * frfs * unknowns * unknowns;
+}
+
+// The refinement may carry a pole past its neighbour: modes in ascending frequency again.
+void SortByFrequency(ModalModel* model, std::vector<IdentifiedMode>* modes) {
+  const std::size_t m = model->poles.size();
+  std::vector<std::size_t> order(m);
+  for (std::size_t r = 0; r < m; ++r) order[r] = r;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return std::abs(model->poles[a]) < std::abs(model->poles[b]); });
+  const ModalModel before = *model;
+  const std::vector<IdentifiedMode> modes_before = *modes;
+  for (std::size_t r = 0; r < m; ++r) {
+    model->poles[r] = before.poles[order[r]];
+    (*modes)[r] = modes_before[order[r]];
+    for (std::size_t o = 0; o < model->linear.size(); ++o) {
+      model->linear[o][2 * r] = before.linear[o][2 * order[r]];
+      model->linear[o][2 * r + 1] = before.linear[o][2 * order[r] + 1];
+    }
   }
-  Eigen::VectorXd norms = real_rows.colwise().norm().transpose();
-  for (int c = 0; c < unknowns; ++c) {
-    if (!(norms(c) > 0.0)) norms(c) = 1.0;
-    real_rows.col(c) /= norms(c);
+}
+
+// Poles the diagram missed (AddMissedPoles); each mode keeps the diagram's metadata of
+// the mode nearest its pole, an added one its error drop.
+void AddMissed(const BandData& band, int derivative_order, const IdentificationOptions& options,
+               const std::vector<double>& x, ModalModel* model, ModalIdentification* result) {
+  if (options.max_added_modes <= 0) return;
+  const ModalModel before = *model;
+  const std::vector<double> drops =
+      AddMissedPoles(x, band.frfs, derivative_order, options.max_damping_ratio, options.min_prominence,
+                     options.min_error_drop, options.max_added_modes, model);
+  if (model->poles.size() == before.poles.size()) {
+    *model = before;  // nothing added: the refined model as it was
+    return;
   }
-  Eigen::VectorXd x = real_rows.colPivHouseholderQr().solve(measured);
-  x = x.cwiseQuotient(norms);
-  if (!x.allFinite()) x.setZero();
-  const Eigen::VectorXcd synthesized = basis * x.cast<Complex>();
+  result->refined = true;
+  std::vector<IdentifiedMode> modes;
+  for (std::size_t r = 0; r < model->poles.size(); ++r) {
+    IdentifiedMode mode;
+    if (drops[r] > 0.0 || before.poles.empty()) {
+      mode.error_drop = drops[r];
+    } else {
+      std::size_t nearest = 0;
+      for (std::size_t q = 1; q < before.poles.size(); ++q) {
+        if (std::abs(before.poles[q] - model->poles[r]) < std::abs(before.poles[nearest] - model->poles[r])) nearest = q;
+      }
+      mode = result->modes[nearest];
+    }
+    mode.prominence = Prominence(x, band.frfs, derivative_order, *model, r);
+    modes.push_back(mode);
+  }
+  result->modes = std::move(modes);
+}
+
+// The picked modes fitted to the band: LSFD, the hidden ones dropped, the rest refined by
+// nonlinear least squares (then checked again), in normalised units (model/modal_refinement.h).
+ModalModel FitModes(const BandData& band, int derivative_order, const IdentificationOptions& options,
+                    const std::vector<double>& x, ModalIdentification* result) {
+  const double w_ref = band.omega.back();
+  ModalModel model;
+  for (const IdentifiedMode& mode : result->modes) model.poles.push_back(Pole(mode) / w_ref);
+  FitLinear(x, band.frfs, derivative_order, &model);
+  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected);
+  const int lines = static_cast<int>(x.size());
+  const int frfs = static_cast<int>(band.frfs.size());
+  if (!options.refine || RefinementWork(lines, frfs, static_cast<int>(model.poles.size())) > options.max_work) {
+    return model;
+  }
+  const double x_lo = x.front(), x_hi = x.back();
+  result->refined = RefineModalModel(x, band.frfs, derivative_order, options.max_damping_ratio, x_lo, x_hi, &model);
+  const std::size_t before = model.poles.size();
+  for (std::size_t r = 0; r < model.poles.size(); ++r) {
+    result->modes[r].frequency_hz = std::abs(model.poles[r]) * w_ref / kTwoPi;
+    result->modes[r].damping_ratio = -model.poles[r].real() / std::abs(model.poles[r]);
+  }
+  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected);
+  if (model.poles.size() != before && result->refined) {
+    RefineModalModel(x, band.frfs, derivative_order, options.max_damping_ratio, x_lo, x_hi, &model);
+  }
+  AddMissed(band, derivative_order, options, x, &model, result);
+  SortByFrequency(&model, &result->modes);
+  return model;
+}
+
+// The modes' frequencies, damping and modal constants R_r = 2 j w_d A_r, and each FRF's
+// residuals and synthesis, in the FRFs' units, from the normalised model.
+void StoreFit(const BandData& band, int derivative_order, const std::vector<double>& x, const ModalModel& model,
+              ModalIdentification* result) {
+  const double w_ref = band.omega.back();
+  const double d = derivative_order;
+  const std::size_t m = model.poles.size();
+  for (std::size_t r = 0; r < m; ++r) {
+    const Complex lambda = model.poles[r] * w_ref;
+    result->modes[r].frequency_hz = std::abs(lambda) / kTwoPi;
+    result->modes[r].damping_ratio = -lambda.real() / std::abs(lambda);
+    result->modes[r].modal_constants.clear();
+    for (std::size_t o = 0; o < band.frfs.size(); ++o) {
+      const Complex a(model.linear[o][2 * r], model.linear[o][2 * r + 1]);
+      const Complex residue = a * band.scale * std::pow(w_ref, 1.0 - d);
+      result->modes[r].modal_constants.push_back(Complex(0.0, 2.0 * lambda.imag()) * residue);
+    }
+  }
+  result->fits.assign(band.frfs.size(), FrfFit{});
   double error = 0.0, total = 0.0;
-  fit->synthesized.resize(lines);
-  for (int k = 0; k < lines; ++k) {
-    error += std::norm(synthesized(k) - band.frfs[o][k]);
-    total += std::norm(band.frfs[o][k]);
-    fit->synthesized[k] = synthesized(k) * band.scale;
+  for (std::size_t o = 0; o < band.frfs.size(); ++o) {
+    FrfFit& fit = result->fits[o];
+    fit.lower_residual = model.linear[o][2 * m] * band.scale * std::pow(w_ref, 2.0 - d);
+    fit.upper_residual = model.linear[o][2 * m + 1] * band.scale * std::pow(w_ref, -d);
+    double frf_error = 0.0, frf_total = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const Complex value = ModelValue(model, o, x[k], derivative_order);
+      fit.synthesized.push_back(value * band.scale);
+      frf_error += std::norm(value - band.frfs[o][k]);
+      frf_total += std::norm(band.frfs[o][k]);
+    }
+    fit.error_percent = frf_total > 0.0 ? 100.0 * std::sqrt(frf_error / frf_total) : 0.0;
+    error += frf_error;
+    total += frf_total;
   }
-  fit->error_percent = total > 0.0 ? 100.0 * std::sqrt(error / total) : 0.0;
-  fit->lower_residual = x(unknowns - 2) * band.scale;
-  fit->upper_residual = x(unknowns - 1) * band.scale;
-  std::vector<Complex> constants;
-  for (std::size_t r = 0; r < modes.size(); ++r) {
-    const Complex residue(x(2 * r), x(2 * r + 1));
-    constants.push_back(Complex(0.0, 2.0 * Pole(modes[r]).imag()) * residue * band.scale);
-  }
-  return constants;
+  result->fit_error_percent = total > 0.0 ? 100.0 * std::sqrt(error / total) : 0.0;
 }
 
 }  // namespace
@@ -311,6 +429,8 @@ void IdentificationOptions::validate() const {
     throw ValidationError("min_stable_fraction", "must be in [0, 1]");
   }
   if (!(max_work >= 1.0)) throw ValidationError("max_work", "must be >= 1");
+  if (!(min_prominence >= 0.0 && min_prominence < 1.0)) throw ValidationError("min_prominence", "must be in [0, 1)");
+  if (!(min_error_drop > 0.0 && min_error_drop < 1.0)) throw ValidationError("min_error_drop", "must be in (0, 1)");
 }
 
 namespace {
@@ -318,7 +438,9 @@ namespace {
 // A fit whose error or modes are not numbers (lines 1e-300 Hz apart: the LSCF basis
 // degenerates) is refused rather than reported as "fit error -nan %" with exit 0.
 void RequireFinite(const ModalIdentification& result) {
-  bool finite = std::isfinite(result.fit_error_percent);
+  // The lower residual's term LR / w^2 at the lowest line must be a number too.
+  const double w_lo = kTwoPi * result.frequency_hz.front();
+  bool finite = std::isfinite(result.fit_error_percent) && std::isfinite(1.0 / (w_lo * w_lo));
   for (const IdentifiedMode& mode : result.modes) {
     finite = finite && std::isfinite(mode.frequency_hz) && std::isfinite(mode.damping_ratio);
     for (const Complex& c : mode.modal_constants) finite = finite && std::isfinite(c.real()) && std::isfinite(c.imag());
@@ -376,17 +498,10 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
   const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
   result.diagram = BuildDiagram(band, options, band_lo, band_hi, result.max_order);
   result.modes = PickModes(result.diagram, options, result.max_order);
-  result.fits.resize(frfs.size());
-  double error = 0.0, total = 0.0;
-  for (std::size_t o = 0; o < frfs.size(); ++o) {
-    const std::vector<Complex> constants = FitConstants(band, o, result.modes, derivative_order, &result.fits[o]);
-    for (std::size_t r = 0; r < result.modes.size(); ++r) result.modes[r].modal_constants.push_back(constants[r]);
-    for (int k = 0; k < lines; ++k) {
-      error += std::norm(result.fits[o].synthesized[k] / band.scale - band.frfs[o][k]);
-      total += std::norm(band.frfs[o][k]);
-    }
-  }
-  result.fit_error_percent = total > 0.0 ? 100.0 * std::sqrt(error / total) : 0.0;
+  std::vector<double> x;
+  for (double w : band.omega) x.push_back(w / band.omega.back());
+  const ModalModel model = FitModes(band, derivative_order, options, x, &result);
+  StoreFit(band, derivative_order, x, model, &result);
   RequireFinite(result);
   return result;
 }

@@ -45,6 +45,19 @@ struct IdentificationOptions {
   // A mode is a cluster of stable poles (frequencies within frequency_tolerance of its
   // mean) found at this fraction of the orders at least (and at 3 orders at least).
   double min_stable_fraction = 0.2;
+  // A mode must show in the data: its term's largest magnitude in its band (frequency
+  // within 2 zeta of its own, 2 lines at least) at least this fraction of the data's RMS
+  // there (model/modal_refinement.h, Prominence); the least prominent below it is dropped
+  // and the rest refitted, until none is.
+  double min_prominence = 0.1;
+  // Poles and residues refined together by nonlinear least squares on the FRFs after
+  // LSFD (model/modal_refinement.h).
+  bool refine = true;
+  // After the refinement, poles the diagram missed are added while one lowers the squared
+  // error by this fraction at least and shows in the data (AddMissedPoles), at most
+  // max_added_modes of them.
+  double min_error_drop = 0.1;
+  int max_added_modes = 5;
   // The most work the fit may take, in multiply-adds estimated from its sizes before it
   // starts (IdentificationWork); beyond, SolverError("WORK_LIMIT") naming max_work_key,
   // the option or key that sets it. Counted, never timed: the same verdict on every host.
@@ -78,6 +91,19 @@ struct IdentifiedMode {
   double damping_ratio = 0.0;
   std::vector<std::complex<double>> modal_constants;  // R_r, one per FRF (receptance)
   int stable_orders = 0;  // the orders its cluster has a stable pole at
+  double prominence = 0.0;  // IdentificationOptions::min_prominence's measure, after the fit
+  // 0 for a mode of the diagram; for one the diagram missed (model/modal_refinement.h,
+  // AddMissedPoles), the fraction of the squared error its addition removed.
+  double error_drop = 0.0;
+};
+
+// A cluster of stable poles that PickModes found and the data did not show: its pole from
+// the diagram, its prominence when it was dropped.
+struct RejectedMode {
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;
+  int stable_orders = 0;
+  double prominence = 0.0;
 };
 
 struct FrfFit {
@@ -92,6 +118,10 @@ struct ModalIdentification {
   int max_order = 0;                 // the highest order fitted (after the cap)
   std::vector<DiagramPole> diagram;
   std::vector<IdentifiedMode> modes;  // ascending frequency
+  std::vector<RejectedMode> rejected;  // in the order they were dropped
+  // Whether the nonlinear refinement was kept (it lowered the error, its poles physical);
+  // false: the modes are the diagram's with LSFD residues.
+  bool refined = false;
   std::vector<FrfFit> fits;           // one per FRF
   double fit_error_percent = 0.0;     // over every FRF together
 };

@@ -14,11 +14,16 @@
 #include "bench/output/identify_report.h"
 #include "bench/output/output_path.h"
 #include "common/decimal.h"
+#include "common/format.h"
 #include "common/interrupt.h"
 #include "common/shown_text.h"
 
 namespace shapebench::bench::cli {
 namespace {
+
+// Above it the modes do not explain the data: identify still writes its output, warns
+// and exits 3 (docs/reliability.md). The shipped and synthetic FRFs fit within 6 %.
+constexpr double kDefaultMaxFitErrorPercent = 20.0;
 
 struct IdentifyArgs {
   std::string file;
@@ -27,6 +32,7 @@ struct IdentifyArgs {
   int max_order = 30;
   std::string max_work;  // "": the default
   bool json = false;
+  double max_fit_error_percent = kDefaultMaxFitErrorPercent;
   std::string out_dir;  // "": identify_out/STEM
 };
 
@@ -65,6 +71,7 @@ int IdentifyCommand(const IdentifyArgs& args) {
                            : args.out_dir;
   RequireWritableOutputDir("--out", out_dir);  // before the identification
   const IdentifiedFrfs frfs = IdentifyFrfFile(args.file, selection);
+  for (const std::string& warning : frfs.warnings) std::cerr << "warning: " << TerminalSafe(warning, false) << "\n";
   {
     const DeferInterrupts defer;
     WriteIdentifyOutputs(out_dir, frfs, args.file);
@@ -80,6 +87,15 @@ int IdentifyCommand(const IdentifyArgs& args) {
     wrote << "wrote " << TerminalSafe((std::filesystem::path(out_dir) / file).string(), false) << "\n";
   }
   wrote.flush();
+  const double error = frfs.identification.fit_error_percent;
+  if (error > args.max_fit_error_percent) {
+    std::cerr << "warning: " << TerminalSafe(args.file, false) << ": fit error " << FormatNumber(error, 4)
+              << " % is above --max-fit-error (" << FormatNumber(args.max_fit_error_percent, 4) << " %) with "
+              << frfs.identification.modes.size() << " mode" << (frfs.identification.modes.size() == 1 ? "" : "s")
+              << ": the modes do not explain the data; narrow the band (--band) around the peaks of interest or "
+                 "raise --max-order\n";
+    return kExitSolverFailed;
+  }
   return kExitOk;
 }
 
@@ -105,6 +121,11 @@ Command AddIdentifyCommand(CLI::App* app) {
                    "the most work the fit may take, in multiply-adds estimated before it starts (default 1e11); "
                    "beyond, exit 3")
       ->type_name("N");
+  identify
+      ->add_option("--max-fit-error", args->max_fit_error_percent,
+                   "the largest fit error in % the modes may leave (default 20); above, a warning and exit 3")
+      ->check(CLI::Range(0.0, 100.0))
+      ->type_name("PERCENT");
   identify->add_flag("--json", args->json, "print one JSON object");
   identify
       ->add_option("--out", args->out_dir,

@@ -50,6 +50,10 @@ void CheckAlike(const Uff58File& file, const std::vector<std::size_t>& selected)
   }
 }
 
+std::string BandText(const FrfSelection& selection) {
+  return "[" + FormatNumber(selection.min_frequency_hz, 6) + ", " + FormatNumber(selection.max_frequency_hz, 6) + "] Hz";
+}
+
 // Enough lines above 0 Hz inside the band: located at the first record's record 7.
 void CheckFrfBand(const Uff58File& file, const Uff58Record& first, const FrfSelection& selection) {
   int lines = 0;
@@ -57,14 +61,43 @@ void CheckFrfBand(const Uff58File& file, const Uff58Record& first, const FrfSele
     if (f > 0.0 && f >= selection.min_frequency_hz && f <= selection.max_frequency_hz) ++lines;
   }
   if (lines >= 4) return;
-  const std::string band =
-      "[" + FormatNumber(selection.min_frequency_hz, 6) + ", " + FormatNumber(selection.max_frequency_hz, 6) + "] Hz";
+  const std::string band = BandText(selection);
   throw ConfigError(file.file, first.record7_line, 1, "record 7",
                     (selection.band_source.empty() ? std::string("the records") : selection.band_source + ":") +
                         " " + std::to_string(lines) + " spectral line" + (lines == 1 ? "" : "s") +
                         " above 0 Hz in the band " + band + ", at least 4 are needed; the records' lines span " +
                         FormatNumber(first.frequency_hz.front(), 6) + " to " +
                             FormatNumber(first.frequency_hz.back(), 6) + " Hz");
+}
+
+// NaN or inf values: inside the band (above 0 Hz) refused at the first one's line and
+// column; outside it ignored (the identification reads only the band's lines), one warning
+// per record.
+void CheckNonFinite(const Uff58File& file, const std::vector<std::size_t>& selected, const FrfSelection& selection,
+                    std::vector<std::string>* warnings) {
+  for (std::size_t i : selected) {
+    const Uff58Record& record = file.records[i];
+    if (record.non_finite.empty()) continue;
+    for (const Uff58NonFinite& bad : record.non_finite) {
+      const double f = record.frequency_hz[bad.point];
+      if (f > 0.0 && f >= selection.min_frequency_hz && f <= selection.max_frequency_hz) {
+        throw ConfigError(file.file, bad.line, bad.column, "record 12",
+                          "value " + bad.text + " at " + FormatNumber(f, 6) + " Hz is not a finite number and lies in "
+                          "the band " + BandText(selection) + (selection.band_source.empty() ? "" : " (" +
+                          selection.band_source + ")") + "; an FRF to identify needs every line of its band "
+                          "measured: give a band that leaves it out (--band, band_hz)");
+      }
+    }
+    const Uff58NonFinite& first = record.non_finite.front();
+    const double lo = record.frequency_hz[first.point];
+    const double hi = record.frequency_hz[record.non_finite.back().point];
+    const std::size_t n = record.non_finite.size();
+    warnings->push_back(file.file + ":" + std::to_string(first.line) + ":" + std::to_string(first.column) +
+                        ": record 12: " + std::to_string(n) + " line" + (n == 1 ? "" : "s") + " with a value that "
+                        "is not a finite number (" + first.text + " at " + FormatNumber(lo, 6) + " Hz" +
+                        (n == 1 ? "" : ", up to " + FormatNumber(hi, 6) + " Hz") + ") outside the band " +
+                        BandText(selection) + ": ignored");
+  }
 }
 
 }  // namespace
@@ -84,6 +117,8 @@ IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& sele
   CheckAlike(result.file, result.records);
   const Uff58Record& first = result.file.records[result.records.front()];
   CheckFrfBand(result.file, first, selection);
+  result.warnings = result.file.warnings;
+  CheckNonFinite(result.file, result.records, selection, &result.warnings);
   result.response = first.response;
   result.excitation = first.excitation;
   result.frequency_hz = first.frequency_hz;

@@ -32,6 +32,9 @@ struct IdentifiedFrfs {
   std::vector<double> frequency_hz;                      // the records' common grid
   std::vector<std::vector<std::complex<double>>> frfs;  // per record, signs of the directions applied
   model::ModalIdentification identification;
+  // "FILE:LINE:COL: record N: ..." the reader's (a writer's quirk read anyway) and values
+  // that are not finite outside the band, ignored.
+  std::vector<std::string> warnings;
 };
 
 // Reads `path`, keeps the records along the selection's axis and identifies them together:

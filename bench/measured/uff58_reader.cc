@@ -118,12 +118,27 @@ class Parser {
   void ReadBinaryValues(const std::string& identifier, const DataForm& form, std::vector<double>* numbers);
   void StoreValues(const DataForm& form, const std::vector<double>& numbers, double scale, Uff58Record* record);
   void SkipDataset(long number, int line);
+  // A NaN or inf ordinate: listed once per point (the abscissa must be finite).
+  void NoteNonFinite(const DataForm& form, std::size_t index, int line, int column, const std::string& text);
+  bool ClosedAfter(std::size_t bytes) const;
 
   const std::string& bytes_;
   std::string file_;
   std::size_t pos_ = 0;
   int line_ = 0;  // the line last read
+  std::vector<Uff58NonFinite> non_finite_;  // the current record's
+  std::vector<std::string> warnings_;
 };
+
+void Parser::NoteNonFinite(const DataForm& form, std::size_t index, int line, int column, const std::string& text) {
+  const std::size_t point = index / form.PerPoint();
+  if (!form.even && index % form.PerPoint() == 0) {
+    Fail(line, column, "record 12", "abscissa value " + Shown(text) + " (point " + std::to_string(point + 1) +
+                                        ") is not a finite number; an FRF's frequencies must be");
+  }
+  if (!non_finite_.empty() && non_finite_.back().point == point) return;
+  non_finite_.push_back({point, line, column, text});
+}
 
 bool Parser::NextLine(std::string* text) {
   if (pos_ >= bytes_.size()) return false;
@@ -226,14 +241,11 @@ void Parser::ReadAsciiValues(const DataForm& form, std::vector<double>* numbers)
              "expected a number in columns " + std::to_string(column + 1) + "-" + std::to_string(column + width) +
                  ", got " + Shown(cell));
       }
-      if (!std::isfinite(value)) {
-        Fail(line_, static_cast<int>(column) + 1, "record 12",
-             "value " + Shown(Trim(cell)) + " is not a finite number; an FRF to identify needs every line measured");
-      }
       if (numbers->size() == expected) {
         Fail(line_, static_cast<int>(column) + 1, "record 12",
              "more values than record 7 announces (" + std::to_string(form.count) + ")");
       }
+      if (!std::isfinite(value)) NoteNonFinite(form, numbers->size(), line_, static_cast<int>(column) + 1, Trim(cell));
       numbers->push_back(value);
       column += width;
     }
@@ -268,7 +280,7 @@ std::vector<long> BinaryHeaderFields(const std::string& identifier) {
 // An uneven abscissa may be stored single while the ordinate is double (the ASCII form's
 // E13.5): the byte count tells which.
 Parser::BinaryLayout Parser::ReadBinaryLayout(const std::string& identifier, const DataForm& form) {
-  const std::vector<long> fields = BinaryHeaderFields(identifier);
+  std::vector<long> fields = BinaryHeaderFields(identifier);
   const int header_line = line_ - 11;
   if (fields.size() < 4) {
     Fail(header_line, 8, "record 58b", "expected byte order, floating-point format, ASCII lines and bytes after '58b'"
@@ -290,6 +302,17 @@ Parser::BinaryLayout Parser::ReadBinaryLayout(const std::string& identifier, con
   const bool single_abscissa = form.Double() && !form.even &&
                                fields[3] == static_cast<long>(points * (4 + (per_point - 1) * 8));
   const std::size_t expected = single_abscissa ? points * (4 + (per_point - 1) * 8) : points * per_point * size;
+  // pyuff's 58b writer records half the bytes of complex doubles (it counts the values,
+  // not their two parts); pyuff and sdypy read such files. Read when the file proves it:
+  // the full data is there and "    -1" follows it.
+  if (form.Complex() && form.Double() && !single_abscissa && fields[3] > 0 &&
+      2 * static_cast<std::size_t>(fields[3]) == expected && ClosedAfter(expected)) {
+    warnings_.push_back(file_ + ":" + std::to_string(header_line) + ":32: record 58b: " + std::to_string(fields[3]) +
+                        " bytes of data announced, half the " + std::to_string(expected) + " bytes of record 7's " +
+                        std::to_string(points) + " complex double values (pyuff's 58b writer counts so); the file "
+                        "holds all " + std::to_string(expected) + " followed by '    -1': read them");
+    fields[3] = static_cast<long>(expected);
+  }
   if (fields[3] != static_cast<long>(expected)) {
     Fail(header_line, 32, "record 58b", std::to_string(fields[3]) + " bytes of data: record 7 announces " +
                                             std::to_string(points) + (form.even ? " values" : " pairs") + ", " +
@@ -300,6 +323,18 @@ Parser::BinaryLayout Parser::ReadBinaryLayout(const std::string& identifier, con
                                         std::to_string(bytes_.size() - std::min(pos_, bytes_.size())) + " left in the file");
   }
   return BinaryLayout{fields[0] == 2, single_abscissa, expected};
+}
+
+// Whether `bytes` bytes from pos_ lie in the file and a "    -1" line follows them (after
+// an optional line end).
+bool Parser::ClosedAfter(std::size_t bytes) const {
+  if (bytes_.size() - std::min(pos_, bytes_.size()) < bytes) return false;
+  std::size_t at = pos_ + bytes;
+  if (at < bytes_.size() && bytes_[at] == '\r') ++at;
+  if (at < bytes_.size() && bytes_[at] == '\n') ++at;
+  std::size_t end = bytes_.find('\n', at);
+  if (end == std::string::npos) end = bytes_.size();
+  return Trim(bytes_.substr(at, end - at)) == "-1";
 }
 
 // One number of `width` bytes (8: double, 4: single) at pos_, in the file's byte order.
@@ -331,9 +366,7 @@ void Parser::ReadBinaryValues(const std::string& identifier, const DataForm& for
     for (std::size_t n = 0; n < per_point; ++n) {
       const double value = ReadBinaryNumber(layout.single_abscissa && n == 0 ? 4 : size, layout.big);
       if (!std::isfinite(value)) {
-        Fail(data_line, 1, "record 12", "value " + std::to_string(numbers->size() + 1) + " of the binary data (point " +
-                                            std::to_string(p + 1) + ") is not a finite number; an FRF to identify "
-                                            "needs every line measured");
+        NoteNonFinite(form, numbers->size(), data_line, 1, "binary value " + std::to_string(numbers->size() + 1));
       }
       numbers->push_back(value);
     }
@@ -434,6 +467,7 @@ void Parser::ReadDataset58(const std::string& identifier, Uff58Record* record) {
   record->units = units->shown;
   record->record12_line = line_ + 1;
   std::vector<double> numbers;
+  non_finite_.clear();
   numbers.reserve(static_cast<std::size_t>(std::min<long>(form.count, 1 << 20)) * form.PerPoint());
   if (record->binary) {
     ReadBinaryValues(identifier, form, &numbers);
@@ -441,6 +475,7 @@ void Parser::ReadDataset58(const std::string& identifier, Uff58Record* record) {
     ReadAsciiValues(form, &numbers);
   }
   StoreValues(form, numbers, units->scale, record);
+  record->non_finite = non_finite_;
   if (NormalizedUnits(characteristics[0].units_label) == "rad/s") {
     for (double& f : record->frequency_hz) f /= 2.0 * kPi;
   }
@@ -476,6 +511,7 @@ Uff58File Parser::Parse() {
     ReadDataset58(identifier, &record);
     result.records.push_back(std::move(record));
   }
+  result.warnings = warnings_;
   if (result.records.empty()) {
     std::string found;
     for (const std::string& number : others) found += (found.empty() ? "" : ", ") + number;

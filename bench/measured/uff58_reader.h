@@ -8,7 +8,7 @@
 //
 // Only frequency response functions (record 6 function type 4) are read; every other
 // dataset 58 is refused. Other datasets (151 header, 164 units, 2411 nodes, ...) are
-// skipped. Errors are ConfigError "FILE:LINE:COL: record N: ..." (exit 2).
+// skipped. A NaN or inf value is kept and listed (Uff58Record::non_finite). Errors are ConfigError "FILE:LINE:COL: record N: ..." (exit 2).
 #pragma once
 
 #include <complex>
@@ -18,6 +18,16 @@
 #include "bench/measured/uff58_units.h"
 
 namespace shapebench::bench {
+
+// A value of record 12 that is NaN or inf (a line the analyser did not measure): kept in
+// `values` and listed here, for the identification to refuse inside its band and ignore,
+// with a warning, outside (bench/measured/frf_identification.h).
+struct Uff58NonFinite {
+  std::size_t point = 0;  // index into frequency_hz / values
+  int line = 0;
+  int column = 0;  // 1-based; the first column of record 12 in 58b
+  std::string text;  // as written ("nan", "inf") or "binary value N"
+};
 
 struct Uff58Record {
   int line = 0;  // the identifier line ("    58" or "    58b")
@@ -38,6 +48,7 @@ struct Uff58Record {
   // SI (a units label's scale, e.g. g, applied), in the senses recorded (not yet flipped
   // by a negative direction).
   std::vector<std::complex<double>> values;
+  std::vector<Uff58NonFinite> non_finite;  // in file order; the abscissa is always finite
 
   int DerivativeOrder() const { return static_cast<int>(response); }
   // The axis 0, 1, 2 of the response direction (a translation), or -1.
@@ -50,6 +61,9 @@ struct Uff58Record {
 struct Uff58File {
   std::string file;
   std::vector<Uff58Record> records;  // in file order
+  // Writer quirks read anyway because the data proves them, "FILE:LINE:COL: record N: ..."
+  // (pyuff's 58b byte count of complex doubles, half the data's).
+  std::vector<std::string> warnings;
 };
 
 // Parses the bytes of a UFF file named `file` (for messages). Throws ConfigError.

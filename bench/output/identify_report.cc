@@ -34,6 +34,28 @@ std::string Axes(const IdentifiedFrfs& frfs) {
 
 }  // namespace
 
+namespace {
+
+// Why a mode is reported, and why a cluster of stable poles is not (the JSON and the table).
+std::string KeptWhy(const model::IdentifiedMode& mode) {
+  if (mode.error_drop > 0.0) {
+    return "missed by the diagram, added: it lowers the squared fit error by " +
+           FormatNumber(100.0 * mode.error_drop, 3) + " % and its term peaks at " + FormatNumber(mode.prominence, 3) +
+           " x the data's RMS in its band";
+  }
+  return "stable at " + std::to_string(mode.stable_orders) + " orders; its term peaks at " +
+         FormatNumber(mode.prominence, 3) + " x the data's RMS in its band (at least " +
+         FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")";
+}
+
+std::string RejectedWhy(const model::RejectedMode& mode) {
+  return "stable at " + std::to_string(mode.stable_orders) + " orders, but not shown by the data: its term peaks at " +
+         FormatNumber(mode.prominence, 3) + " x the data's RMS in its band (under " +
+         FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")";
+}
+
+}  // namespace
+
 void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
   const model::ModalIdentification& id = frfs.identification;
   out << "identify " << TerminalSafe(frfs.file.file, false) << ": " << frfs.records.size() << " FRF record"
@@ -61,6 +83,9 @@ void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
     }
   }
   if (id.modes.empty()) out << "(no cluster of stable physical poles in the band)\n";
+  for (const model::RejectedMode& mode : id.rejected) {
+    out << "dropped " << FormatNumber(mode.frequency_hz, 6) << " Hz: " << RejectedWhy(mode) << "\n";
+  }
   out << "\nmodal constants R_r of the receptance, " << ConstantUnit(frfs) << "; gain (machine frf_file): "
       << (frfs.excitation == FrfExcitation::kForce ? "moving_mass_kg x Re R_r" : "-Re R_r") << "\n";
   out << "fit error " << FormatNumber(id.fit_error_percent, 4)
@@ -95,8 +120,20 @@ nlohmann::ordered_json IdentifyJson(const IdentifiedFrfs& frfs) {
     json["modes"].push_back({{"frequency_hz", mode.frequency_hz},
                              {"damping_ratio", mode.damping_ratio},
                              {"stable_orders", mode.stable_orders},
+                             {"prominence", mode.prominence},
+                             {"kept", KeptWhy(mode)},
                              {"modal_constants", constants}});
   }
+  json["rejected"] = nlohmann::ordered_json::array();
+  for (const model::RejectedMode& mode : id.rejected) {
+    json["rejected"].push_back({{"frequency_hz", mode.frequency_hz},
+                                {"damping_ratio", mode.damping_ratio},
+                                {"stable_orders", mode.stable_orders},
+                                {"prominence", mode.prominence},
+                                {"why", RejectedWhy(mode)}});
+  }
+  json["refined"] = id.refined;
+  json["warnings"] = frfs.warnings;
   json["modal_constant_unit"] = ConstantUnit(frfs);
   json["fit_error_percent"] = id.fit_error_percent;
   return json;

@@ -55,7 +55,17 @@ void WriteModeMarks(std::FILE* gnuplot, const model::ModalIdentification& id) {
                   100.0 * mode.damping_ratio);
     list += text;
   }
+  // Clusters the data did not show (identify's JSON "rejected" says why): grey, crossed.
+  for (const model::RejectedMode& mode : id.rejected) {
+    std::fprintf(gnuplot, "set arrow from %.10g, graph 0 to %.10g, graph 1 nohead dt 3 lw 1 lc rgb '#aaaaaa' back\n",
+                 mode.frequency_hz, mode.frequency_hz);
+    std::fprintf(gnuplot, "set label 'x' at %.10g, graph 1.02 center font 'sans,9' tc rgb '#aaaaaa'\n",
+                 mode.frequency_hz);
+  }
   if (list.empty()) list = "no mode identified (no cluster of stable physical poles)";
+  if (!id.rejected.empty()) {
+    list += "    (x: " + std::to_string(id.rejected.size()) + " dropped, not shown by the data)";
+  }
   std::fprintf(gnuplot, "set label %s at screen 0.5, screen 0.93 center font 'sans,9' tc rgb '#2ca02c'\n",
                GnuplotQuoted(list).c_str());
 }

@@ -3,6 +3,8 @@
 // the real measured beam of tests/data/uff/, and the modal form a scenario gets.
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -87,9 +89,9 @@ TEST(IdentifyCli, BadInputIsLocated) {
                 "record 6", "function type 1 (time response) is not a frequency response function (4)");
   std::string with_nan = clean;
   const std::size_t value = with_nan.find("\n", with_nan.find("NONE                 NONE")) + 1;  // record 12
-  with_nan.replace(value + 20, 20, "                 nan");
+  with_nan.replace(value + 60, 20, "                 nan");  // 0.125 Hz, inside the default band
   ExpectLocated(RunCli({"identify", dir.Write("n.uff", with_nan)}, cwd), dir.File("n.uff"), 14, "record 12",
-                "value 'nan' is not a finite number");
+                "value nan at 0.125 Hz is not a finite number and lies in the band [0, inf] Hz");
   // A decimal Fortran real only (issue 32 item 16): strtod read "0x10" as 16.
   std::string with_hex = clean;
   with_hex.replace(value + 20, 20, "                0x10");
@@ -111,6 +113,56 @@ TEST(IdentifyCli, BadInputIsLocated) {
     EXPECT_EQ(hex.exit_code, 2) << band;
     EXPECT_NE(hex.err.find("--band: expected MIN:MAX in Hz"), std::string::npos) << hex.err;
   }
+}
+
+// Tests that a NaN or inf outside the band asked for (at 0 Hz, which no band holds, or above
+// --band's top) is ignored with a warning naming its line, while the same value inside
+// the band is refused (exit 2) at its line and column.
+TEST(IdentifyCli, NonFiniteOutsideTheBandIsIgnored) {
+  ScratchDir dir;
+  std::string text = testing::Uff58Ascii(SyntheticAccelerance(0.0, 1));
+  const std::size_t value = text.find("\n", text.find("NONE                 NONE")) + 1;  // record 12, 0 Hz
+  text.replace(value + 20, 20, "                 nan");
+  const std::size_t line_90_hz = value + 360 * 81;  // two points a line: 90 Hz (point 720) opens line 14 + 360
+  text.replace(line_90_hz, 20, "                 inf");
+  const std::string file = dir.Write("n.uff", text);
+  const CliResult outside = RunCli({"identify", file, "--band", "5:80", "--out", "o1"}, dir.path().string());
+  ASSERT_EQ(outside.exit_code, 0) << outside.err;
+  EXPECT_NE(outside.err.find("warning: " + file + ":14:21: record 12: 2 lines with a value that is not a finite number "
+                             "(nan at 0 Hz, up to 90 Hz) outside the band [5, 80] Hz: ignored"),
+            std::string::npos)
+      << outside.err;
+  EXPECT_NE(outside.out.find("1     22 "), std::string::npos) << outside.out;
+  ExpectLocated(RunCli({"identify", file, "--band", "5:95", "--out", "o2"}, dir.path().string()), file, 374,
+                "record 12", "value inf at 90 Hz is not a finite number and lies in the band [5, 95] Hz (--band 5:95)");
+}
+
+// Tests that a fit error above --max-fit-error (default 20 %; here an FRF of noise alone,
+// which no mode explains) still writes the output, warns naming the error and the limit
+// and exits 3, and that a limit above the error exits 0; and that the JSON says why each
+// mode was kept and whether the refinement was.
+TEST(IdentifyCli, FitErrorAboveTheLimitExits3) {
+  ScratchDir dir;
+  UffFrf noise = SyntheticAccelerance(0.0, 1);
+  std::mt19937 generator(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (auto& value : noise.values) value = {normal(generator), normal(generator)};
+  const std::string file = dir.Write("noise.uff", testing::Uff58Ascii(noise));
+  const CliResult bad = RunCli({"identify", file, "--out", "o1"}, dir.path().string());
+  EXPECT_EQ(bad.exit_code, 3) << bad.err;
+  EXPECT_NE(bad.err.find("warning: " + file + ": fit error "), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find(" % is above --max-fit-error (20 %)"), std::string::npos) << bad.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.File("o1/modes.json")));
+  const CliResult allowed = RunCli({"identify", file, "--max-fit-error", "100", "--out", "o2"}, dir.path().string());
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.err;
+  const CliResult clean = RunCli({"identify", CleanFile(dir), "--json", "--out", "o3"}, dir.path().string());
+  ASSERT_EQ(clean.exit_code, 0) << clean.err;
+  const nlohmann::json parsed = nlohmann::json::parse(clean.out);
+  EXPECT_TRUE(parsed["refined"].get<bool>());
+  EXPECT_TRUE(parsed["rejected"].empty());
+  ASSERT_EQ(parsed["modes"].size(), 3u);
+  EXPECT_EQ(parsed["modes"][0]["kept"].get<std::string>().rfind("stable at ", 0), 0u) << clean.out;
+  EXPECT_GT(parsed["modes"][0]["prominence"].get<double>(), 0.1);
 }
 
 // Tests that the real measured beam (pyuff's accelerances, tests/data/uff/README.md) gives six
