@@ -146,8 +146,11 @@ double SecondsDwellSeconds(const BlockWords& words) {
 ProgramBlock DwellBlock(const BlockWords& words, const ProgramBlock& here) {
   const double seconds = IsFanuc(words) ? FanucDwellSeconds(words) : SecondsDwellSeconds(words);
   if (seconds < 0) {
-    throw words.WordError(words.nonmodal_word(), "dwell must be >= 0 s, got " +
-                                                     FormatNumber(seconds) + " s");
+    int time_word = words.at('P');
+    for (const char letter : {'X', 'U'}) {
+      if (time_word < 0 && IsFanuc(words)) time_word = words.at(letter);
+    }
+    throw words.WordError(time_word, "dwell must be >= 0, got '" + words.Shown(time_word) + "'");
   }
   ProgramBlock dwell = here;
   dwell.kind = MotionKind::kDwell;

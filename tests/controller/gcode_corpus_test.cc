@@ -225,6 +225,7 @@ TEST(GcodeCorpusTest, AtLeastTwentyProgramsFromFourOrigins) {
 // Tests that every corpus program is read in its dialect with the geometry the independent
 // reader expects and planned to its last end point, or refused naming the feature.
 TEST(GcodeCorpusTest, EveryProgramRunsOrIsRefusedForAKeptFeature) {
+  std::size_t checked = 0, planned = 0, arcs = 0, dwells = 0;
   for (const CorpusFile& file : CorpusFiles()) {
     const std::string key = file.folder + "/" + file.name;
     SCOPED_TRACE(key);
@@ -248,12 +249,15 @@ TEST(GcodeCorpusTest, EveryProgramRunsOrIsRefusedForAKeptFeature) {
       std::istringstream lines(text);
       for (std::string line; std::getline(lines, line);) oracle.Line(line);
       ASSERT_EQ(program.blocks.size(), oracle.expected.size());
+      ++checked;
       for (std::size_t k = 0; k < program.blocks.size(); ++k) {
         const ProgramBlock& block = program.blocks[k];
         const Expected& want = oracle.expected[k];
         EXPECT_EQ(block.kind, want.kind) << "block " << k << " line " << block.source_line;
         EXPECT_LE((block.end_m - want.end_m).norm(), kEndTolM) << "line " << block.source_line;
+        dwells += want.kind == MotionKind::kDwell ? 1 : 0;
         if (want.kind == MotionKind::kArcCw || want.kind == MotionKind::kArcCcw) {
+          ++arcs;
           EXPECT_LE((block.center_m - want.centre_m).norm(), kCentreTolM) << "line " << block.source_line;
         }
         EXPECT_DOUBLE_EQ(block.dwell_s, want.dwell_s) << "line " << block.source_line;
@@ -261,12 +265,19 @@ TEST(GcodeCorpusTest, EveryProgramRunsOrIsRefusedForAKeptFeature) {
     }
     if (program.blocks.empty()) continue;
     const MultiAxisCommand command = GenerateProgramCommand(ControllerConfig{}, program);
+    ++planned;
     for (int a = 0; a < kNumAxes; ++a) {
       double position = command.start_m[a];
       for (std::size_t k = 1; k <= command.axes[a].num_ticks(); ++k) position += command.axes[a].increment_m(k);
       EXPECT_NEAR(position, program.blocks.back().end_m[a], 1e-6) << "axis " << a;
     }
   }
+  // All but spiral.ngc (refused) and increment.ngc (a subroutine file, no blocks, read by
+  // the O-words it holds) are checked against the reader here and planned.
+  EXPECT_EQ(checked, CorpusFiles().size() - 2);
+  EXPECT_EQ(planned, CorpusFiles().size() - 2);
+  EXPECT_GE(arcs, 100u);
+  EXPECT_GE(dwells, 1u);
 }
 
 }  // namespace

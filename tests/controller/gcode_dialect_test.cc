@@ -73,7 +73,7 @@ TEST(GcodeDialectTest, DwellThenMoveInOneBlock) {
 // Tests G20/G21 in any block: lengths, centres and F scaled by 25.4 under G20.
 TEST(GcodeDialectTest, InchAndMmInAnyBlock) {
   const Program program =
-      Parse("G1 X1 F100\nG20 X1 F10\nG2 X3 Y0 I1\nG21 Y1\n", In(Dialect::kFanuc));
+      Parse("G1 X1 F100\nG20 X1 F10\nG2 X3 Y0 I1\nG21 G1 Y1\n", In(Dialect::kFanuc));
   ASSERT_EQ(program.blocks.size(), 4u);
   ExpectMm(program.blocks[0].end_m, 1, 0, 0);
   ExpectMm(program.blocks[1].end_m, 25.4, 0, 0);

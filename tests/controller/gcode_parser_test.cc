@@ -210,9 +210,9 @@ TEST(GcodeParserTest, EmptyProgram) {
 // compensation (tests/controller/gcode_ignored_words_test.cc has the rest).
 TEST(GcodeParserTest, UnsupportedWords) {
   ExpectError("G1 X10\nG1 X20 G68\n", 2, 8,
-              "unsupported word 'G68'; allowed: G0-G4, G17-G19, G21, G90, G91, F, X, Y, Z, I, "
-              "J, K, R, P, N");
-  ExpectError("N10 Q1000\n", 1, 5, "unsupported word 'Q1000'");
+              "unsupported word 'G68' is not read by the bench (dialect fanuc); allowed: G0-G3, "
+              "G4 with P (ms, no decimal point) or X/U (s), G17-G19, G20, G21, G28, G30");
+  ExpectError("N10 Q1000\n", 1, 5, "'Q1000': Q is allowed only with linuxcnc's G64 P");
   GcodeOptions strict;
   strict.strict = true;
   auto strict_error = [&](const std::string& text) {
@@ -289,7 +289,7 @@ TEST(GcodeParserTest, DwellAndFeedErrors) {
   ExpectError("G4 P-10\n", 1, 4, "dwell must be >= 0");
   ExpectError("G4 P10 Y1\n", 1, 8, "'Y1' is not allowed in a G4 (dwell) block");
   ExpectError("G1 X1 F0\n", 1, 7, "F must be > 0");
-  ExpectError("G1 X1 P5\n", 1, 7, "P (dwell time in ms) is allowed only with G4");
+  ExpectError("G1 X1 P5\n", 1, 7, "P is allowed only with G4 (dwell)");
 }
 
 }  // namespace
