@@ -146,14 +146,14 @@ TEST(ProgramReaderTest, ShapeErrors) {
               "expected a sequence");
   ExpectError(ListError(dir, "program:\n  - 5\n", &file), file, 2, 5, "program[0]",
               "expected a mapping");
-  ExpectError(ListError(dir, "program:\n  - {g: 1, q: 5}\n", &file), file, 2, 12, "program[0].q",
-              "unknown key 'q'; allowed: g, x, y, z, i, j, k, r, f, p, n");
+  ExpectError(ListError(dir, "program:\n  - {g: 1, w: 5}\n", &file), file, 2, 12, "program[0].w",
+              "unknown key 'w'; allowed: g, x, y, z, i, j, k, r, f, p, q, n");
   ExpectError(ListError(dir, "program:\n  - {x: \"10\"}\n", &file), file, 2, 9, "program[0].x",
               "expected a number");
   ExpectError(ListError(dir, "program:\n  - {g: 1.5}\n", &file), file, 2, 9, "program[0].g",
-              "expected an integer");
+              "unsupported word 'G1.5'");
   ExpectError(ListError(dir, "program:\n  - {g: [1, x]}\n", &file), file, 2, 13,
-              "program[0].g[1]", "expected an integer");
+              "program[0].g[1]", "expected a number");
 }
 
 // Tests that program_file is read relative to the scenario's directory, comments, `%`

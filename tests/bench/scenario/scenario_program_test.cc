@@ -166,6 +166,14 @@ TEST(ScenarioProgramTest, DialectKeysReachTheReader) {
   const ConfigError loop = ProgramLoadError(dir.Write(
       "l.yaml", "program_file: loop.nc\nprogram_dialect: linuxcnc\nprogram_max_iterations: 10\n"));
   EXPECT_NE(loop.message().find("more than 10 loop passes"), std::string::npos) << loop.what();
+  // The YAML program: list reads in the dialect too.
+  const Scenario list = LoadScenario(
+      dir.Write("y.yaml", "program:\n  - {g: 4, p: 0.5}\n  - {g: [91.1, 3], x: 0, y: 0, i: 5}\n"
+                          "program_dialect: grbl\n"),
+      {});
+  ASSERT_EQ(list.program->blocks.size(), 2u);
+  EXPECT_DOUBLE_EQ(list.program->blocks[0].dwell_s, 0.5);
+  EXPECT_NEAR(list.program->blocks[1].center_m.x(), 5e-3, 1e-15);
 }
 
 }  // namespace
