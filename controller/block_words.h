@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "controller/gcode_dialect.h"
-#include "controller/program_builder.h"
+#include "controller/program.h"
+#include "controller/program_words.h"
 
 namespace shapebench::controller {
 

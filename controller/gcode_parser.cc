@@ -75,11 +75,91 @@ struct ScannedLine {
   int percent_column = 0;  // 1-based column of a `%`, 0 if none
 };
 
+ProgramError ErrorAt(int line_number, std::size_t pos, const std::string& message) {
+  return ProgramError(line_number, static_cast<int>(pos) + 1, -1, message);
+}
+
+// A character that starts no word: what it is, when another controller's syntax.
+ProgramError ForeignCharacter(char c, std::size_t pos, int line_number, Dialect dialect) {
+  if (c == '@' || c == '^') {
+    return ErrorAt(line_number, pos, std::string("'") + c + "' (polar coordinates, LinuxCNC) is "
+                   "not read by the bench in any dialect; program X and Y");
+  }
+  if (c == '#' || c == '[') {
+    return ErrorAt(line_number, pos, std::string("'") + c + "' (an RS274NGC parameter or "
+                   "expression) is LinuxCNC's; the " + DialectName(dialect) + " dialect does "
+                   "not read it; allowed: program_dialect: linuxcnc");
+  }
+  return ErrorAt(line_number, pos, "unexpected character " + Quoted(c) +
+                                       "; a block is words (a letter and a number, e.g. X10) "
+                                       "with comments in ( ) or after ;");
+}
+
+// Checks a word's number as its letter takes it (N an integer, G unsigned).
+void CheckNumber(char letter, const std::string& number, std::size_t letter_pos, int line_number) {
+  const std::string text = std::string(1, letter) + number;
+  if (letter == 'N' && !IsUnsignedInteger(number)) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': N takes an unsigned "
+                                           "integer, e.g. N10");
+  }
+  if (letter == 'G' && (!IsDecimal(number) || number[0] == '-' || number[0] == '+')) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': G takes an unsigned "
+                                           "number, e.g. G1, G91.1");
+  }
+  if (letter != 'G' && letter != 'N' && !IsDecimal(number)) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': a number is digits "
+                                           "with at most one decimal point and an optional "
+                                           "sign, e.g. X-5.5, X.5, X10");
+  }
+}
+
+// The word whose letter stands at *pos; *pos moves past its number.
+Word ReadWord(const std::string& line, std::size_t* pos, int line_number, Dialect dialect) {
+  const std::size_t letter_pos = *pos;
+  const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(line[*pos])));
+  ++*pos;
+  while (*pos < line.size() && IsBlank(line[*pos])) ++*pos;
+  const std::size_t number_pos = *pos;
+  while (*pos < line.size() && IsNumberChar(line[*pos])) ++*pos;
+  const std::string number = line.substr(number_pos, *pos - number_pos);
+  const std::string text = std::string(1, letter) + number;
+  const std::string dialect_rule = std::string("LinuxCNC's; the ") + DialectName(dialect) +
+                                   " dialect does not read ";
+  if (letter == 'O' && IsOWordControl(line, *pos)) {
+    throw ErrorAt(line_number, letter_pos, "O-word control flow ('" + line.substr(letter_pos) +
+                                           "': RS274NGC sub/call/if/while/repeat) is " +
+                                           dialect_rule + "it; allowed: program_dialect: linuxcnc");
+  }
+  const char next = number_pos < line.size() ? line[number_pos] : '\0';
+  if (number.empty() && (next == '#' || next == '[')) {
+    throw ErrorAt(line_number, letter_pos, "'" + std::string(1, letter) + "' is followed by " +
+                                           Quoted(next) + ": RS274NGC parameters and "
+                                           "expressions are " + dialect_rule + "them; allowed: "
+                                           "program_dialect: linuxcnc");
+  }
+  if (number.empty()) {
+    const bool followed = next != '\0' && next != '(' && next != ';';
+    throw ErrorAt(line_number, letter_pos,
+                  "malformed number: '" + std::string(1, letter) + "' " +
+                      (followed ? "is followed by " + Quoted(next) + ", not a number"
+                                : std::string("has no number")) + "; " + kWordExample);
+  }
+  CheckNumber(letter, number, letter_pos, line_number);
+  errno = 0;
+  const double value = std::strtod(number.c_str(), nullptr);
+  if (errno == ERANGE && std::isinf(value)) {
+    throw ErrorAt(line_number, letter_pos, "number out of range in '" + text + "'");
+  }
+  Word word;
+  word.letter = letter;
+  word.value = value;
+  word.column = static_cast<int>(letter_pos) + 1;
+  word.text = text;
+  return word;
+}
+
 ScannedLine ScanLine(const std::string& line, int line_number, Dialect dialect) {
   ScannedLine scanned;
-  auto error = [&](std::size_t pos, const std::string& message) {
-    return ProgramError(line_number, static_cast<int>(pos) + 1, -1, message);
-  };
   const std::string percent_rule =
       "'%' must stand alone on its line (comments may follow), to open or close the program";
   std::size_t pos = 0;
@@ -92,91 +172,29 @@ ScannedLine ScanLine(const std::string& line, int line_number, Dialect dialect) 
     if (c == '(') {
       const std::size_t close = line.find(')', pos + 1);
       if (close == std::string::npos) {
-        throw error(pos, "unclosed comment: '(' without ')' on its line; a comment is "
-                         "( ... ) within one line, or ; to the end of the line");
+        throw ErrorAt(line_number, pos, "unclosed comment: '(' without ')' on its line; a "
+                                        "comment is ( ... ) within one line, or ; to the end "
+                                        "of the line");
       }
       pos = close + 1;
       continue;
     }
     if (c == ';') break;
     if (c == '%') {
-      if (scanned.percent_column > 0 || !scanned.words.empty()) throw error(pos, percent_rule);
+      if (scanned.percent_column > 0 || !scanned.words.empty()) {
+        throw ErrorAt(line_number, pos, percent_rule);
+      }
       scanned.percent_column = static_cast<int>(pos) + 1;
       ++pos;
       continue;
     }
-    if (c == '@' || c == '^') {
-      throw error(pos, std::string("'") + c + "' (polar coordinates, LinuxCNC) is not read by the "
-                       "bench in any dialect; program X and Y");
-    }
-    if (c == '#' || c == '[') {
-      throw error(pos, std::string("'") + c + "' (an RS274NGC parameter or expression) is "
-                       "LinuxCNC's; the " + DialectName(dialect) + " dialect does not read it; "
-                       "allowed: program_dialect: linuxcnc");
-    }
     if (!std::isalpha(static_cast<unsigned char>(c))) {
-      throw error(pos, "unexpected character " + Quoted(c) +
-                           "; a block is words (a letter and a number, e.g. X10) with "
-                           "comments in ( ) or after ;");
+      throw ForeignCharacter(c, pos, line_number, dialect);
     }
     if (scanned.percent_column > 0) {
-      throw error(static_cast<std::size_t>(scanned.percent_column - 1), percent_rule);
+      throw ErrorAt(line_number, static_cast<std::size_t>(scanned.percent_column - 1), percent_rule);
     }
-    const std::size_t letter_pos = pos;
-    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    ++pos;
-    while (pos < line.size() && IsBlank(line[pos])) ++pos;
-    const std::size_t number_pos = pos;
-    while (pos < line.size() && IsNumberChar(line[pos])) ++pos;
-    const std::string number = line.substr(number_pos, pos - number_pos);
-    const std::string text = std::string(1, letter) + number;
-    if (letter == 'O' && IsOWordControl(line, pos)) {
-      throw error(letter_pos, "O-word control flow ('" + line.substr(letter_pos) + "': RS274NGC "
-                              "sub/call/if/while/repeat) is LinuxCNC's; the " +
-                              DialectName(dialect) + " dialect does not read it; allowed: "
-                              "program_dialect: linuxcnc");
-    }
-    if (number.empty() && number_pos < line.size() &&
-        (line[number_pos] == '#' || line[number_pos] == '[')) {
-      throw error(letter_pos, "'" + std::string(1, letter) + "' is followed by " +
-                                  Quoted(line[number_pos]) + ": RS274NGC parameters and "
-                                  "expressions are LinuxCNC's; the " + DialectName(dialect) +
-                                  " dialect does not read them; allowed: program_dialect: "
-                                  "linuxcnc");
-    }
-    if (number.empty()) {
-      const bool followed = number_pos < line.size() && line[number_pos] != '(' &&
-                            line[number_pos] != ';';
-      throw error(letter_pos, "malformed number: '" + std::string(1, letter) + "' " +
-                                  (followed ? "is followed by " + Quoted(line[number_pos]) +
-                                                  ", not a number"
-                                            : std::string("has no number")) +
-                                  "; " + kWordExample);
-    }
-    if (letter == 'N' && !IsUnsignedInteger(number)) {
-      throw error(letter_pos, "malformed number '" + text + "': N takes an unsigned integer, "
-                              "e.g. N10");
-    }
-    if (letter == 'G' && (!IsDecimal(number) || number[0] == '-' || number[0] == '+')) {
-      throw error(letter_pos, "malformed number '" + text + "': G takes an unsigned number, "
-                              "e.g. G1, G91.1");
-    }
-    if (letter != 'G' && letter != 'N' && !IsDecimal(number)) {
-      throw error(letter_pos, "malformed number '" + text +
-                                  "': a number is digits with at most one decimal point and "
-                                  "an optional sign, e.g. X-5.5, X.5, X10");
-    }
-    errno = 0;
-    const double value = std::strtod(number.c_str(), nullptr);
-    if (errno == ERANGE && std::isinf(value)) {
-      throw error(letter_pos, "number out of range in '" + text + "'");
-    }
-    Word word;
-    word.letter = letter;
-    word.value = value;
-    word.column = static_cast<int>(letter_pos) + 1;
-    word.text = text;
-    scanned.words.push_back(word);
+    scanned.words.push_back(ReadWord(line, &pos, line_number, dialect));
   }
   return scanned;
 }

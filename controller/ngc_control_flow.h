@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "controller/gcode_dialect.h"
-#include "controller/program_builder.h"
+#include "controller/program_words.h"
 #include "controller/rs274_expression.h"
-#include "controller/subprogram_expander.h"
+#include "controller/source_line.h"
 
 namespace shapebench::controller {
 

@@ -187,15 +187,6 @@ bool LinearBlockMoves(const BlockWords& words, const ProgramBlock& move) {
 
 }  // namespace
 
-ProgramError::ProgramError(int line, int column, int word_index, std::string message)
-    : std::runtime_error((column > 0 ? std::to_string(line) + ":" + std::to_string(column)
-                                     : std::to_string(line)) +
-                         ": " + message),
-      line_(line),
-      column_(column),
-      word_index_(word_index),
-      message_(std::move(message)) {}
-
 ProgramBuilder::ProgramBuilder(const Eigen::Vector3d& start_m, ProgramOptions options)
     : options_(std::move(options)), position_m_(start_m) {
   program_.start_m = start_m;

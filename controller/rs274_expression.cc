@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <utility>
 
-#include "controller/program_builder.h"
+#include "controller/program_words.h"
 
 namespace shapebench::controller {
 namespace {

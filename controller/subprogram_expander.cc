@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "controller/ngc_control_flow.h"
-#include "controller/program_builder.h"
+#include "controller/program_words.h"
 #include "controller/rs274_expression.h"
 
 namespace shapebench::controller {

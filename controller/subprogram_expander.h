@@ -21,15 +21,9 @@
 #include <vector>
 
 #include "controller/gcode_dialect.h"
+#include "controller/source_line.h"
 
 namespace shapebench::controller {
-
-inline constexpr int kMaxCallDepth = 10;  // LinuxCNC's and Fanuc's nesting limits
-
-struct SourceLine {
-  int line = 0;  // 1-based, in the file
-  std::string text;
-};
 
 class ProgramExpander {
  public:
