@@ -47,9 +47,10 @@ double FeedAfter(const BlockWords& words, double feed_m_s, double unit_m) {
     throw words.WordError(f, "F must be > 0 (" + unit + "), got '" + words.Shown(f) + "'");
   }
   if (feed * unit_m * 1e3 > kMaxFeedMmMin) {
-    throw words.WordError(f, "F must be at most 1000000 mm/min (" +
-                                 FormatNumber(kMaxFeedMmMin * 1e-3 / unit_m) + " " + unit +
-                                 "), got '" + words.Shown(f) + "'");
+    throw words.WordError(f, "F must be at most " +
+                                 (unit_m == kInchM ? FormatNumber(kMaxFeedMmMin / 25.4, 7)
+                                                   : std::string("1000000")) +
+                                 " (" + unit + "), got '" + words.Shown(f) + "'");
   }
   return feed * unit_m / kMinuteS;
 }

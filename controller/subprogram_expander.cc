@@ -68,10 +68,43 @@ bool IsCode(const Token& token, char letter, int code) {
   return std::stol(token.number) == code;
 }
 
+// Whether a Fanuc program may call subprograms: an M98 or M99 anywhere (M 098 too).
+bool MayCallSubprograms(const std::string& text) {
+  for (std::size_t pos = 0; pos < text.size(); ++pos) {
+    if (text[pos] != 'M' && text[pos] != 'm') continue;
+    std::size_t k = pos + 1;
+    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '0')) ++k;
+    if (k + 1 < text.size() && text[k] == '9' && (text[k + 1] == '8' || text[k + 1] == '9')) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Whether a LinuxCNC program holds parameters, expressions or O-words: '#', '[', or a line
+// that starts with an O.
+bool MayHoldRs274(const std::string& text) {
+  if (text.find_first_of("#[") != std::string::npos) return true;
+  bool line_start = true;
+  for (const char c : text) {
+    if (line_start && (c == 'o' || c == 'O')) return true;
+    if (c == '\n') {
+      line_start = true;
+    } else if (c != ' ' && c != '\t') {
+      line_start = false;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 struct ProgramExpander::State {
   ProgramOptions options;
+  const std::string* text = nullptr;
+  std::size_t begin = 0;  // streaming: where the next line starts
+  int streamed = 0;       // streaming: the lines handed out
+  bool split = false;     // the text is held as lines (it needs expansion)
   std::vector<std::string> lines;
   std::size_t pc = 0;
   long iterations = 0;
@@ -240,9 +273,15 @@ bool ProgramExpander::State::FanucLine(std::size_t i, std::string* text) {
 ProgramExpander::ProgramExpander(const std::string& text, const ProgramOptions& options)
     : state_(std::make_unique<State>()) {
   state_->options = options;
+  state_->text = &text;
+  // Most programs need no expansion: they stream line by line, never held as lines.
+  const bool fanuc = options.dialect == Dialect::kFanuc && MayCallSubprograms(text);
+  const bool ngc = options.dialect == Dialect::kLinuxcnc && MayHoldRs274(text);
+  if (!fanuc && !ngc) return;
   state_->lines = SplitLines(text);
-  if (options.dialect == Dialect::kFanuc) state_->IndexFanuc();
-  if (options.dialect == Dialect::kLinuxcnc && NgcControlFlow::Needed(state_->lines)) {
+  state_->split = true;
+  if (fanuc) state_->IndexFanuc();
+  if (ngc && NgcControlFlow::Needed(state_->lines)) {
     state_->ngc = std::make_unique<NgcControlFlow>(state_->lines, options);
   }
 }
@@ -252,6 +291,16 @@ ProgramExpander::~ProgramExpander() = default;
 bool ProgramExpander::Next(SourceLine* line) {
   State& s = *state_;
   if (s.ngc) return s.ngc->Next(line);
+  if (!s.split) {  // streaming: the next line of the text as it stands
+    const std::string& text = *s.text;
+    if (s.begin >= text.size()) return false;
+    std::size_t end = text.find('\n', s.begin);
+    if (end == std::string::npos) end = text.size();
+    line->line = ++s.streamed;
+    line->text = text.substr(s.begin, end - s.begin);
+    s.begin = end + 1;
+    return true;
+  }
   while (s.pc < s.lines.size()) {
     const std::size_t i = s.pc++;
     std::string text = s.lines[i];

@@ -27,6 +27,7 @@ namespace shapebench::controller {
 
 class ProgramExpander {
  public:
+  // `text` must outlive the expander.
   ProgramExpander(const std::string& text, const ProgramOptions& options);
   ~ProgramExpander();
 
