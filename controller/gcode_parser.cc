@@ -1,5 +1,7 @@
 #include "controller/gcode_parser.h"
 
+#include "controller/subprogram_expander.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -45,6 +47,27 @@ std::string Quoted(char c) {
   return "character code " + std::to_string(static_cast<unsigned char>(c));
 }
 
+// After an O number at `pos`: a LinuxCNC O-word keyword (o100 sub, o101 while [...]).
+bool IsOWordControl(const std::string& line, std::size_t pos) {
+  while (pos < line.size() && IsBlank(line[pos])) ++pos;
+  if (pos < line.size() && line[pos] == '<') {  // a named O-word: o<name> sub
+    const std::size_t close = line.find('>', pos);
+    if (close == std::string::npos) return false;
+    pos = close + 1;
+    while (pos < line.size() && IsBlank(line[pos])) ++pos;
+  }
+  std::string keyword;
+  while (pos < line.size() && std::isalpha(static_cast<unsigned char>(line[pos]))) {
+    keyword += static_cast<char>(std::tolower(static_cast<unsigned char>(line[pos++])));
+  }
+  for (const char* control : {"sub", "endsub", "call", "return", "if", "elseif", "else",
+                              "endif", "while", "endwhile", "do", "repeat", "endrepeat",
+                              "break", "continue"}) {
+    if (keyword == control) return true;
+  }
+  return false;
+}
+
 constexpr const char* kWordExample = "a word is a letter and a number, e.g. X-5.5";
 
 struct ScannedLine {
@@ -52,11 +75,91 @@ struct ScannedLine {
   int percent_column = 0;  // 1-based column of a `%`, 0 if none
 };
 
-ScannedLine ScanLine(const std::string& line, int line_number) {
+ProgramError ErrorAt(int line_number, std::size_t pos, const std::string& message) {
+  return ProgramError(line_number, static_cast<int>(pos) + 1, -1, message);
+}
+
+// A character that starts no word: what it is, when another controller's syntax.
+ProgramError ForeignCharacter(char c, std::size_t pos, int line_number, Dialect dialect) {
+  if (c == '@' || c == '^') {
+    return ErrorAt(line_number, pos, std::string("'") + c + "' (polar coordinates, LinuxCNC) is "
+                   "not read by the bench in any dialect; program X and Y");
+  }
+  if (c == '#' || c == '[') {
+    return ErrorAt(line_number, pos, std::string("'") + c + "' (an RS274NGC parameter or "
+                   "expression) is LinuxCNC's; the " + DialectName(dialect) + " dialect does "
+                   "not read it; allowed: program_dialect: linuxcnc");
+  }
+  return ErrorAt(line_number, pos, "unexpected character " + Quoted(c) +
+                                       "; a block is words (a letter and a number, e.g. X10) "
+                                       "with comments in ( ) or after ;");
+}
+
+// Checks a word's number as its letter takes it (N an integer, G unsigned).
+void CheckNumber(char letter, const std::string& number, std::size_t letter_pos, int line_number) {
+  const std::string text = std::string(1, letter) + number;
+  if (letter == 'N' && !IsUnsignedInteger(number)) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': N takes an unsigned "
+                                           "integer, e.g. N10");
+  }
+  if (letter == 'G' && (!IsDecimal(number) || number[0] == '-' || number[0] == '+')) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': G takes an unsigned "
+                                           "number, e.g. G1, G91.1");
+  }
+  if (letter != 'G' && letter != 'N' && !IsDecimal(number)) {
+    throw ErrorAt(line_number, letter_pos, "malformed number '" + text + "': a number is digits "
+                                           "with at most one decimal point and an optional "
+                                           "sign, e.g. X-5.5, X.5, X10");
+  }
+}
+
+// The word whose letter stands at *pos; *pos moves past its number.
+Word ReadWord(const std::string& line, std::size_t* pos, int line_number, Dialect dialect) {
+  const std::size_t letter_pos = *pos;
+  const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(line[*pos])));
+  ++*pos;
+  while (*pos < line.size() && IsBlank(line[*pos])) ++*pos;
+  const std::size_t number_pos = *pos;
+  while (*pos < line.size() && IsNumberChar(line[*pos])) ++*pos;
+  const std::string number = line.substr(number_pos, *pos - number_pos);
+  const std::string text = std::string(1, letter) + number;
+  const std::string dialect_rule = std::string("LinuxCNC's; the ") + DialectName(dialect) +
+                                   " dialect does not read ";
+  if (letter == 'O' && IsOWordControl(line, *pos)) {
+    throw ErrorAt(line_number, letter_pos, "O-word control flow ('" + line.substr(letter_pos) +
+                                           "': RS274NGC sub/call/if/while/repeat) is " +
+                                           dialect_rule + "it; allowed: program_dialect: linuxcnc");
+  }
+  const char next = number_pos < line.size() ? line[number_pos] : '\0';
+  if (number.empty() && (next == '#' || next == '[')) {
+    throw ErrorAt(line_number, letter_pos, "'" + std::string(1, letter) + "' is followed by " +
+                                           Quoted(next) + ": RS274NGC parameters and "
+                                           "expressions are " + dialect_rule + "them; allowed: "
+                                           "program_dialect: linuxcnc");
+  }
+  if (number.empty()) {
+    const bool followed = next != '\0' && next != '(' && next != ';';
+    throw ErrorAt(line_number, letter_pos,
+                  "malformed number: '" + std::string(1, letter) + "' " +
+                      (followed ? "is followed by " + Quoted(next) + ", not a number"
+                                : std::string("has no number")) + "; " + kWordExample);
+  }
+  CheckNumber(letter, number, letter_pos, line_number);
+  errno = 0;
+  const double value = std::strtod(number.c_str(), nullptr);
+  if (errno == ERANGE && std::isinf(value)) {
+    throw ErrorAt(line_number, letter_pos, "number out of range in '" + text + "'");
+  }
+  Word word;
+  word.letter = letter;
+  word.value = value;
+  word.column = static_cast<int>(letter_pos) + 1;
+  word.text = text;
+  return word;
+}
+
+ScannedLine ScanLine(const std::string& line, int line_number, Dialect dialect) {
   ScannedLine scanned;
-  auto error = [&](std::size_t pos, const std::string& message) {
-    return ProgramError(line_number, static_cast<int>(pos) + 1, -1, message);
-  };
   const std::string percent_rule =
       "'%' must stand alone on its line (comments may follow), to open or close the program";
   std::size_t pos = 0;
@@ -69,66 +172,29 @@ ScannedLine ScanLine(const std::string& line, int line_number) {
     if (c == '(') {
       const std::size_t close = line.find(')', pos + 1);
       if (close == std::string::npos) {
-        throw error(pos, "unclosed comment: '(' without ')' on its line; a comment is "
-                         "( ... ) within one line, or ; to the end of the line");
+        throw ErrorAt(line_number, pos, "unclosed comment: '(' without ')' on its line; a "
+                                        "comment is ( ... ) within one line, or ; to the end "
+                                        "of the line");
       }
       pos = close + 1;
       continue;
     }
     if (c == ';') break;
     if (c == '%') {
-      if (scanned.percent_column > 0 || !scanned.words.empty()) throw error(pos, percent_rule);
+      if (scanned.percent_column > 0 || !scanned.words.empty()) {
+        throw ErrorAt(line_number, pos, percent_rule);
+      }
       scanned.percent_column = static_cast<int>(pos) + 1;
       ++pos;
       continue;
     }
     if (!std::isalpha(static_cast<unsigned char>(c))) {
-      throw error(pos, "unexpected character " + Quoted(c) +
-                           "; a block is words (a letter and a number, e.g. X10) with "
-                           "comments in ( ) or after ;");
+      throw ForeignCharacter(c, pos, line_number, dialect);
     }
     if (scanned.percent_column > 0) {
-      throw error(static_cast<std::size_t>(scanned.percent_column - 1), percent_rule);
+      throw ErrorAt(line_number, static_cast<std::size_t>(scanned.percent_column - 1), percent_rule);
     }
-    const std::size_t letter_pos = pos;
-    const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    ++pos;
-    while (pos < line.size() && IsBlank(line[pos])) ++pos;
-    const std::size_t number_pos = pos;
-    while (pos < line.size() && IsNumberChar(line[pos])) ++pos;
-    const std::string number = line.substr(number_pos, pos - number_pos);
-    const std::string text = std::string(1, letter) + number;
-    if (number.empty()) {
-      const bool followed = number_pos < line.size() && line[number_pos] != '(' &&
-                            line[number_pos] != ';';
-      throw error(letter_pos, "malformed number: '" + std::string(1, letter) + "' " +
-                                  (followed ? "is followed by " + Quoted(line[number_pos]) +
-                                                  ", not a number"
-                                            : std::string("has no number")) +
-                                  "; " + kWordExample);
-    }
-    if (letter == 'G' || letter == 'N') {
-      if (!IsUnsignedInteger(number)) {
-        throw error(letter_pos, "malformed number '" + text + "': " + std::string(1, letter) +
-                                    " takes an unsigned integer, e.g. " +
-                                    (letter == 'G' ? "G1" : "N10"));
-      }
-    } else if (!IsDecimal(number)) {
-      throw error(letter_pos, "malformed number '" + text +
-                                  "': a number is digits with at most one decimal point and "
-                                  "an optional sign, e.g. X-5.5, X.5, X10");
-    }
-    errno = 0;
-    const double value = std::strtod(number.c_str(), nullptr);
-    if (errno == ERANGE && std::isinf(value)) {
-      throw error(letter_pos, "number out of range in '" + text + "'");
-    }
-    Word word;
-    word.letter = letter;
-    word.value = value;
-    word.column = static_cast<int>(letter_pos) + 1;
-    word.text = text;
-    scanned.words.push_back(word);
+    scanned.words.push_back(ReadWord(line, &pos, line_number, dialect));
   }
   return scanned;
 }
@@ -181,8 +247,8 @@ std::string RefusalReason(const Word& word) {
   const int code = CodeOf(word);
   const std::string shown = "'" + word.text + "'";
   if (word.letter == 'M' && (code == 98 || code == 99)) {
-    return shown + " (subprogram call or return) changes which blocks run, and the bench reads "
-           "one program without subprograms; write the moves out in the program";
+    return shown + " (subprogram call or return) is fanuc's; allowed: program_dialect: fanuc "
+           "(LinuxCNC calls with O-word sub/call, grbl has no subprograms)";
   }
   if (word.letter != 'G') return "";
   if (code == 41 || code == 42) {
@@ -196,10 +262,6 @@ std::string RefusalReason(const Word& word) {
   if (code == 73 || code == 74 || code == 76 || (code >= 81 && code <= 89)) {
     return shown + " is a canned cycle, which expands into moves the bench does not generate; "
            "program the moves with G0/G1 (G80 cancels a cycle)";
-  }
-  if (code == 28 || code == 30) {
-    return shown + " (reference point return) moves through the machine's reference point, "
-           "which the bench does not model; program the moves with G0/G1";
   }
   if (code == 53) {
     return shown + " (machine coordinates) needs the work offsets, which the bench does not "
@@ -296,24 +358,19 @@ std::vector<Word> ModelledWords(const std::vector<Word>& words, int line, const 
 
 Program ParseGcode(const std::string& text, const Eigen::Vector3d& start_m, const GcodeLimits& limits,
                    const GcodeOptions& options) {
-  ProgramBuilder builder(start_m);
+  ProgramBuilder builder(start_m, options.program);
   IgnoredWords ignored;
   int end_line = 0;  // the line of M2/M30, 0 before it
   double path_s = 0.0;  // the path's time so far, at least
   bool opened = false;     // an opening `%` was read
   int closing_line = 0;    // the line of the closing `%`, 0 while open
   bool any_block = false;  // a line with words was read
-  int line_number = 0;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string line = text.substr(begin, end - begin);
-    begin = end + 1;
-    ++line_number;
-    if (end == text.size() && line.empty()) break;  // after the final newline
-
-    const ScannedLine scanned = ScanLine(line, line_number);
+  ProgramExpander expander(text, options.program);
+  SourceLine source;
+  while (expander.Next(&source)) {
+    const std::string& line = source.text;
+    const int line_number = source.line;
+    const ScannedLine scanned = ScanLine(line, line_number, options.program.dialect);
     if (scanned.percent_column > 0) {
       if (closing_line > 0) {
         throw ProgramError(line_number, scanned.percent_column, -1,

@@ -1,5 +1,7 @@
-// A Fanuc-style G-code subset -> Program (through ProgramBuilder, which documents the
-// words and their modal behaviour).
+// G-code in one of three dialects (GcodeOptions::program, controller/gcode_dialect.h) ->
+// Program: ProgramExpander (controller/subprogram_expander.h) runs subprograms, O-words and
+// parameters and hands over the blocks in execution order; ProgramBuilder documents the
+// words and their modal behaviour. docs/gcode.md lists it all.
 //
 // Lexical rules:
 //   - One block per line (LF or CRLF). Blank lines and lines holding only comments are
@@ -13,7 +15,8 @@
 //     optional (`G1X10Y-5.5F600`); spaces and tabs between the letter and its number are
 //     allowed (`X 10`, `X -5`), not inside the number.
 //   - Numbers: optional sign, digits with at most one decimal point (`10`, `-5.5`, `.5`,
-//     `5.`); no exponent. G and N take unsigned integers (`G01` is G1; `G1.5` is malformed).
+//     `5.`); no exponent. G takes an unsigned number (`G01` is G1, `G91.1`); N an unsigned
+//     integer.
 //   - Part-program words outside the motion (controller/program_builder.h lists the modelled
 //     ones) are read and dropped, with ONE warning per program that lists each distinct
 //     word with its first line (Program::warnings): O (program number), T (tool), S
@@ -25,8 +28,10 @@
 //     accepted without a warning. GcodeOptions::strict refuses every dropped word.
 //   - Words that would change the motion the bench does not model are refused: G41/G42
 //     (cutter compensation), G95/G96 (feed per revolution, constant surface speed),
-//     canned cycles (G73, G74, G76, G81-G89), G28/G30 (reference return), G53 (machine
-//     coordinates), M98/M99 (subprograms), and any block after M2/M30 (the program end).
+//     canned cycles (G73, G74, G76, G81-G89), G53 (machine coordinates), M98/M99 outside
+//     the fanuc dialect, polar coordinates (`@`, `^`), `#`/`[` and O-word control flow
+//     outside the linuxcnc dialect (each message says which dialect reads it), and any
+//     block after M2/M30 (the program end).
 //   - Columns are 1-based characters (a tab counts as one). Every error about a word,
 //     including a malformed number, points at the word's letter; an unclosed comment at
 //     its `(`; a stray character at itself.
@@ -38,6 +43,7 @@
 
 #include <Eigen/Dense>
 
+#include "controller/gcode_dialect.h"
 #include "controller/program.h"
 #include "controller/program_builder.h"
 
@@ -63,6 +69,7 @@ struct GcodeOptions {
   // G43, G44, G54-G59), each at its line and column.
   bool strict = false;
   std::string strict_key = "strict";  // names the setting in the message
+  ProgramOptions program;              // the dialect and its settings (gcode_dialect.h)
 };
 
 // Throws ProgramError with the 1-based line and column of what is wrong.

@@ -2,21 +2,33 @@
 // control and collects the resulting ProgramBlocks. Both part-program readers use it: the
 // G-code parser (controller/gcode_parser.h) and the YAML `program:` list
 // (bench/scenario/program_reader.h). Units at this boundary are the programmer's: coordinates,
-// I/J/K and R in mm, F in mm/min, P in ms, G4's X in s; the Program is SI.
+// I/J/K and R in mm (inch under G20), F in mm/min (in/min), G4's P and X per dialect;
+// the Program is SI.
 //
-// Words and modal groups:
+// Words and modal groups (docs/gcode.md lists them per dialect; ProgramOptions::dialect,
+// controller/gcode_dialect.h, selects one):
 //   G0 G1 G2 G3   motion (modal). Power-up state: G1, so a block with coordinates only and
 //                 no motion G ever programmed is a linear move (Fanuc parameter G01 = 1).
-//   G4            dwell, one shot: P in milliseconds, or X in seconds; >= 0; exactly one of
-//                 them. A G4 block takes no other motion word (no G0-G3, Y, Z, I, J, K, R);
-//                 the modal words (F, G17-G19, G21, G90, G91, N) may share it.
-//   G17 G18 G19   plane XY (power-up), ZX, YZ (modal).
+//   G4            dwell, one shot. fanuc: P in ms written without a decimal point (a
+//                 decimal P is refused: linuxcnc and grbl read it in s), or X/U in s; no
+//                 other motion word in the block. linuxcnc, grbl: P in s; the block's
+//                 motion, if any, runs after the dwell (their order of execution).
+//   G17 G18 G19   plane XY (power-up), ZX, YZ (modal); a change of the normal axis makes a
+//                 helix.
+//   G20 G21       inch (lengths and F scaled by 25.4) / mm (power-up), modal, any block.
+//   G28 G30       return through the intermediate point (X Y Z, per G90/G91) to the
+//                 reference position ProgramOptions::g28_mm/g30_mm (refused when unset), in
+//                 two rapid moves; the axes with a word return (linuxcnc, grbl: all axes
+//                 when there is none; fanuc: none).
+//   G61 G61.1 G64 path mode (modal; grbl: G61 only; fanuc: G61, G64; linuxcnc: all, G64
+//                 with P and Q). Corners follow the bench's corner rule in every mode; G64
+//                 (blending) is read as exact stop with one warning per program.
 //   G90 G91       absolute (power-up) / incremental X Y Z (modal).
-//   G21           mm input, accepted and without effect; G20 (inch) is an error.
-//   F             feed, mm/min, > 0 (modal; NaN in the blocks until the first F).
+//   G90.1 G91.1   absolute / incremental (power-up) I J K (linuxcnc; grbl: G91.1).
+//   F             feed, mm/min (in/min under G20), > 0 (modal; NaN until the first F).
 //   X Y Z         end point, absolute or incremental per G90/G91.
-//   I J K         arc centre offsets from the start point, always incremental; only the two
-//                 of the active plane (G17: I J, G18: K I, G19: J K).
+//   I J K         arc centre: offsets from the start point (or the centre under G90.1);
+//                 only the two of the active plane (G17: I J, G18: K I, G19: J K).
 //   R             arc radius: R > 0 the arc of at most 180 degrees, R < 0 the longer one.
 //   N             sequence number, ignored (accepted anywhere in the block).
 // Every word at most once per block; at most one word of each G group.
@@ -27,13 +39,13 @@
 //     start.
 //   - An arc needs I/J/K or R (not both). Its end and start coincide (within 1e-6 mm in the
 //     plane; the end is then set to the start exactly) for a full circle, which only
-//     I/J/K can describe. The start and end radii must agree within 1e-3 mm (1 um, the
-//     least input increment) or 1e-6 of the radius, whichever is larger (i.e. radii above
-//     1 m get the relative bound); the programmed end point is kept as written.
+//     I/J/K can describe. The start and end radii must agree within the dialect's arc
+//     tolerance (ProgramOptions::ArcRule; fanuc: 1e-3 mm, the least input increment, or
+//     1e-6 of the radius); the programmed end point is kept as written.
 //   - R shorter than half the chord by more than that tolerance is an error; within it, the
 //     centre is the chord's midpoint.
-//   - Numbers are taken as written in mm (Fanuc decimal-point input with "calculator-type"
-//     input: X10 is 10 mm).
+//   - Numbers are taken as written in mm or inch (decimal-point input with
+//     "calculator-type" input: X10 is 10 mm).
 #pragma once
 
 #include <stdexcept>
@@ -42,52 +54,18 @@
 
 #include <Eigen/Dense>
 
+#include "controller/gcode_dialect.h"
 #include "controller/program.h"
+#include "controller/program_words.h"
 
 namespace shapebench::controller {
 
-// One address word: is {'X', -5.5}.
-struct Word {
-  char letter = 0;     // upper case
-  double value = 0.0;  // as written: mm, mm/min, ms or s
-  int column = 0;      // 1-based column of the letter in its G-code line; 0 if not from text
-  std::string text;    // as written ("G01", "X-5.5") for messages; empty: letter + value
-};
-
-struct Block {
-  std::vector<Word> words;
-  int source_line = 0;  // copied to ProgramBlock::source_line and ProgramError::line
-};
-
-// The highest feed a program or a controller setting may ask for, mm/min (1 km/min,
-// several times the fastest machine tools): the planner's arithmetic (the cruise as the
-// distance less v^2/a) loses the move's length to rounding far above it (F1e20 ran a 10 mm
-// move 264 mm off its path, F1e30 asked for terabytes:
-// fuzz/regressions/gcode/feed_1e30_planner_allocates_terabytes.nc).
-inline constexpr double kMaxFeedMmMin = 1.0e6;
-
-// A part-program error: what is wrong and what is allowed, at a line and column.
-class ProgramError : public std::runtime_error {
- public:
-  // word_index: the offending word's index in Block::words, -1 when the error concerns
-  // the block (or a line) as a whole. column: 1-based; 0 when there is none.
-  ProgramError(int line, int column, int word_index, std::string message);
-
-  int line() const { return line_; }
-  int column() const { return column_; }
-  int word_index() const { return word_index_; }
-  const std::string& message() const { return message_; }  // without the position
-
- private:
-  int line_;
-  int column_;
-  int word_index_;
-  std::string message_;
-};
+class BlockWords;  // controller/block_words.h
 
 class ProgramBuilder {
  public:
-  explicit ProgramBuilder(const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero());
+  explicit ProgramBuilder(const Eigen::Vector3d& start_m = Eigen::Vector3d::Zero(),
+                          ProgramOptions options = {});
 
   // Applies one block; throws ProgramError (the builder's state is then unspecified).
   void Apply(const Block& block);
@@ -101,17 +79,24 @@ class ProgramBuilder {
   Plane plane() const { return plane_; }
   bool incremental() const { return incremental_; }
   double feed_m_s() const { return feed_m_s_; }
+  double unit_m() const { return unit_m_; }  // 1e-3 (G21) or 25.4e-3 (G20)
 
  private:
+  void AddRapid(const ProgramBlock& here, const Eigen::Vector3d& end_m);
+  void ReferenceReturn(const BlockWords& words, const ProgramBlock& here);
+  void NotePathMode(const BlockWords& words, int line);
+
+  ProgramOptions options_;
   Program program_;
   Eigen::Vector3d position_m_;
   MotionKind motion_ = MotionKind::kLinear;
   Plane plane_ = Plane::kXY;
   bool incremental_ = false;
   double feed_m_s_ = NAN;
+  double unit_m_ = 1e-3;
+  bool absolute_centre_ = false;
+  bool blending_warned_ = false;
 };
 
-// The words the builder accepts, for "allowed: ..." in messages.
-extern const char* const kSupportedWords;
 
 }  // namespace shapebench::controller

@@ -62,7 +62,12 @@ inline std::vector<bench::Override> SmallLimits() {
 inline void GcodeTarget(const std::string& text) {
   controller::Program program;
   try {
-    program = controller::ParseGcode(text);
+    // Loops and subprograms repeat blocks: a block cap keeps a looping input's memory
+    // bounded, as the scenario loader's limits do.
+    controller::GcodeLimits limits;
+    limits.max_blocks = 100000;
+    limits.max_blocks_key = "max_blocks";
+    program = controller::ParseGcode(text, Eigen::Vector3d::Zero(), limits);
   } catch (const controller::ProgramError& error) {
     if (error.line() < 1 || error.column() < 0) throw Violation{"unlocated: " + std::string(error.what())};
     return;

@@ -232,7 +232,7 @@ model::MultiAxisMachineConfig ReadAxesForm(const NodeReader& machine) {
                          "each axis' model under axes.x, axes.y or axes.z");
     }
   }
-  machine.ExpectMap({"axes", "driven_axis", "stroke", "rigid"});
+  machine.ExpectMap({"axes", "driven_axis", "stroke", "rigid", "reference_mm"});
   model::MultiAxisMachineConfig config;
   config.axes = {};
   config.single_form = false;
@@ -296,7 +296,8 @@ model::MultiAxisMachineConfig ReadMachineAxes(const NodeReader& machine) {
   // The measured form reads its FRF records along the axis, so it is known before the form.
   if (machine.IsMap()) machine.Read<int>("axis", AxisChoices(), &config.driven_axis);
   const model::MachineConfig form = ReadForm(
-      machine, {"axis", "driven_axis", "stroke", "rigid", model::ModalMachineConfig::kModalFileKey},
+      machine, {"axis", "driven_axis", "stroke", "rigid", "reference_mm",
+                model::ModalMachineConfig::kModalFileKey},
       config.driven_axis);
   ReadSingleFormAxis(machine, form, &config);
   ReadStroke(machine, &config);

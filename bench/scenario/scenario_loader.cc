@@ -36,7 +36,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kScenarioKeys = {
-    "name", "machine", "drive", "controller", "move", "program", "program_file", "program_strict", "output",
+    "name", "machine", "drive", "controller", "move", "program", "program_file", "program_strict",
+    "program_dialect", "program_arc_tolerance", "program_max_iterations", "output",
     "integrator", "checks", "limits"};
 
 bool HasKey(const YAML::Node& map, const std::string& key) {
@@ -403,15 +404,9 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
     what_runs = child;
   }
   if (auto move = top.Child("move")) scenario.move = ReadMove(*move);
-  if (auto program = top.Child("program")) scenario.program = ReadProgramList(*program);
-  controller::GcodeOptions gcode_options;
-  gcode_options.strict_key = "program_strict";
-  if (auto strict = top.Child("program_strict")) {
-    if (!top.Has("program_file")) {
-      throw strict->Error("program_strict applies to a G-code file; give program_file, or remove "
-                          "program_strict");
-    }
-    top.Read<bool>("program_strict", {{"true", true}, {"false", false}}, &gcode_options.strict);
+  const controller::GcodeOptions gcode_options = ReadProgramOptions(top);
+  if (auto program = top.Child("program")) {
+    scenario.program = ReadProgramList(*program, Eigen::Vector3d::Zero(), gcode_options.program);
   }
   if (auto program_file = top.Child("program_file")) {
     // Limits from a validated period only (an invalid one is reported below, as before).

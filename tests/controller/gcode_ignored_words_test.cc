@@ -148,9 +148,8 @@ TEST(GcodeIgnoredWordsTest, MotionChangingWordsRefusedAtLineAndColumn) {
   ExpectIgnoredWordsError("G95 G1 X1 F0.1\n", 1, 1, "feed per revolution");
   ExpectIgnoredWordsError("S200 G96 X1\n", 1, 6, "constant surface speed");
   ExpectIgnoredWordsError("G0 X0 Y0\n\nG98 G81 X10 Y10 Z-5 R2 F100\n", 3, 5, "'G81' is a canned cycle");
-  ExpectIgnoredWordsError("G91 G28 Z0\n", 1, 5, "reference point return");
   ExpectIgnoredWordsError("G53 G0 Z0\n", 1, 1, "machine coordinates");
-  ExpectIgnoredWordsError("M98 P1000\n", 1, 1, "subprogram");
+  ExpectIgnoredWordsError("M98 P1000\n", 1, 5, "M98 calls O1000, which is not in this file");
   ExpectIgnoredWordsError("G1 X1\nM30\n  G1 X2\n", 3, 3, "after the program end (M2/M30) of line 2");
   // Before a motion-changing word, an ignored word in the same block is no excuse.
   ExpectIgnoredWordsError("T1 M6 G41 X1\n", 1, 7, "G41");

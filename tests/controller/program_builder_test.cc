@@ -382,7 +382,8 @@ TEST(ProgramBuilderTest, CentreWordsOnlyInArcs) {
 // Tests the G4 errors: no time, both P and X, negative, a motion word in the block.
 TEST(ProgramBuilderTest, DwellErrors) {
   ExpectBuildError(ErrorOf({B({{'G', 4}})}), 1, 1, 0, "G4 needs its dwell time: P in ms");
-  ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', 5}, {'X', 1}})}), 1, 21, 2, "not both");
+  ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', 5}, {'X', 1}})}), 1, 21, 2,
+                   "as one of P (ms), X (s) and U (s)");
   ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', -5}})}), 1, 11, 1, "dwell must be >= 0");
   ExpectBuildError(ErrorOf({B({{'G', 4}, {'X', -0.5}})}), 1, 11, 1, "dwell must be >= 0");
   ExpectBuildError(ErrorOf({B({{'G', 4}, {'P', 5}, {'Y', 1}})}), 1, 21, 2,
@@ -390,17 +391,17 @@ TEST(ProgramBuilderTest, DwellErrors) {
   ExpectBuildError(ErrorOf({B({{'G', 1}, {'G', 4}, {'P', 5}})}), 1, 1, 0,
               "G4 (dwell) cannot share a block with 'G1'");
   ExpectBuildError(ErrorOf({B({{'G', 1}, {'X', 5}, {'P', 5}})}), 1, 21, 2,
-              "P (dwell time in ms) is allowed only with G4");
+              "P is allowed only with G4 (dwell)");
 }
 
-// Tests the word errors: G20, unsupported G and letters, repeated words, two motion words,
+// Tests the word errors: unsupported G and letters, repeated words, two motion words,
 // two words of one modal group, non-integer G, F <= 0.
 TEST(ProgramBuilderTest, WordErrors) {
-  ExpectBuildError(ErrorOf({B({{'G', 20}, {'X', 1}})}), 1, 1, 0,
-              "inch input (G20) is not supported; allowed: G21");
   ExpectBuildError(ErrorOf({B({{'X', 1}, {'G', 41}})}), 1, 11, 1,
-              "unsupported word 'G41'; allowed: G0-G4, G17-G19, G21, G90, G91, F, X, Y, Z, "
-              "I, J, K, R, P, N");
+              "unsupported word 'G41' is not read by the bench (dialect fanuc); allowed: G0-G3, "
+              "G4 with P (ms, no decimal point) or X/U (s), G17-G19, G20, G21, G28, G30, G61, "
+              "G64, G90, G91, G40, G43, G44, G49, G54-G59, G80, G94, F, X, Y, Z, I, J, K, R, N, "
+              "and O, T, S, H, D, M (read and ignored)");
   ExpectBuildError(ErrorOf({B({{'M', 3}})}), 1, 1, 0, "unsupported word 'M3'");
   ExpectBuildError(ErrorOf({B({{'X', 1}, {'Y', 2}, {'X', 3}})}), 1, 21, 2,
               "word X repeated in one block ('X1' and 'X3')");
@@ -409,7 +410,8 @@ TEST(ProgramBuilderTest, WordErrors) {
               "'G0' and 'G2' in one block; one motion word (G0-G3) per block");
   ExpectBuildError(ErrorOf({B({{'G', 90}, {'G', 91}})}), 1, 11, 1, "one of G90 (absolute)");
   ExpectBuildError(ErrorOf({B({{'G', 17}, {'G', 18}})}), 1, 11, 1, "one plane word");
-  ExpectBuildError(ErrorOf({B({{'G', 1.5}})}), 1, 1, 0, "G takes an integer");
+  ExpectBuildError(ErrorOf({B({{'G', 1.25}})}), 1, 1, 0, "G takes an integer or one decimal");
+  ExpectBuildError(ErrorOf({B({{'G', 1.5}})}), 1, 1, 0, "unsupported word 'G1.5'");
   ExpectBuildError(ErrorOf({B({{'X', 1}, {'F', 0}})}), 1, 11, 1, "F must be > 0 (mm/min)");
   ExpectBuildError(ErrorOf({B({{'F', -100}})}), 1, 1, 0, "F must be > 0");
 }

@@ -114,8 +114,8 @@ TEST(ProgramReaderTest, WordErrorAtItsValue) {
   std::string file;
   ExpectError(ListError(dir, "program:\n  - g: 2\n    x: 10\n    k: 5\n", &file), file, 4, 8,
               "program[0].k", "'K5' is not a centre word of G17 (XY plane); allowed: I, J");
-  ExpectError(ListError(dir, "program:\n  - {g: [91, 20], x: 1}\n", &file), file, 2, 14,
-              "program[0].g[1]", "inch input (G20) is not supported; allowed: G21");
+  ExpectError(ListError(dir, "program:\n  - {g: [91, 64.1], x: 1}\n", &file), file, 2, 14,
+              "program[0].g[1]", "unsupported word 'G64.1'");
   ExpectError(ListError(dir, "program:\n  - {g: 41}\n", &file), file, 2, 9, "program[0].g",
               "unsupported word 'G41'");
   ExpectError(ListError(dir, "program:\n  - {g: [1, 1], x: 5}\n", &file), file, 2, 13,
@@ -146,14 +146,14 @@ TEST(ProgramReaderTest, ShapeErrors) {
               "expected a sequence");
   ExpectError(ListError(dir, "program:\n  - 5\n", &file), file, 2, 5, "program[0]",
               "expected a mapping");
-  ExpectError(ListError(dir, "program:\n  - {g: 1, q: 5}\n", &file), file, 2, 12, "program[0].q",
-              "unknown key 'q'; allowed: g, x, y, z, i, j, k, r, f, p, n");
+  ExpectError(ListError(dir, "program:\n  - {g: 1, w: 5}\n", &file), file, 2, 12, "program[0].w",
+              "unknown key 'w'; allowed: g, x, y, z, i, j, k, r, f, p, q, n");
   ExpectError(ListError(dir, "program:\n  - {x: \"10\"}\n", &file), file, 2, 9, "program[0].x",
               "expected a number");
   ExpectError(ListError(dir, "program:\n  - {g: 1.5}\n", &file), file, 2, 9, "program[0].g",
-              "expected an integer");
+              "unsupported word 'G1.5'");
   ExpectError(ListError(dir, "program:\n  - {g: [1, x]}\n", &file), file, 2, 13,
-              "program[0].g[1]", "expected an integer");
+              "program[0].g[1]", "expected a number");
 }
 
 // Tests that program_file is read relative to the scenario's directory, comments, `%`

@@ -48,7 +48,8 @@ TEST(ScenarioLoaderErrors, UnknownTopLevelKey) {
   ScratchDir dir;
   const std::string path = dir.Write("s.yaml", "move: {distance_mm: 5}\nmachnie: {}\n");
   ExpectError(LoadError(path), path, 2, 1, "machnie",
-              "allowed: name, machine, drive, controller, move, program, program_file, program_strict, output, "
+              "allowed: name, machine, drive, controller, move, program, program_file, program_strict, "
+              "program_dialect, program_arc_tolerance, program_max_iterations, output, "
               "integrator, checks");
 }
 

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "bench/run/run_scenario.h"
 #include "bench/scenario/scenario_loader.h"
@@ -122,6 +124,56 @@ TEST(ScenarioProgramTest, ProgramStrictKeyErrors) {
   dir.Write("p.nc", "G1 X1 F600\n");
   const ConfigError not_bool = ProgramLoadError(dir.Write("b.yaml", "program_file: p.nc\nprogram_strict: yes please\n"));
   EXPECT_EQ(not_bool.key_path(), "program_strict") << not_bool.what();
+}
+
+
+// The moving-column machine with `extra` (indented mapping lines) added under machine:.
+std::string MachineWith(const std::string& extra) {
+  std::string text = "machine:\n";
+  std::istringstream lines(testing::ReadText(kMachine));
+  for (std::string line; std::getline(lines, line);) text += "  " + line + "\n";
+  return text + extra;
+}
+
+// Tests that program_dialect, program_arc_tolerance, program_max_iterations and
+// machine.reference_mm reach the G-code reader: a LinuxCNC G4 P0.5 is 0.5 s, G28 goes to
+// the reference position, a 10 um arc miss (over LinuxCNC's rule) passes a set tolerance.
+TEST(ScenarioProgramTest, DialectKeysReachTheReader) {
+  ScratchDir dir;
+  dir.Write("p.nc", "G1 X10 F600\nG4 P0.5\nG2 X20.01 Y0 I5\nG28 G91 Z0\n");
+  const std::string path = dir.Write(
+      "s.yaml", MachineWith("  reference_mm: {g28: {x: 0, y: 0, z: 50}}\n") +
+                    "program_file: p.nc\nprogram_dialect: linuxcnc\n"
+                    "program_arc_tolerance: {absolute_mm: 0.02}\n");
+  const Scenario s = LoadScenario(path, {});
+  ASSERT_EQ(s.program->blocks.size(), 4u);
+  EXPECT_DOUBLE_EQ(s.program->blocks[1].dwell_s, 0.5);
+  EXPECT_NEAR(s.program->blocks[3].end_m.z(), 0.05, 1e-15);
+  // Fanuc reads no decimal P; without reference_mm G28 is refused naming the key.
+  const ConfigError fanuc = ProgramLoadError(dir.Write("f.yaml", "program_file: p.nc\n"));
+  EXPECT_EQ(fanuc.line(), 2) << fanuc.what();
+  EXPECT_NE(fanuc.message().find("linuxcnc and grbl read a decimal P in seconds"), std::string::npos)
+      << fanuc.what();
+  dir.Write("g.nc", "G28 G91 Z0\n");
+  const ConfigError g28 = ProgramLoadError(
+      dir.Write("g.yaml", "program_file: g.nc\nprogram_dialect: grbl\n"));
+  EXPECT_NE(g28.message().find("machine.reference_mm.g28, which is not set"), std::string::npos)
+      << g28.what();
+  const ConfigError dialect = ProgramLoadError(
+      dir.Write("d.yaml", "program_file: g.nc\nprogram_dialect: haas\n"));
+  EXPECT_EQ(dialect.key_path(), "program_dialect") << dialect.what();
+  dir.Write("loop.nc", "o1 do\no1 while [1]\n");
+  const ConfigError loop = ProgramLoadError(dir.Write(
+      "l.yaml", "program_file: loop.nc\nprogram_dialect: linuxcnc\nprogram_max_iterations: 10\n"));
+  EXPECT_NE(loop.message().find("more than 10 loop passes"), std::string::npos) << loop.what();
+  // The YAML program: list reads in the dialect too.
+  const Scenario list = LoadScenario(
+      dir.Write("y.yaml", "program:\n  - {g: 4, p: 0.5}\n  - {g: [91.1, 3], x: 0, y: 0, i: 5}\n"
+                          "program_dialect: grbl\n"),
+      {});
+  ASSERT_EQ(list.program->blocks.size(), 2u);
+  EXPECT_DOUBLE_EQ(list.program->blocks[0].dwell_s, 0.5);
+  EXPECT_NEAR(list.program->blocks[1].center_m.x(), 5e-3, 1e-15);
 }
 
 }  // namespace
