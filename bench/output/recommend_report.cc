@@ -190,7 +190,9 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
                        {"share", report.modes[m].share},
                        {"gain", v.machine.modes[m].gain}});
     }
+    const KlipperShaperResult& shaper = report.klipper_recommended();
     json["validate"] = {{"scenario", v.scenario},
+                        {"pattern", {{"method", shaper.name}, {"frequency_hz", shaper.frequency_hz}, {"rule", "klipper"}}},
                         {"axis", model::AxisName(v.axis)},
                         {"static_deflection_per_accel_s2", v.static_deflection_per_accel_s2},
                         {"modes", modes},

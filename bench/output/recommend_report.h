@@ -58,7 +58,7 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report);
 // "feed_mm_min", "accel_mm_s2", "shapers": [{method, parameters, frequency_hz,
 // remaining_vibration, duration_s, added_time_s, smoothing_m, rule}], "skipped"},
 // "recommended_shapebench": {the same fields, "rule"}, "warnings", and with --validate
-// "validate": {scenario, axis, static_deflection_per_accel_s2, modes: [...], none:
+// "validate": {scenario, pattern, axis, static_deflection_per_accel_s2, modes: [...], none:
 // {metrics}, recommended: {metrics}}}; SI units (Klipper's smoothing also in its mm).
 nlohmann::ordered_json RecommendJson(const RecommendReport& report);
 

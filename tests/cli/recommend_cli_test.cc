@@ -211,7 +211,9 @@ TEST(RecommendCli, ValidateRunsTheScenarioWithTheLogsModes) {
     EXPECT_NEAR(v[run]["static_displacement_m"].get<double>(), demo_static, 1e-9 * demo_static) << run;
   }
   EXPECT_LT(v["recommended"]["residual_ratio"].get<double>(), 0.2 * v["none"]["residual_ratio"].get<double>());
-  EXPECT_EQ(v["recommended"]["pattern_frequency_hz"], json["recommended"]["frequency_hz"]);
+  EXPECT_EQ(v["pattern"]["method"], json["recommended"]["method"]);
+  EXPECT_EQ(v["pattern"]["frequency_hz"], json["recommended"]["frequency_hz"]);
+  EXPECT_EQ(v["pattern"]["rule"], "klipper");
   const CliResult text = RunCli({"recommend", kExampleLog, "--validate", "configs/demo.yaml"}, kSourceDir);
   EXPECT_TRUE(Has(text.out, "\nvalidate configs/demo.yaml: axis y modelled by the log's modes")) << text.out;
   EXPECT_TRUE(Has(text.out, "  residual_ratio  ")) << text.out;

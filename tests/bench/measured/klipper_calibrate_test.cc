@@ -78,8 +78,9 @@ TEST(KlipperCalibrate, ShaperDefinitions) {
   EXPECT_NEAR(zv.time_s[1], 0.5 / (40.0 * std::sqrt(1.0 - 0.01)), 1e-15);
   for (const std::string& name : KlipperAutotuneShapers()) {
     const KlipperShaper s = KlipperInitShaper(name, 50.0, 0.1);
-    // A shaper cancels its own design mode: within its 5% tolerance at 50 Hz.
-    EXPECT_LE(KlipperShaperResponse(s, 0.1, {50.0})[0], 0.0501) << name;
+    // A shaper leaves little of its own design mode: the EI forms about their 5% tolerance
+    // (ei's fitted polynomials 5.06%), zv and mzv nothing.
+    EXPECT_LE(KlipperShaperResponse(s, 0.1, {50.0})[0], 0.051) << name;
     EXPECT_EQ(KlipperShaperResponse(s, 0.1, {0.0})[0], 1.0) << name;
   }
   EXPECT_THROW(KlipperInitShaper("zvd2", 40.0, 0.1), std::invalid_argument);
