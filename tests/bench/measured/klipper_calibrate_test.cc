@@ -9,9 +9,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/config/config_error.h"
 #include "bench/measured/accel_log.h"
 #include "bench/measured/klipper_calibrate.h"
 #include "bench/measured/klipper_psd.h"
+#include "bench/measured/klipper_psd_file.h"
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {
@@ -100,6 +102,28 @@ TEST(KlipperCalibrate, BadOptionsAreNamed) {
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("--max-smoothing"), std::string::npos);
   }
+}
+
+// Tests Klipper's parse_log on named data sets: one a column up to `shapers:`, normalised
+// unless the header has `,shapers:` (20 / (20 + 0.1) at 20 Hz; below 10 Hz also damped),
+// an empty field read as 0, and --axis x refused (no per-axis PSD) naming the option.
+TEST(KlipperCalibrate, NamedDataSetsAreReadAsKlipperReadsThem) {
+  const std::string rows = "# a comment\nfreq,a,b\n5.0,1,2\n20.0,20,\n";
+  const KlipperSpectrum raw = ParseKlipperPsdFile(rows, "f.csv");
+  ASSERT_EQ(raw.datasets.size(), 2u);
+  EXPECT_EQ(raw.datasets[1].name, "b");
+  EXPECT_FALSE(raw.normalized_in_file);
+  EXPECT_DOUBLE_EQ(raw.datasets[0].psd_sum[1], 20.0 / 20.1);
+  EXPECT_DOUBLE_EQ(raw.datasets[0].psd_sum[0], 1.0 / 5.1 * std::exp(1.0 - std::pow(10.0 / 5.1, 2)));
+  EXPECT_EQ(raw.datasets[1].psd_sum[1], 0.0);
+  const KlipperSpectrum read =
+      ParseKlipperPsdFile("freq,a,b,shapers:,zv(40.0)\n5.0,1,2,,0.5\n20.0,20,3,,0.1\n", "f.csv");
+  EXPECT_TRUE(read.normalized_in_file);
+  EXPECT_EQ(read.datasets.size(), 2u);
+  EXPECT_EQ(read.datasets[0].psd_sum[1], 20.0);
+  EXPECT_TRUE(IsKlipperPsdFile(rows));
+  EXPECT_FALSE(IsKlipperPsdFile("#time,accel_x,accel_y,accel_z\n0,1,2,3\n"));
+  EXPECT_THROW(KlipperFitPsd(read.datasets[0], AccelAxis::kX, "f.csv"), ConfigError);
 }
 
 }  // namespace
