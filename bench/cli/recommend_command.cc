@@ -1,19 +1,26 @@
 // `shapebench recommend FILE.csv`: a shaper recommended from an accelerometer log
 // (bench/measured/shaper_fit.h); the table or JSON, --out DIR with recommend.json, psd.csv
 // and recommend.png, --validate SCENARIO (bench/run/recommend_validation.h).
+#include <cmath>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "bench/cli/cli_support.h"
 #include "bench/cli/commands.h"
+#include "bench/config/config_document.h"
+#include "bench/config/config_error.h"
 #include "bench/measured/accel_log.h"
 #include "bench/measured/accel_spectrum.h"
+#include "bench/measured/klipper_calibrate.h"
+#include "bench/measured/klipper_psd.h"
+#include "bench/measured/klipper_psd_file.h"
 #include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/output/output_path.h"
 #include "bench/output/recommend_report.h"
 #include "bench/run/recommend_validation.h"
+#include "common/format.h"
 #include "common/interrupt.h"
 #include "common/validation_error.h"
 
@@ -24,6 +31,8 @@ struct RecommendArgs {
   std::string file;
   std::string axis = "all";  // x, y, z or all
   double damping_ratio = 0.1;
+  double max_smoothing_mm = 0.0;
+  const CLI::Option* max_smoothing = nullptr;  // given when its count() is not 0
   double feed_mm_min = ShaperFitOptions{}.feed_mm_min;
   double accel_mm_s2 = ShaperFitOptions{}.accel_mm_s2;
   bool json = false;
@@ -38,6 +47,76 @@ AccelAxis ParseAxis(const std::string& text) {
   throw ValidationError("--axis", "expected x, y, z or all (the sum of the three PSDs), got '" + text + "'");
 }
 
+// Klipper's Welch averages this many segments at least before its PSD is trusted here:
+// each bin's relative scatter is about 1 / sqrt(segments).
+constexpr int kFewSegments = 8;
+
+// A warning when the log is too short for Klipper's fixed resolution (rate / M).
+void WarnShortLog(RecommendReport* report) {
+  const KlipperSpectrum& s = report->klipper_spectrum;
+  if (s.segments == 0 || s.segments >= kFewSegments) return;
+  const double seconds = (kFewSegments + 1) * (s.segment_samples / 2.0) / s.sample_rate_hz;
+  report->warnings.push_back(
+      report->file + ": the log averages only " + std::to_string(s.segments) + " Welch segments of " +
+      std::to_string(s.segment_samples) + " samples (" + FormatNumber(s.sample_rate_hz / s.segment_samples) +
+      " Hz bins): each PSD bin scatters by about " + FormatNumber(std::round(100.0 / std::sqrt(s.segments))) +
+      "%; record at least " + FormatNumber(std::ceil(seconds * 10.0) / 10.0) + " s for " +
+      std::to_string(kFewSegments));
+}
+
+// Klipper's fit of the spectrum (the axis chosen), every data set.
+void FitKlipper(const AccelAxis axis, RecommendReport* report) {
+  std::vector<KlipperFitInput> data;
+  for (const KlipperPsd& psd : report->klipper_spectrum.datasets) {
+    data.push_back({psd.frequency_hz, KlipperFitPsd(psd, axis, report->file)});
+  }
+  report->klipper = KlipperFindBestShaper(data, report->klipper_options);
+}
+
+// shapebench's own view of a Klipper PSD file: the fit band of the PSD the fit reads, as
+// the file has it (unnormalised in resonances_*.csv, normalised in calibration_data_*.csv).
+AccelSpectrum FileSpectrum(const RecommendReport& report) {
+  AccelSpectrum spectrum;
+  spectrum.axis = report.axis;
+  const KlipperPsd& psd = report.klipper_spectrum.datasets[0];
+  const std::vector<double>& values = KlipperFitPsd(psd, report.axis, report.file);
+  for (std::size_t k = 0; k < psd.frequency_hz.size(); ++k) {
+    if (psd.frequency_hz[k] < kFitMinHz || psd.frequency_hz[k] > kFitMaxHz) continue;
+    spectrum.frequency_hz.push_back(psd.frequency_hz[k]);
+    spectrum.psd.push_back(values[k]);
+  }
+  if (spectrum.psd.empty()) {
+    throw ConfigError(report.file, 0, 0, "freq", "no PSD bin between " + FormatNumber(kFitMinHz) + " and " +
+                                                     FormatNumber(kFitMaxHz) + " Hz");
+  }
+  return spectrum;
+}
+
+// The log or Klipper PSD file `path`: both spectra and Klipper's fit. A file that is
+// neither is named for what it looks like.
+void ReadSpectra(const std::string& path, RecommendReport* report) {
+  std::string text;
+  std::string error;
+  if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
+  if (IsKlipperPsdFile(text)) {
+    report->klipper_spectrum = ParseKlipperPsdFile(text, path);
+    report->spectrum = FileSpectrum(*report);
+    FitKlipper(report->axis, report);
+    return;
+  }
+  const std::string kind = ForeignFileKind(text);
+  if (!kind.empty()) {
+    throw ConfigError(path, 1, 1, "header",
+                      "this looks like " + kind + "; recommend reads an accelerometer log "
+                      "(#time,accel_x,accel_y,accel_z) or Klipper's resonances_*.csv / calibration_data_*.csv");
+  }
+  const AccelLog log = ParseAccelLog(text, path);
+  report->spectrum = ComputeAccelSpectrum(log, report->axis);
+  report->klipper_spectrum = KlipperLogSpectrum(log);
+  FitKlipper(report->axis, report);
+  WarnShortLog(report);
+}
+
 // Reads the log, fits every method, runs --validate. Throws ConfigError (the log, the
 // scenario), ValidationError (an option, named), model::SolverError.
 RecommendReport ComputeRecommendation(const RecommendArgs& args) {
@@ -47,13 +126,15 @@ RecommendReport ComputeRecommendation(const RecommendArgs& args) {
   report.options.feed_mm_min = args.feed_mm_min;
   report.options.accel_mm_s2 = args.accel_mm_s2;
   report.options.validate();  // before the file is read
-  const AccelAxis axis = ParseAxis(args.axis);
-  const AccelLog log = ReadAccelLog(args.file);
-  report.spectrum = ComputeAccelSpectrum(log, axis);
+  report.klipper_options.damping_ratio = args.damping_ratio;
+  if (args.max_smoothing->count() > 0) report.klipper_options.max_smoothing_mm = args.max_smoothing_mm;
+  report.klipper_options.validate();
+  report.axis = ParseAxis(args.axis);
+  ReadSpectra(args.file, &report);
   report.recommendation = RecommendShapers(report.spectrum.frequency_hz, report.spectrum.psd, report.options);
   if (!args.validate.empty()) {
     report.modes = PickPsdPeaks(report.spectrum.frequency_hz, report.spectrum.psd);
-    report.validation = RunValidation(args.validate, report.modes, report.recommended().pattern);
+    report.validation = RunValidation(args.validate, report.modes, KlipperPattern(report.klipper_recommended()));
   }
   return report;
 }
@@ -62,6 +143,7 @@ int RecommendCommand(const RecommendArgs& args) {
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);  // before the fit
   Doing("fitting the shapers to " + args.file);
   const RecommendReport report = ComputeRecommendation(args);
+  for (const std::string& warning : report.warnings) std::cerr << "warning: " << warning << "\n";
   std::vector<std::string> written;
   if (!args.out_dir.empty()) {
     const DeferInterrupts defer;
@@ -83,14 +165,19 @@ int RecommendCommand(const RecommendArgs& args) {
 Command AddRecommendCommand(CLI::App* app) {
   auto args = std::make_shared<RecommendArgs>();
   CLI::App* recommend = app->add_subcommand(
-      "recommend", "fit every shaper of the registry to an accelerometer log's PSD and recommend one");
+      "recommend",
+      "recommend a shaper from an accelerometer log as Klipper's calibrate_shaper does, shapebench's own fit beside it");
   recommend->add_option("file", args->file, "accelerometer log: #time,accel_x,accel_y,accel_z (s, mm/s^2)")
       ->required()
       ->type_name("FILE.csv");
   recommend->add_option("--axis", args->axis, "x, y, z or all (the sum of the three PSDs; default)")
       ->type_name("AXIS");
-  recommend->add_option("--damping-ratio", args->damping_ratio, "the library shapers' design damping (default 0.1)")
+  recommend->add_option("--damping-ratio", args->damping_ratio,
+                        "the shapers' design damping, Klipper's --damping_ratio (default 0.1)")
       ->type_name("ZETA");
+  args->max_smoothing = recommend->add_option("--max-smoothing", args->max_smoothing_mm,
+                        "Klipper's --max_smoothing: the most smoothing allowed, mm (at least 0.05)")
+      ->type_name("MM");
   recommend->add_option("--feed-mm-min", args->feed_mm_min, "feed of the smoothing's circle (default 6000)")
       ->type_name("F");
   recommend->add_option("--accel-mm-s2", args->accel_mm_s2, "acceleration of the smoothing's circle (default 5000)")

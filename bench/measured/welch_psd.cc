@@ -69,6 +69,14 @@ int WelchSegmentLength(double sample_rate_hz) {
 Psd WelchPsd(const std::vector<double>& samples, double sample_rate_hz, int segment_samples) {
   const int m = segment_samples;
   if (m < 2 || m % 2 != 0) throw std::invalid_argument("Welch segment length must be even and >= 2");
+  std::vector<double> window(static_cast<std::size_t>(m));
+  for (int n = 0; n < m; ++n) window[n] = 0.5 - 0.5 * std::cos(2.0 * kPi * n / m);
+  return WelchPsdWindowed(samples, sample_rate_hz, window);
+}
+
+Psd WelchPsdWindowed(const std::vector<double>& samples, double sample_rate_hz, const std::vector<double>& window) {
+  const int m = static_cast<int>(window.size());
+  if (m < 2 || m % 2 != 0) throw std::invalid_argument("Welch segment length must be even and >= 2");
   if (samples.size() <= static_cast<std::size_t>(m)) {
     throw std::invalid_argument("Welch PSD: " + std::to_string(samples.size()) + " samples, not more than one segment of " +
                                 std::to_string(m));
@@ -78,12 +86,8 @@ Psd WelchPsd(const std::vector<double>& samples, double sample_rate_hz, int segm
   psd.sample_rate_hz = sample_rate_hz;
   psd.segment_samples = m;
   psd.segments = static_cast<int>((samples.size() - static_cast<std::size_t>(step)) / static_cast<std::size_t>(step));
-  std::vector<double> window(static_cast<std::size_t>(m));
   double window_power = 0.0;
-  for (int n = 0; n < m; ++n) {
-    window[n] = 0.5 - 0.5 * std::cos(2.0 * kPi * n / m);
-    window_power += window[n] * window[n];
-  }
+  for (int n = 0; n < m; ++n) window_power += window[n] * window[n];
   const double scale = 1.0 / (sample_rate_hz * window_power);
   psd.density.assign(static_cast<std::size_t>(m / 2 + 1), 0.0);
   RealFft fft(m);

@@ -29,4 +29,8 @@ struct Psd {
 // samples than one segment (Klipper's limit: N > M).
 Psd WelchPsd(const std::vector<double>& samples, double sample_rate_hz, int segment_samples);
 
+// The same with `window` (its size the segment length M) in place of Hann: Klipper's own
+// PSD uses numpy's kaiser(M, 6) (bench/measured/klipper_psd.h).
+Psd WelchPsdWindowed(const std::vector<double>& samples, double sample_rate_hz, const std::vector<double>& window);
+
 }  // namespace shapebench::bench

@@ -40,6 +40,7 @@ nlohmann::ordered_json FitJson(const ShaperFit& fit) {
   json["added_time_s"] = fit.added_time_s;
   json["smoothing_m"] = fit.smoothing_m;
   json["design_damping_ratio"] = fit.pattern.design_damping_ratio;
+  json["rule"] = "shapebench";
   return json;
 }
 
@@ -66,7 +67,7 @@ void PrintFitTable(std::ostream& out, const RecommendReport& report) {
 
 void PrintValidation(std::ostream& out, const RecommendReport& report) {
   const ValidationRuns& v = *report.validation;
-  const ShaperFit& fit = report.recommended();
+  const KlipperShaperResult& fit = report.klipper_recommended();
   out << "\nvalidate " << v.scenario << ": axis " << model::AxisName(v.axis)
       << " modelled by the log's modes (its static deflection " << FormatNumber(v.static_deflection_per_accel_s2)
       << " m per m/s^2 kept)\n";
@@ -77,7 +78,7 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
                   report.modes[m].damping_ratio, report.modes[m].share, v.machine.modes[m].gain);
     out << line;
   }
-  const std::string shaped = fit.method + " " + FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
+  const std::string shaped = fit.name + " " + FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
   std::size_t width = 0;
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   auto cell = [](const MetricInfo& info, double value) -> std::string {
@@ -101,18 +102,27 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
   const AccelSpectrum& s = report.spectrum;
   const UniformAccel& u = s.samples;
   const std::size_t n = u.accel_mm_s2[0].size();
-  out << "recommend " << report.file << " (axis " << AccelAxisName(s.axis) << ")\n";
-  out << "samples    " << n << " at " << FormatNumber(u.sample_rate_hz) << " Hz ("
-      << EngineeringText(static_cast<double>(n - 1) / u.sample_rate_hz, "s", 4) << "); "
-      << (u.resampled ? "time stamps up to " + EngineeringText(u.max_offset_s, "s", 3) +
-                            " off a uniform grid: resampled linearly"
-                      : std::string("time stamps on a uniform grid"))
-      << "\n";
-  out << "psd        Welch, Hann window, " << s.full.segment_samples << "-sample segments ("
-      << FormatNumber(u.sample_rate_hz / s.full.segment_samples) << " Hz bins), 50% overlap, " << s.full.segments
-      << " segments; fit band " << FormatNumber(kFitMinHz) << "-" << FormatNumber(kFitMaxHz) << " Hz, peak at "
-      << FormatNumber(PeakHz(s))
-      << " Hz\n";
+  out << "recommend " << report.file << " (axis " << AccelAxisName(report.axis) << ")\n";
+  if (n > 0) {
+    out << "samples    " << n << " at " << FormatNumber(u.sample_rate_hz) << " Hz ("
+        << EngineeringText(static_cast<double>(n - 1) / u.sample_rate_hz, "s", 4) << ")\n";
+  }
+  PrintKlipperRecommendation(out, report);
+  out << "\nshapebench's own view (not mixed into Klipper's numbers above):\n";
+  if (n > 0) {
+    out << "samples    "
+        << (u.resampled ? "time stamps up to " + EngineeringText(u.max_offset_s, "s", 3) +
+                              " off a uniform grid: resampled linearly"
+                        : std::string("time stamps on a uniform grid"))
+        << "\n";
+    out << "psd        Welch, Hann window, " << s.full.segment_samples << "-sample segments ("
+        << FormatNumber(u.sample_rate_hz / s.full.segment_samples) << " Hz bins), 50% overlap, " << s.full.segments
+        << " segments; fit band " << FormatNumber(kFitMinHz) << "-" << FormatNumber(kFitMaxHz) << " Hz, peak at "
+        << FormatNumber(PeakHz(s)) << " Hz\n";
+  } else {
+    out << "psd        the file's PSD as read, fit band " << FormatNumber(kFitMinHz) << "-" << FormatNumber(kFitMaxHz)
+        << " Hz, peak at " << FormatNumber(PeakHz(s)) << " Hz\n";
+  }
   out << "design     library shapers at damping ratio " << FormatNumber(report.options.design_damping_ratio)
       << " (methods 1-4 undamped); vibration: the worst at damping ratios";
   for (const double z : report.options.test_damping_ratios) out << " " << FormatNumber(z);
@@ -122,9 +132,10 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
       << "), each axis shaped\n\n";
   PrintFitTable(out, report);
   const ShaperFit& fit = report.recommended();
-  out << "\nrecommended: " << fit.method << " at " << FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0)
-      << " Hz (remaining vibration " << Percent(fit.remaining_vibration) << ", smoothing "
-      << EngineeringText(fit.smoothing_m, "m", 4) << "): " << RuleText(report.recommendation) << "\n";
+  out << "\nrecommended_shapebench: " << fit.method << " at "
+      << FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) << " Hz (remaining vibration "
+      << Percent(fit.remaining_vibration) << ", smoothing " << EngineeringText(fit.smoothing_m, "m", 4)
+      << "): " << RuleText(report.recommendation) << "\n";
   for (const SkippedShaper& skipped : report.recommendation.skipped) {
     out << "skipped: " << skipped.method << " (" << skipped.reason << ")\n";
   }
@@ -135,32 +146,41 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   const AccelSpectrum& s = report.spectrum;
   nlohmann::ordered_json json;
   json["file"] = report.file;
-  json["axis"] = AccelAxisName(s.axis);
-  json["samples"] = {{"count", s.samples.accel_mm_s2[0].size()},
-                     {"sample_rate_hz", s.samples.sample_rate_hz},
-                     {"resampled", s.samples.resampled},
-                     {"max_time_offset_s", s.samples.max_offset_s}};
-  json["psd"] = {{"window", "hann"},
-                 {"segment_samples", s.full.segment_samples},
-                 {"segments", s.full.segments},
-                 {"resolution_hz", s.samples.sample_rate_hz / s.full.segment_samples},
-                 {"band_hz", {kFitMinHz, kFitMaxHz}},
-                 {"peak_hz", PeakHz(s)}};
-  json["design_damping_ratio"] = report.options.design_damping_ratio;
-  json["test_damping_ratios"] = report.options.test_damping_ratios;
-  json["feed_mm_min"] = report.options.feed_mm_min;
-  json["accel_mm_s2"] = report.options.accel_mm_s2;
+  json["axis"] = AccelAxisName(report.axis);
+  json["rule"] = {{"recommended", "klipper"}, {"recommended_shapebench", "shapebench"}};
+  AddKlipperJson(report, &json);
+  nlohmann::ordered_json own;
+  if (!s.samples.accel_mm_s2[0].empty()) {
+    own["samples"] = {{"count", s.samples.accel_mm_s2[0].size()},
+                      {"sample_rate_hz", s.samples.sample_rate_hz},
+                      {"resampled", s.samples.resampled},
+                      {"max_time_offset_s", s.samples.max_offset_s}};
+    own["psd"] = {{"window", "hann"},
+                  {"segment_samples", s.full.segment_samples},
+                  {"segments", s.full.segments},
+                  {"resolution_hz", s.samples.sample_rate_hz / s.full.segment_samples},
+                  {"band_hz", {kFitMinHz, kFitMaxHz}},
+                  {"peak_hz", PeakHz(s)}};
+  } else {
+    own["psd"] = {{"window", "as read"}, {"band_hz", {kFitMinHz, kFitMaxHz}}, {"peak_hz", PeakHz(s)}};
+  }
+  own["design_damping_ratio"] = report.options.design_damping_ratio;
+  own["test_damping_ratios"] = report.options.test_damping_ratios;
+  own["feed_mm_min"] = report.options.feed_mm_min;
+  own["accel_mm_s2"] = report.options.accel_mm_s2;
   nlohmann::ordered_json shapers = nlohmann::ordered_json::array();
   for (const ShaperFit& fit : report.recommendation.fits) shapers.push_back(FitJson(fit));
-  json["shapers"] = shapers;
+  own["shapers"] = shapers;
   nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
   for (const SkippedShaper& skip : report.recommendation.skipped) {
     skipped.push_back({{"method", skip.method}, {"reason", skip.reason}});
   }
-  json["skipped"] = skipped;
+  own["skipped"] = skipped;
+  json["shapebench"] = own;
   nlohmann::ordered_json recommended = FitJson(report.recommended());
   recommended["rule"] = RuleText(report.recommendation);
-  json["recommended"] = recommended;
+  json["recommended_shapebench"] = recommended;
+  json["warnings"] = report.warnings;
   if (report.validation) {
     const ValidationRuns& v = *report.validation;
     nlohmann::ordered_json modes = nlohmann::ordered_json::array();
@@ -170,7 +190,9 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
                        {"share", report.modes[m].share},
                        {"gain", v.machine.modes[m].gain}});
     }
+    const KlipperShaperResult& shaper = report.klipper_recommended();
     json["validate"] = {{"scenario", v.scenario},
+                        {"pattern", {{"method", shaper.name}, {"frequency_hz", shaper.frequency_hz}, {"rule", "klipper"}}},
                         {"axis", model::AxisName(v.axis)},
                         {"static_deflection_per_accel_s2", v.static_deflection_per_accel_s2},
                         {"modes", modes},
@@ -203,7 +225,7 @@ void WriteRecommendPlot(const std::string& path_png, const RecommendReport& repo
     std::fprintf(gnuplot, "set encoding utf8\nset output %s\n", GnuplotQuoted(output_path).c_str());
     const ShaperFit& best = report.recommended();
     const std::string title = "recommend: " + std::filesystem::path(report.file).filename().string() + ", axis " +
-                              AccelAxisName(s.axis) + "; recommended " + best.method + " at " +
+                              AccelAxisName(report.axis) + "; shapebench's own fit, recommended_shapebench " + best.method + " at " +
                               FormatNumber(std::round(best.frequency_hz * 10.0) / 10.0) + " Hz";
     std::fprintf(gnuplot, "set title %s\n", GnuplotQuoted(title).c_str());
     std::fprintf(gnuplot, "set xlabel 'frequency [Hz]'\nset ylabel 'PSD [(mm/s^2)^2/Hz]'\nset grid\n");

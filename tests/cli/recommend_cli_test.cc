@@ -107,10 +107,12 @@ TEST(RecommendCli, DevicesAndFifosAreRefused) {
   }
 }
 
-// Tests that --json prints one object that nlohmann parses: every fitted method with
-// method, frequency_hz, remaining_vibration, duration_s, added_time_s and smoothing_m, the
-// recommendation with the same fields and its rule; and that --out adds recommend.json
-// (the same document), psd.csv and a complete recommend.png, their wrote lines on stderr.
+// Tests that --json prints one object that nlohmann parses: Klipper's five candidates
+// (the default rule) and shapebench's own fitted methods, each with method, frequency_hz,
+// remaining_vibration, duration_s, added_time_s, smoothing_m and the rule that made it;
+// `recommended` (Klipper's) and `recommended_shapebench` with their rules; and that
+// --out adds recommend.json (the same document), psd.csv and a complete recommend.png,
+// their wrote lines on stderr.
 TEST(RecommendCli, JsonParsesWithTheListedFieldsAndOutWritesFiles) {
   ScratchDir dir;
   const std::string out = dir.File("rec");
@@ -118,56 +120,74 @@ TEST(RecommendCli, JsonParsesWithTheListedFieldsAndOutWritesFiles) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   ASSERT_TRUE(json["shapers"].is_array());
-  EXPECT_GE(json["shapers"].size(), 13u);
-  for (const auto& shaper : json["shapers"]) {
-    for (const char* field :
-         {"method", "frequency_hz", "remaining_vibration", "duration_s", "added_time_s", "smoothing_m"}) {
-      EXPECT_TRUE(shaper.contains(field)) << field;
+  EXPECT_EQ(json["shapers"].size(), 5u);
+  ASSERT_TRUE(json["shapebench"]["shapers"].is_array());
+  EXPECT_GE(json["shapebench"]["shapers"].size(), 13u);
+  for (const auto* list : {&json["shapers"], &json["shapebench"]["shapers"]}) {
+    for (const auto& shaper : *list) {
+      for (const char* field :
+           {"method", "frequency_hz", "remaining_vibration", "duration_s", "added_time_s", "smoothing_m", "rule"}) {
+        EXPECT_TRUE(shaper.contains(field)) << field;
+      }
+      EXPECT_GE(shaper["frequency_hz"].get<double>(), 5.0);
+      EXPECT_LE(shaper["frequency_hz"].get<double>(), 200.0);
+      EXPECT_GE(shaper["remaining_vibration"].get<double>(), 0.0);
+      EXPECT_LE(shaper["remaining_vibration"].get<double>(), 1.0);
     }
-    EXPECT_GE(shaper["frequency_hz"].get<double>(), 5.0);
-    EXPECT_LE(shaper["frequency_hz"].get<double>(), 200.0);
-    EXPECT_GE(shaper["remaining_vibration"].get<double>(), 0.0);
-    EXPECT_LE(shaper["remaining_vibration"].get<double>(), 1.0);
   }
-  const auto& recommended = json["recommended"];
-  EXPECT_TRUE(recommended["method"].is_string());
-  EXPECT_TRUE(recommended["frequency_hz"].is_number());
-  EXPECT_TRUE(recommended["smoothing_m"].is_number());
-  EXPECT_TRUE(recommended["rule"].is_string());
+  EXPECT_EQ(json["shapers"][0]["rule"], "klipper");
+  EXPECT_EQ(json["shapebench"]["shapers"][0]["rule"], "shapebench");
+  for (const char* which : {"recommended", "recommended_shapebench"}) {
+    const auto& recommended = json[which];
+    EXPECT_TRUE(recommended["method"].is_string()) << which;
+    EXPECT_TRUE(recommended["frequency_hz"].is_number()) << which;
+    EXPECT_TRUE(recommended["smoothing_m"].is_number()) << which;
+    EXPECT_TRUE(recommended["rule"].is_string()) << which;
+  }
+  EXPECT_TRUE(Has(json["recommended"]["rule"].get<std::string>(), "Klipper's calibrate_shaper"));
+  EXPECT_EQ(json["rule"]["recommended"], "klipper");
+  EXPECT_EQ(json["klipper"]["commit"], "84104bbbd7625d28b4eaaad83f4562972460ecd9");
   EXPECT_EQ(json["axis"], "x");
-  EXPECT_EQ(json["psd"]["segment_samples"], 2048);
-  EXPECT_EQ(json["skipped"][0]["method"], "custom");
+  EXPECT_EQ(json["klipper"]["psd"]["segment_samples"], 2048);
+  EXPECT_EQ(json["klipper"]["psd"]["window"], "kaiser(6)");
+  EXPECT_EQ(json["shapebench"]["psd"]["segment_samples"], 2048);
+  EXPECT_EQ(json["shapebench"]["skipped"][0]["method"], "custom");
   EXPECT_EQ(nlohmann::json::parse(testing::ReadText(out + "/recommend.json")), json);
   EXPECT_TRUE(Has(testing::ReadText(out + "/psd.csv"), "frequency_hz,psd,vibration_1,"));
   EXPECT_EQ(PngDefect(out + "/recommend.png"), "");
   EXPECT_EQ(r.err, "wrote " + out + "/recommend.json\nwrote " + out + "/psd.csv\nwrote " + out + "/recommend.png\n");
 }
 
-// Tests the text report: a row per method, the recommendation marked and named with its
-// rule, custom skipped.
+// Tests the text report: Klipper's candidates with the recommendation marked and named
+// with its rule, then shapebench's own view apart, a row per method, its recommendation
+// and rule, custom skipped.
 TEST(RecommendCli, TableMarksTheRecommendation) {
   const CliResult r = RunCli({"recommend", kExampleLog}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(Has(r.out, "recommend configs/measurements/accel_x.csv (axis all)\n")) << r.out;
+  EXPECT_TRUE(Has(r.out, "klipper    calibrate_shaper at Klipper3d/klipper 84104bbbd; Welch, Kaiser(6) window")) << r.out;
   EXPECT_TRUE(Has(r.out, "2048-sample segments (1.5625 Hz bins)")) << r.out;
-  EXPECT_TRUE(Has(r.out, "\nrecommended: ")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\nrecommended: mzv at 38 Hz")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\nshapebench's own view (not mixed into Klipper's numbers above):\n")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\nrecommended_shapebench: ")) << r.out;
   EXPECT_TRUE(Has(r.out, "the least smoothing of the methods whose remaining vibration is at most 1.1 x")) << r.out;
-  EXPECT_TRUE(Has(r.out, "\n* ")) << r.out;
+  EXPECT_TRUE(Has(r.out, "\n* mzv ")) << r.out;
   EXPECT_TRUE(Has(r.out, "skipped: custom")) << r.out;
+  EXPECT_LT(r.out.find("\nrecommended: "), r.out.find("shapebench's own view")) << r.out;
 }
 
-// Tests that a damping ratio beyond a shaper's branch skips that shaper with the reason
-// (ei_3hump's ends at 0.23 for a 5% tolerance) and fits the others.
+// Tests that a damping ratio beyond a shaper's branch skips that shaper in shapebench's own
+// view with the reason (ei_3hump's ends at 0.23 for a 5% tolerance) and fits the others.
 TEST(RecommendCli, ShaperWithoutADesignAtTheDampingIsSkipped) {
   const CliResult r = RunCli({"recommend", kExampleLog, "--damping-ratio", "0.3", "--json"}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   bool skipped = false;
-  for (const auto& s : json["skipped"]) {
+  for (const auto& s : json["shapebench"]["skipped"]) {
     if (s["method"] == "ei_3hump") skipped = Has(s["reason"].get<std::string>(), "design_damping_ratio");
   }
-  EXPECT_TRUE(skipped) << json["skipped"].dump();
-  for (const auto& s : json["shapers"]) EXPECT_NE(s["method"], "ei_3hump");
+  EXPECT_TRUE(skipped) << json["shapebench"]["skipped"].dump();
+  for (const auto& s : json["shapebench"]["shapers"]) EXPECT_NE(s["method"], "ei_3hump");
 }
 
 // Tests that --validate runs the scenario with the log's two modes on its driven axis
@@ -191,7 +211,9 @@ TEST(RecommendCli, ValidateRunsTheScenarioWithTheLogsModes) {
     EXPECT_NEAR(v[run]["static_displacement_m"].get<double>(), demo_static, 1e-9 * demo_static) << run;
   }
   EXPECT_LT(v["recommended"]["residual_ratio"].get<double>(), 0.2 * v["none"]["residual_ratio"].get<double>());
-  EXPECT_EQ(v["recommended"]["pattern_frequency_hz"], json["recommended"]["frequency_hz"]);
+  EXPECT_EQ(v["pattern"]["method"], json["recommended"]["method"]);
+  EXPECT_EQ(v["pattern"]["frequency_hz"], json["recommended"]["frequency_hz"]);
+  EXPECT_EQ(v["pattern"]["rule"], "klipper");
   const CliResult text = RunCli({"recommend", kExampleLog, "--validate", "configs/demo.yaml"}, kSourceDir);
   EXPECT_TRUE(Has(text.out, "\nvalidate configs/demo.yaml: axis y modelled by the log's modes")) << text.out;
   EXPECT_TRUE(Has(text.out, "  residual_ratio  ")) << text.out;
