@@ -1,5 +1,6 @@
 #include "controller/gcode_parser.h"
 
+#include "controller/source_line.h"
 #include "controller/subprogram_expander.h"
 
 #include <algorithm>
@@ -14,8 +15,6 @@
 
 namespace shapebench::controller {
 namespace {
-
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 bool IsDigit(char c) { return c >= '0' && c <= '9'; }
 
@@ -49,12 +48,12 @@ std::string Quoted(char c) {
 
 // After an O number at `pos`: a LinuxCNC O-word keyword (o100 sub, o101 while [...]).
 bool IsOWordControl(const std::string& line, std::size_t pos) {
-  while (pos < line.size() && IsBlank(line[pos])) ++pos;
+  while (pos < line.size() && IsLineBlank(line[pos])) ++pos;
   if (pos < line.size() && line[pos] == '<') {  // a named O-word: o<name> sub
     const std::size_t close = line.find('>', pos);
     if (close == std::string::npos) return false;
     pos = close + 1;
-    while (pos < line.size() && IsBlank(line[pos])) ++pos;
+    while (pos < line.size() && IsLineBlank(line[pos])) ++pos;
   }
   std::string keyword;
   while (pos < line.size() && std::isalpha(static_cast<unsigned char>(line[pos]))) {
@@ -118,7 +117,7 @@ Word ReadWord(const std::string& line, std::size_t* pos, int line_number, Dialec
   const std::size_t letter_pos = *pos;
   const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(line[*pos])));
   ++*pos;
-  while (*pos < line.size() && IsBlank(line[*pos])) ++*pos;
+  while (*pos < line.size() && IsLineBlank(line[*pos])) ++*pos;
   const std::size_t number_pos = *pos;
   while (*pos < line.size() && IsNumberChar(line[*pos])) ++*pos;
   const std::string number = line.substr(number_pos, *pos - number_pos);
@@ -165,7 +164,7 @@ ScannedLine ScanLine(const std::string& line, int line_number, Dialect dialect) 
   std::size_t pos = 0;
   while (pos < line.size()) {
     const char c = line[pos];
-    if (IsBlank(c)) {
+    if (IsLineBlank(c)) {
       ++pos;
       continue;
     }

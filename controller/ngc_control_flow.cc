@@ -6,11 +6,10 @@
 #include <iterator>
 
 #include "controller/program_builder.h"
+#include "controller/source_line.h"
 
 namespace shapebench::controller {
 namespace {
-
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 const std::map<std::string, int>& Keywords() {
   // The values are NgcControlFlow::Kind's, in its order (kNone is 0).
@@ -28,18 +27,18 @@ bool IsLoop(int kind) { return kind == 9 || kind == 11 || kind == 13; }
 NgcControlFlow::Control NgcControlFlow::ParseControl(const std::string& text) {
   Control control;
   std::size_t pos = 0;
-  while (pos < text.size() && IsBlank(text[pos])) ++pos;
+  while (pos < text.size() && IsLineBlank(text[pos])) ++pos;
   if (pos >= text.size() || std::tolower(static_cast<unsigned char>(text[pos])) != 'o') {
     return control;
   }
   control.column = static_cast<int>(pos) + 1;
   ++pos;
-  while (pos < text.size() && IsBlank(text[pos])) ++pos;
+  while (pos < text.size() && IsLineBlank(text[pos])) ++pos;
   if (pos < text.size() && text[pos] == '<') {
     const std::size_t close = text.find('>', pos);
     if (close == std::string::npos) return control;
     for (std::size_t k = pos; k <= close; ++k) {
-      if (!IsBlank(text[k])) {
+      if (!IsLineBlank(text[k])) {
         control.label += static_cast<char>(std::tolower(static_cast<unsigned char>(text[k])));
       }
     }
@@ -51,7 +50,7 @@ NgcControlFlow::Control NgcControlFlow::ParseControl(const std::string& text) {
     const std::size_t nonzero = control.label.find_first_not_of('0');
     control.label = nonzero == std::string::npos ? "0" : control.label.substr(nonzero);
   }
-  while (pos < text.size() && IsBlank(text[pos])) ++pos;
+  while (pos < text.size() && IsLineBlank(text[pos])) ++pos;
   std::string keyword;
   while (pos < text.size() && std::isalpha(static_cast<unsigned char>(text[pos]))) {
     keyword += static_cast<char>(std::tolower(static_cast<unsigned char>(text[pos++])));
@@ -207,7 +206,7 @@ void NgcControlFlow::Call(std::size_t i) {
   std::size_t pos = c.arguments;
   const std::string& text = lines_[i];
   for (;;) {
-    while (pos < text.size() && IsBlank(text[pos])) ++pos;
+    while (pos < text.size() && IsLineBlank(text[pos])) ++pos;
     if (pos >= text.size() || text[pos] == '(' || text[pos] == ';') break;
     arguments.push_back(ReadRealValue(text, &pos, static_cast<int>(i) + 1, parameters_));
   }
@@ -226,7 +225,7 @@ void NgcControlFlow::Return(std::size_t i) {
   if (calls_.empty()) throw Error(i, Shown(i) + " is reached outside a call");
   std::size_t pos = controls_[i].arguments;
   const std::string& text = lines_[i];
-  while (pos < text.size() && IsBlank(text[pos])) ++pos;
+  while (pos < text.size() && IsLineBlank(text[pos])) ++pos;
   const bool value = pos < text.size() && text[pos] == '[';
   const double result = value ? ReadRealValue(text, &pos, static_cast<int>(i) + 1, parameters_) : 0;
   const std::size_t depth = parameters_.depth();

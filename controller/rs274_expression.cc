@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "controller/program_words.h"
+#include "controller/source_line.h"
 
 namespace shapebench::controller {
 namespace {
@@ -16,12 +17,11 @@ constexpr double kDegree = kPi / 180.0;
 constexpr double kEqualTolerance = 1e-4;  // rs274ngc's TOLERANCE_EQUAL
 constexpr int kMaxNumbered = 5399;
 
-bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 std::string Lower(const std::string& text) {
   std::string lower;
   for (const char c : text) {
-    if (!IsBlank(c)) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!IsLineBlank(c)) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return lower;
 }
@@ -65,7 +65,7 @@ class ValueReader {
   const Operator* PeekOperator();
   double Apply(const std::string& op, double a, double b, std::size_t op_at) const;
   void SkipBlanks() {
-    while (pos_ < text_.size() && IsBlank(text_[pos_])) ++pos_;
+    while (pos_ < text_.size() && IsLineBlank(text_[pos_])) ++pos_;
   }
   char Peek() {
     SkipBlanks();
@@ -238,7 +238,7 @@ double ValueReader::Function() {
 bool StartsFunction(const std::string& text, std::size_t pos) {
   std::size_t end = pos;
   while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
-  while (end < text.size() && IsBlank(text[end])) ++end;
+  while (end < text.size() && IsLineBlank(text[end])) ++end;
   return end > pos + 1 && end < text.size() && text[end] == '[';
 }
 
@@ -346,7 +346,7 @@ Assignment ReadAssignment(const std::string& text, std::size_t* pos, int line,
   Assignment assignment;
   assignment.column = static_cast<int>(*pos) + 1;
   ++*pos;  // '#'
-  while (*pos < text.size() && IsBlank(text[*pos])) ++*pos;
+  while (*pos < text.size() && IsLineBlank(text[*pos])) ++*pos;
   if (*pos < text.size() && text[*pos] == '<') {
     const std::size_t close = text.find('>', *pos);
     if (close == std::string::npos) {
@@ -357,7 +357,7 @@ Assignment ReadAssignment(const std::string& text, std::size_t* pos, int line,
   } else {
     assignment.number = ReadRealValue(text, pos, line, parameters);
   }
-  while (*pos < text.size() && IsBlank(text[*pos])) ++*pos;
+  while (*pos < text.size() && IsLineBlank(text[*pos])) ++*pos;
   if (*pos >= text.size() || text[*pos] != '=') {
     throw ProgramError(line, assignment.column, -1,
                        "a parameter outside a word must be set: #1 = 5 or #<name> = [expression]");
@@ -395,10 +395,10 @@ std::string SubstituteLine(const std::string& text, int line, Rs274Parameters* p
     ++pos;
     if (!std::isalpha(static_cast<unsigned char>(c))) continue;
     std::size_t next = pos;
-    while (next < text.size() && IsBlank(text[next])) ++next;
+    while (next < text.size() && IsLineBlank(text[next])) ++next;
     std::size_t sign = next;
     if (sign < text.size() && (text[sign] == '-' || text[sign] == '+')) ++sign;
-    while (sign < text.size() && IsBlank(text[sign])) ++sign;
+    while (sign < text.size() && IsLineBlank(text[sign])) ++sign;
     const bool computed = sign < text.size() &&
                           (text[sign] == '[' || text[sign] == '#' || StartsFunction(text, sign));
     if (!computed) continue;

@@ -8,6 +8,9 @@ namespace shapebench::controller {
 
 inline constexpr int kMaxCallDepth = 10;  // LinuxCNC's and Fanuc's nesting limits
 
+// The blanks between words of a program line (spaces, tabs, a DOS line end's '\r').
+inline bool IsLineBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
 struct SourceLine {
   int line = 0;  // 1-based, in the file
   std::string text;

@@ -14,14 +14,14 @@ namespace {
 
 constexpr char kAxesHeader[] = "freq,psd_x,psd_y,psd_z,psd_xyz";
 
-struct Line {
+struct PsdLine {
   std::string text;
   int number = 0;
 };
 
 // The lines that are neither blank nor (before the header) '#' comments; CRLF trimmed.
-std::vector<Line> ContentLines(const std::string& text) {
-  std::vector<Line> lines;
+std::vector<PsdLine> ContentLines(const std::string& text) {
+  std::vector<PsdLine> lines;
   int number = 0;
   std::size_t position = 0;
   while (position < text.size()) {
@@ -51,7 +51,7 @@ std::vector<std::string> Split(const std::string& line) {
 }
 
 // A field's value: empty is 0 (numpy's filling_values), otherwise a finite number.
-double Number(const std::string& field, const Line& line, std::size_t index, const std::string& column,
+double Number(const std::string& field, const PsdLine& line, std::size_t index, const std::string& column,
               const std::string& file) {
   if (field.empty()) return 0.0;
   std::size_t column_at = 1;  // after the index-th comma
@@ -76,12 +76,12 @@ double Number(const std::string& field, const Line& line, std::size_t index, con
 }  // namespace
 
 bool IsKlipperPsdFile(const std::string& text) {
-  const std::vector<Line> lines = ContentLines(text);
+  const std::vector<PsdLine> lines = ContentLines(text);
   return !lines.empty() && lines[0].text.rfind("freq,", 0) == 0;
 }
 
 std::string ForeignFileKind(const std::string& text) {
-  const std::vector<Line> lines = ContentLines(text);
+  const std::vector<PsdLine> lines = ContentLines(text);
   if (lines.empty()) return "";
   const std::string& first = lines[0].text;
   const std::string trimmed = first.substr(first.find_first_not_of(" \t"));
@@ -99,8 +99,8 @@ std::string ForeignFileKind(const std::string& text) {
 }
 
 KlipperSpectrum ParseKlipperPsdFile(const std::string& text, const std::string& file) {
-  const std::vector<Line> lines = ContentLines(text);
-  const Line& header = lines.at(0);
+  const std::vector<PsdLine> lines = ContentLines(text);
+  const PsdLine& header = lines.at(0);
   const std::vector<std::string> names = Split(header.text);
   KlipperSpectrum spectrum;
   spectrum.normalized_in_file = header.text.find(",shapers:") != std::string::npos;

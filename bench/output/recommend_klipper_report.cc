@@ -9,7 +9,7 @@
 namespace shapebench::bench {
 namespace {
 
-std::string Percent(double fraction) { return FormatFixed(100.0 * fraction, 2) + " %"; }
+std::string KlipperPercent(double fraction) { return FormatFixed(100.0 * fraction, 2) + " %"; }
 
 std::string KlipperRuleText() {
   return std::string("Klipper's calibrate_shaper (Klipper3d/klipper ") + std::string(kKlipperCommit).substr(0, 9) +
@@ -78,13 +78,13 @@ void PrintKlipperRecommendation(std::ostream& out, const RecommendReport& report
     const KlipperShaperResult& r = report.klipper.shapers[i];
     std::snprintf(line, sizeof line, "%s %-9s %-12.1f  %-19s  %-12.3f  %-15.0f  %.4g\n",
                   i == report.klipper.recommended ? "*" : " ", r.name.c_str(), r.frequency_hz,
-                  Percent(r.remaining_vibration).c_str(), r.smoothing_mm, std::round(r.max_accel_mm_s2 / 100.0) * 100.0,
+                  KlipperPercent(r.remaining_vibration).c_str(), r.smoothing_mm, std::round(r.max_accel_mm_s2 / 100.0) * 100.0,
                   r.score);
     out << line;
   }
   const KlipperShaperResult& best = report.klipper_recommended();
   out << "\nrecommended: " << best.name << " at " << FormatNumber(std::round(best.frequency_hz * 10.0) / 10.0)
-      << " Hz (remaining vibration " << Percent(best.remaining_vibration) << ", smoothing "
+      << " Hz (remaining vibration " << KlipperPercent(best.remaining_vibration) << ", smoothing "
       << FormatFixed(best.smoothing_mm, 3) << " mm): " << KlipperRuleText() << "\n";
 }
 

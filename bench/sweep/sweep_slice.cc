@@ -13,7 +13,7 @@
 namespace shapebench::bench {
 namespace {
 
-const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
@@ -51,7 +51,7 @@ Slice ReadSlice(const SweepLayout& layout, const std::string& results_csv, const
   slice.y.texts.assign(ny, "");
   slice.x.log = layout.key_log[kx];
   slice.y.log = has_y && layout.key_log[ky];
-  slice.z.assign(nx * ny, kNaN);
+  slice.z.assign(nx * ny, kNoValue);
 
   InputFile in(results_csv);
   CsvReader reader(in.stream());
@@ -76,7 +76,7 @@ Slice ReadSlice(const SweepLayout& layout, const std::string& results_csv, const
     const std::size_t iy = has_y ? digits[ay] : 0;
     slice.x.texts[ix] = fields[1 + kx];
     if (has_y) slice.y.texts[iy] = fields[1 + ky];
-    double value = kNaN;
+    double value = kNoValue;
     if (ParseNumber(fields[metric_column], &value)) slice.z[iy * nx + ix] = value * scale;
     if (!fixed_done) {
       for (std::size_t k = 0; k < layout.keys.size(); ++k) {

@@ -11,6 +11,7 @@
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {
+namespace recommend_klipper_cli_test {
 namespace {
 
 using testing::CliResult;
@@ -115,4 +116,5 @@ TEST(RecommendKlipperCli, MaxSmoothingAndShortLogs) {
 }
 
 }  // namespace
+}  // namespace recommend_klipper_cli_test
 }  // namespace shapebench::bench

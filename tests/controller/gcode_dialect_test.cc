@@ -10,6 +10,7 @@
 #include "controller/gcode_parser.h"
 
 namespace shapebench::controller {
+namespace gcode_dialect_test {
 namespace {
 
 constexpr double kTolM = 1e-12;
@@ -178,4 +179,5 @@ TEST(GcodeDialectTest, OWordsAndParametersNamedOutsideLinuxcnc) {
 }
 
 }  // namespace
+}  // namespace gcode_dialect_test
 }  // namespace shapebench::controller

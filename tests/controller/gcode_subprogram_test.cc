@@ -11,6 +11,7 @@
 #include "controller/gcode_parser.h"
 
 namespace shapebench::controller {
+namespace gcode_subprogram_test {
 namespace {
 
 constexpr double kTolMm = 1e-9;  // the expander writes values with 10 decimals
@@ -217,4 +218,5 @@ TEST(GcodeSubprogramTest, FanucRefusals) {
 }
 
 }  // namespace
+}  // namespace gcode_subprogram_test
 }  // namespace shapebench::controller

@@ -13,6 +13,7 @@
 #include "model/modal_identification.h"
 
 namespace shapebench::model {
+namespace modal_accuracy_test {
 namespace {
 
 using Complex = std::complex<double>;
@@ -201,4 +202,5 @@ TEST(ModalAccuracy, HiddenModeIsDropped) {
 }
 
 }  // namespace
+}  // namespace modal_accuracy_test
 }  // namespace shapebench::model
