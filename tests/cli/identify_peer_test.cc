@@ -1,0 +1,227 @@
+// `shapebench identify` against a peer on real FRFs: pyuff's measured beam
+// (tests/data/uff/pyuff_beam_accelerance.uff) and sdypy-EMA's modes of it in three bands
+// (tests/data/uff/real/, run once with its commit and settings written in each fixture).
+// Both fit errors are computed here by shapebench's formula, 100 ||H_fit - H|| / ||H|| over
+// the band's lines of every record, each from its own synthesis (modes and residuals).
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench/measured/uff58_reader.h"
+#include "tests/support/bench_test_support.h"
+
+namespace shapebench::bench {
+namespace {
+
+using cd = std::complex<double>;
+using testing::CliResult;
+using testing::RunCli;
+using testing::ScratchDir;
+
+const double kPi = 3.14159265358979323846;
+const cd kJ(0.0, 1.0);
+
+std::string Source(const std::string& path) { return std::string(SHAPEBENCH_SOURCE_DIR) + "/" + path; }
+std::string BeamFile() { return Source("tests/data/uff/pyuff_beam_accelerance.uff"); }
+nlohmann::json Peer(const std::string& name) {
+  return nlohmann::json::parse(testing::ReadText(Source("tests/data/uff/real/" + name)));
+}
+cd Complex(const nlohmann::json& v) { return {v["re"].get<double>(), v["im"].get<double>()}; }
+
+// One record's synthesis at w (rad/s), given the record's index.
+using Synthesis = std::function<cd(std::size_t, double)>;
+
+// 100 ||H_fit - H|| / ||H|| over the lines lo <= f <= hi Hz of every record.
+double FitErrorPercent(const Uff58File& data, double lo, double hi, const Synthesis& fit) {
+  double residual = 0.0, norm = 0.0;
+  for (std::size_t k = 0; k < data.records.size(); ++k) {
+    const Uff58Record& record = data.records[k];
+    for (std::size_t i = 0; i < record.values.size(); ++i) {
+      const double f = record.frequency_hz[i];
+      if (f < lo || f > hi) continue;
+      residual += std::norm(fit(k, 2.0 * kPi * f) - record.values[i]);
+      norm += std::norm(record.values[i]);
+    }
+  }
+  return 100.0 * std::sqrt(residual / norm);
+}
+
+// The pole pair's accelerance term (jw)^2 [A / (jw - l) + conj(A) / (jw - conj(l))].
+cd PairTerm(cd a, cd pole, double w) {
+  const cd jw = kJ * w;
+  return jw * jw * (a / (jw - pole) + std::conj(a) / (jw - std::conj(pole)));
+}
+
+// The peer's synthesis (its fixture's `synthesis`): complex residuals LR - w^2 UR.
+Synthesis PeerSynthesis(const nlohmann::json& peer) {
+  return [&peer](std::size_t k, double w) {
+    cd h = Complex(peer["lower_residual"][k]) - w * w * Complex(peer["upper_residual"][k]);
+    for (const auto& mode : peer["modes"]) h += PairTerm(Complex(mode["modal_constants"][k]), Complex(mode["pole_rad_per_s"]), w);
+    return h;
+  };
+}
+
+cd Pole(const nlohmann::json& mode) {
+  const double wn = 2.0 * kPi * mode["frequency_hz"].get<double>(), zeta = mode["damping_ratio"].get<double>();
+  return {-zeta * wn, wn * std::sqrt(1.0 - zeta * zeta)};
+}
+
+// shapebench's synthesis (docs/measured-data.md, LSFD): R_r = 2 j w_d A_r, real residuals,
+// (jw)^2 [sum (A/(jw - l) + conj) - LR / w^2 + UR].
+Synthesis OwnSynthesis(const nlohmann::json& own) {
+  return [&own](std::size_t k, double w) {
+    const auto& record = own["records"][k];
+    cd h = record["lower_residual"].get<double>() - w * w * record["upper_residual"].get<double>();
+    for (const auto& mode : own["modes"]) {
+      const cd pole = Pole(mode);
+      h += PairTerm(Complex(mode["modal_constants"][k]) / (2.0 * kJ * pole.imag()), pole, w);
+    }
+    return h;
+  };
+}
+
+// The fit error of the modes' poles with modal constants and real residuals refitted by
+// linear least squares on the band (the test's own LSFD), leaving out mode `skip`.
+double RefitErrorPercent(const Uff58File& data, double lo, double hi, const nlohmann::json& modes, std::size_t skip) {
+  std::vector<cd> poles;
+  for (std::size_t r = 0; r < modes.size(); ++r)
+    if (r != skip) poles.push_back(Pole(modes[r]));
+  std::vector<Eigen::VectorXd> coefficients;
+  for (const Uff58Record& record : data.records) {
+    std::vector<double> w;
+    std::vector<cd> h;
+    for (std::size_t i = 0; i < record.values.size(); ++i)
+      if (record.frequency_hz[i] >= lo && record.frequency_hz[i] <= hi) {
+        w.push_back(2.0 * kPi * record.frequency_hz[i]);
+        h.push_back(record.values[i]);
+      }
+    const Eigen::Index n = static_cast<Eigen::Index>(w.size()), m = static_cast<Eigen::Index>(2 * poles.size() + 2);
+    Eigen::MatrixXcd basis(n, m);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (std::size_t r = 0; r < poles.size(); ++r) {
+        basis(i, 2 * r) = PairTerm(1.0, poles[r], w[i]);   // Re A
+        basis(i, 2 * r + 1) = PairTerm(kJ, poles[r], w[i]);  // Im A
+      }
+      basis(i, m - 2) = 1.0;            // LR
+      basis(i, m - 1) = -w[i] * w[i];   // UR
+    }
+    Eigen::MatrixXd a(2 * n, m);
+    Eigen::VectorXd b(2 * n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      a.row(i) = basis.row(i).real();
+      a.row(n + i) = basis.row(i).imag();
+      b(i) = h[i].real();
+      b(n + i) = h[i].imag();
+    }
+    const Eigen::VectorXd scale = a.colwise().norm().cwiseInverse();
+    coefficients.push_back(scale.asDiagonal() * (a * scale.asDiagonal()).colPivHouseholderQr().solve(b));
+  }
+  return FitErrorPercent(data, lo, hi, [&](std::size_t k, double w) {
+    const Eigen::VectorXd& c = coefficients[k];
+    cd fit = c(c.size() - 2) - w * w * c(c.size() - 1);
+    for (std::size_t r = 0; r < poles.size(); ++r) fit += PairTerm(cd(c(2 * r), c(2 * r + 1)), poles[r], w);
+    return fit;
+  });
+}
+
+// Runs identify (on the peer's band when `band`), exit 0, and returns its JSON.
+nlohmann::json Identify(const nlohmann::json& peer, bool band) {
+  ScratchDir dir;
+  std::vector<std::string> args = {"identify", BeamFile(), "--json", "--out", "out"};
+  if (band) {
+    args.push_back("--band");
+    args.push_back(std::to_string(peer["band_hz"][0].get<int>()) + ":" + std::to_string(peer["band_hz"][1].get<int>()));
+  }
+  const CliResult result = RunCli(args, dir.path().string());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  return nlohmann::json::parse(result.out);
+}
+
+// Every peer mode has a mode of identify within 0.5 % in frequency (and, unless the peer's
+// frequency is in `damping_exempt_hz`, 25 % in damping), and identify has no other mode.
+void ExpectPeerModes(const nlohmann::json& peer, const nlohmann::json& own, const std::vector<double>& damping_exempt_hz = {}) {
+  ASSERT_EQ(own["modes"].size(), peer["modes"].size()) << own.dump(1);
+  for (const auto& mode : peer["modes"]) {
+    const double f = mode["frequency_hz"].get<double>(), zeta = mode["damping_ratio"].get<double>();
+    const auto nearest = std::min_element(own["modes"].begin(), own["modes"].end(), [f](const auto& a, const auto& b) {
+      return std::abs(a["frequency_hz"].template get<double>() - f) < std::abs(b["frequency_hz"].template get<double>() - f);
+    });
+    EXPECT_NEAR((*nearest)["frequency_hz"].get<double>(), f, 0.005 * f);
+    const bool exempt = std::any_of(damping_exempt_hz.begin(), damping_exempt_hz.end(),
+                                    [f](double e) { return std::abs(e - f) < 0.005 * f; });
+    if (!exempt) {
+      EXPECT_NEAR((*nearest)["damping_ratio"].get<double>(), zeta, 0.25 * zeta) << f << " Hz";
+    }
+  }
+}
+
+// The fit errors of both, computed here: the peer's synthesis reproduces its fixture's
+// fit error on its lines, shapebench's its JSON's; shapebench's is no worse than the peer's + 2 points;
+// each mode of shapebench explains at least 1 % of the data's norm (removing it and
+// refitting the rest raises the fit error by 1 point or more).
+void ExpectFits(const nlohmann::json& peer, const nlohmann::json& own) {
+  const Uff58File data = ReadUff58(BeamFile());
+  const double lo = peer["band_hz"][0].get<double>(), hi = peer["band_hz"][1].get<double>();
+  // The peer fitted the lines below `hi` (its fixture's fit_error_formula); compared on
+  // identify's lines, which take `hi` too.
+  EXPECT_NEAR(FitErrorPercent(data, lo, hi - 1.0, PeerSynthesis(peer)), peer["fit_error_percent"].get<double>(), 1e-6);
+  const double peer_fit = FitErrorPercent(data, lo, hi, PeerSynthesis(peer));
+  const double own_fit = FitErrorPercent(data, lo, hi, OwnSynthesis(own));
+  EXPECT_NEAR(own_fit, own["fit_error_percent"].get<double>(), 1e-3);
+  EXPECT_LE(own_fit, peer_fit + 2.0);
+  const double all = RefitErrorPercent(data, lo, hi, own["modes"], own["modes"].size());
+  EXPECT_LE(all, own_fit + 1e-6);  // the linear refit is the optimum for these poles
+  for (std::size_t r = 0; r < own["modes"].size(); ++r)
+    EXPECT_GE(RefitErrorPercent(data, lo, hi, own["modes"], r) - all, 1.0) << own["modes"][r].dump();
+}
+
+// Tests that identify on 30-200 Hz finds the peer's two modes (0.5 % in frequency, 25 % in
+// damping), no other, and fits no worse than the peer + 2 points.
+TEST(IdentifyPeer, BeamLowBand) {
+  const nlohmann::json peer = Peer("sdypy_ema_beam_30_200_hz.json");
+  const nlohmann::json own = Identify(peer, true);
+  ExpectPeerModes(peer, own);
+  ExpectFits(peer, own);
+}
+
+// Tests that identify on 400-750 Hz finds the peer's two modes, no other, and fits no worse
+// than the peer + 2 points.
+TEST(IdentifyPeer, BeamMiddleBand) {
+  const nlohmann::json peer = Peer("sdypy_ema_beam_400_750_hz.json");
+  const nlohmann::json own = Identify(peer, true);
+  ExpectPeerModes(peer, own);
+  ExpectFits(peer, own);
+}
+
+// Tests that identify on 30-990 Hz finds the peer's six modes in frequency and damping, no
+// other, and fits no worse than the peer + 2 points. The 51.5 Hz mode's damping is left out:
+// identify gives 0.000282 against the peer's 0.000543 on this band (0.000513 against 0.000566
+// on 30-200 Hz, checked above), a known disagreement (issue 34).
+TEST(IdentifyPeer, BeamWholeBand) {
+  const nlohmann::json peer = Peer("sdypy_ema_beam_30_990_hz.json");
+  const nlohmann::json own = Identify(peer, true);
+  ExpectPeerModes(peer, own, {51.5});
+  ExpectFits(peer, own);
+}
+
+// Tests that the default run on the whole file (no band) finds the modes of the six largest
+// peaks within 0.5 % of the peer's frequencies, with exit 0.
+TEST(IdentifyPeer, BeamWholeFileDefault) {
+  const nlohmann::json peer = Peer("sdypy_ema_beam_30_990_hz.json");
+  const nlohmann::json own = Identify(peer, false);
+  ASSERT_EQ(own["modes"].size(), 6u) << own.dump(1);
+  for (std::size_t r = 0; r < 6; ++r) {
+    const double f = peer["modes"][r]["frequency_hz"].get<double>();
+    EXPECT_NEAR(own["modes"][r]["frequency_hz"].get<double>(), f, 0.005 * f);
+  }
+}
+
+}  // namespace
+}  // namespace shapebench::bench
