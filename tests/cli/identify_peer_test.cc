@@ -18,6 +18,7 @@
 #include "tests/support/bench_test_support.h"
 
 namespace shapebench::bench {
+namespace identify_peer_test {
 namespace {
 
 using cd = std::complex<double>;
@@ -224,4 +225,5 @@ TEST(IdentifyPeer, BeamWholeFileDefault) {
 }
 
 }  // namespace
+}  // namespace identify_peer_test
 }  // namespace shapebench::bench
