@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "controller/gcode_parser.h"
+#include "tests/support/gcode_test_support.h"
 
 namespace shapebench::controller {
 namespace gcode_dialect_test {
@@ -15,32 +16,10 @@ namespace {
 
 constexpr double kTolM = 1e-12;
 
-GcodeOptions In(Dialect dialect) {
-  GcodeOptions options;
-  options.program.dialect = dialect;
-  return options;
-}
-
-Program Parse(const std::string& text, const GcodeOptions& options) {
-  return ParseGcode(text, Eigen::Vector3d::Zero(), {}, options);
-}
-
 void ExpectMm(const Eigen::Vector3d& actual_m, double x_mm, double y_mm, double z_mm) {
   EXPECT_NEAR(actual_m.x(), x_mm * 1e-3, kTolM);
   EXPECT_NEAR(actual_m.y(), y_mm * 1e-3, kTolM);
   EXPECT_NEAR(actual_m.z(), z_mm * 1e-3, kTolM);
-}
-
-void ExpectError(const std::string& text, const GcodeOptions& options, int line, int column,
-                 const std::string& message_part) {
-  try {
-    Parse(text, options);
-    ADD_FAILURE() << "no ProgramError for:\n" << text;
-  } catch (const ProgramError& error) {
-    EXPECT_EQ(error.line(), line) << error.what();
-    EXPECT_EQ(error.column(), column) << error.what();
-    EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
-  }
 }
 
 // Tests G4's time per dialect: Fanuc P in ms (no decimal point) or X/U in s; LinuxCNC and

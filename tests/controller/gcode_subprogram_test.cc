@@ -9,23 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "controller/gcode_parser.h"
+#include "tests/support/gcode_test_support.h"
 
 namespace shapebench::controller {
 namespace gcode_subprogram_test {
 namespace {
 
 constexpr double kTolMm = 1e-9;  // the expander writes values with 10 decimals
-
-GcodeOptions In(Dialect dialect, long max_iterations = 1000000) {
-  GcodeOptions options;
-  options.program.dialect = dialect;
-  options.program.max_iterations = max_iterations;
-  return options;
-}
-
-Program Parse(const std::string& text, const GcodeOptions& options) {
-  return ParseGcode(text, Eigen::Vector3d::Zero(), {}, options);
-}
 
 // The end points of the program's blocks in mm, one coordinate (0 x, 1 y, 2 z).
 std::vector<double> Ends(const Program& program, int axis) {
@@ -38,18 +28,6 @@ void ExpectEnds(const Program& program, int axis, const std::vector<double>& mm)
   const std::vector<double> ends = Ends(program, axis);
   ASSERT_EQ(ends.size(), mm.size());
   for (std::size_t k = 0; k < mm.size(); ++k) EXPECT_NEAR(ends[k], mm[k], kTolMm) << "block " << k;
-}
-
-void ExpectError(const std::string& text, const GcodeOptions& options, int line, int column,
-                 const std::string& message_part) {
-  try {
-    Parse(text, options);
-    ADD_FAILURE() << "no ProgramError for:\n" << text;
-  } catch (const ProgramError& error) {
-    EXPECT_EQ(error.line(), line) << error.what();
-    EXPECT_EQ(error.column(), column) << error.what();
-    EXPECT_NE(error.message().find(message_part), std::string::npos) << error.what();
-  }
 }
 
 // Tests operator precedence and order: ** before * / MOD before + - before comparisons
