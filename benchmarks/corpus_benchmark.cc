@@ -26,6 +26,9 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -94,3 +97,56 @@ void CorpusArgs(benchmark::internal::Benchmark* b) {
 
 // One run each: heart.ngc alone takes about a minute of wall time.
 BENCHMARK(BM_CorpusProgram)->Apply(CorpusArgs)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+namespace {
+
+// One repetition of a generated job: 40 passes of 60 mm along X, 1 mm apart, joined by
+// 0.5 mm arcs (160 blocks, about 50 s at 3000 mm/min), then a rapid back to the start.
+std::string RepeatedJob(int repetitions) {
+  std::ostringstream gcode;
+  gcode << "G21 G90 G17 F3000\nG0 X0 Y0\n";
+  for (int r = 0; r < repetitions; ++r) {
+    for (int i = 0; i < 20; ++i) {
+      const int y = 2 * i;
+      gcode << "G1 X60 Y" << y << "\nG3 X60 Y" << y + 1 << " R0.5\nG1 X0\nG2 X0 Y" << y + 2 << " R0.5\n";
+    }
+    gcode << "G0 X0 Y0\n";
+  }
+  gcode << "M30\n";
+  return gcode.str();
+}
+
+// Must-show 1 of issue 36: the job repeated 1, 2, 4 and 8 times on the moving column of
+// face_mill.yaml (exact integrator, no trace). wall_per_rep_s is the wall time over the
+// repetitions: it stays flat when the cost is linear in the program (it grew with the
+// repetitions while the contour error searched the whole path at every sample).
+void BM_ProgramRepeated(benchmark::State& state) {
+  const int repetitions = static_cast<int>(state.range(0));
+  const std::string source = SHAPEBENCH_SOURCE_DIR;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("shapebench_repeated_" + std::to_string(repetitions) + ".nc");
+  std::ofstream(file) << RepeatedJob(repetitions);
+  const Scenario scenario = LoadScenario(source + "/configs/scenarios/face_mill.yaml",
+                                         {{"program_file", file.string()},
+                                          {"program_dialect", "linuxcnc"},
+                                          {"machine.stroke", "{x: [-1000, 1000], y: [-1000, 1000], z: [-400, 400]}"}});
+  RunResult last;
+  double wall_s = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    last = RunScenario(scenario, RunOptions{false});
+    wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::ClobberMemory();
+  }
+  std::filesystem::remove(file);
+  state.counters["repetitions"] = repetitions;
+  state.counters["sim_s"] = last.simulated_s;
+  state.counters["wall_s"] = wall_s;
+  state.counters["wall_per_rep_s"] = wall_s / repetitions;
+  state.counters["real_time_factor"] = last.simulated_s / wall_s;
+  state.counters["blocks"] = static_cast<double>(last.program.blocks.size());
+}
+
+}  // namespace
+
+BENCHMARK(BM_ProgramRepeated)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);

@@ -418,6 +418,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
     if (!moves) continue;
     for (std::size_t k = 0; k < out.size(); ++k) axis.velocity_m_s[k + 1] = out[k](a) / dt;
   }
+  command.filter_lag_s = static_cast<double>(filter.table.size()) * dt + 10.0 * filter.time_constant_s;
   command.path_position_m = std::move(pulses.path_position_m);
   command.block = std::move(pulses.block);
   command.block_feed_m_s = std::move(plan.block_feed_m_s);

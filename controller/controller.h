@@ -126,6 +126,10 @@ struct MultiAxisCommand {
   std::vector<double> path_position_m;
   std::vector<int> block;
   std::vector<double> block_feed_m_s;  // the feed each block was planned at
+  // How long the post-interpolation filter's output may trail the interpolator: the
+  // table's length, plus 10 time constants of exponential acc/dec (0: no filter). The
+  // bench sizes its contour error's window of blocks from it.
+  double filter_lag_s = 0.0;
   std::vector<bool> block_clamped;     // lowered by the short-block clamp
   int short_block_clamps = 0;
   bool stroke_alarm = false;

@@ -155,9 +155,15 @@ Eigen::Vector3d PathGeometry::PointAt(double s_m, std::size_t* hint) const {
 
 Eigen::Vector3d PathGeometry::NearestPoint(const Eigen::Vector3d& p) const {
   if (elements_.empty()) return start_m_;
+  return NearestPointIn(p, 0, elements_.size() - 1);
+}
+
+Eigen::Vector3d PathGeometry::NearestPointIn(const Eigen::Vector3d& p, std::size_t first, std::size_t last) const {
+  if (elements_.empty()) return start_m_;
+  last = std::min(last, elements_.size() - 1);
   double best = std::numeric_limits<double>::infinity();
   Eigen::Vector3d nearest = start_m_;
-  for (std::size_t i = 0; i < elements_.size(); ++i) {
+  for (std::size_t i = first; i <= last; ++i) {
     const Eigen::Vector3d outside =
         (box_min_[i] - p).cwiseMax(p - box_max_[i]).cwiseMax(Eigen::Vector3d::Zero());
     if (outside.norm() >= best) continue;

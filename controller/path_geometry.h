@@ -62,6 +62,10 @@ class PathGeometry {
 
   // The nearest point of the whole path to `p`, and the distance (contour error).
   Eigen::Vector3d NearestPoint(const Eigen::Vector3d& p) const;
+  // The nearest point among elements first..last (inclusive; clamped to the path): the
+  // same candidates and comparisons as NearestPoint, so the same distance wherever the
+  // whole path's nearest point lies on one of them (the bench's windowed contour error).
+  Eigen::Vector3d NearestPointIn(const Eigen::Vector3d& p, std::size_t first, std::size_t last) const;
   double DistanceTo(const Eigen::Vector3d& p) const { return (p - NearestPoint(p)).norm(); }
 
  private:

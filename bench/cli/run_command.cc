@@ -90,7 +90,11 @@ int RunCommand(const RunArgs& args) {
   Doing("loading " + args.scenario);
   const Scenario scenario = LoadScenario(args.scenario, overrides);
   Doing("running scenario '" + scenario.name + "' (" + scenario.source_file + ")", RunMemory(scenario));
-  const RunResult result = RunScenarioLocated(scenario, overrides);
+  // The trace only for what shows it (--out's trace.csv and plots, --report): without,
+  // the run's memory is its command and samples (bench/scenario/run_memory.h).
+  RunOptions options;
+  options.record_trace = !args.out_dir.empty() || !args.report.empty();
+  const RunResult result = RunScenarioLocated(scenario, overrides, options);
   Doing("writing the outputs of scenario '" + scenario.name + "'");
   PrintRunWarnings(scenario.source_file, result);
   std::vector<std::string> written;

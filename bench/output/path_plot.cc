@@ -6,6 +6,7 @@
 
 #include "bench/output/gnuplot.h"
 #include "bench/output/report.h"
+#include "bench/run/path_tallies.h"
 #include "controller/path_geometry.h"
 
 namespace shapebench::bench {
@@ -139,8 +140,18 @@ void WritePathPlot(const std::string& path_png, const RunResult& result, const S
   const Trace& trace = result.trace;
   data.actual = &trace.actual_m;
   data.nearest.resize(trace.actual_m.size());
+  // The run's windowed search (bench/run/path_tallies.h): sample i lies in period
+  // (i - 1) / substeps + 1. Without the command (a shared one), the whole path's.
+  const std::vector<double>& positions = result.command.path_position_m;
+  ContourGauge gauge(path, positions, result.command.period_s, ContourLag(result.command, scenario.drive));
+  const long substeps = std::max(result.substeps, 1);
   for (std::size_t i = 0; i < trace.actual_m.size(); ++i) {
-    data.nearest[i] = path.NearestPoint(trace.actual_m[i]);
+    if (positions.empty()) {
+      data.nearest[i] = path.NearestPoint(trace.actual_m[i]);
+    } else {
+      gauge.MoveTo(i == 0 ? 0 : (i - 1) / static_cast<std::size_t>(substeps) + 1);
+      data.nearest[i] = gauge.NearestPoint(trace.actual_m[i]);
+    }
     data.max_error = std::max(data.max_error, (trace.actual_m[i] - data.nearest[i]).head<2>().norm());
   }
   const Eigen::Vector3d& lo = data.programmed.lo;

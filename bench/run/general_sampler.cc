@@ -47,6 +47,15 @@ void PlantSampler::SampleGeneral(std::size_t k, TickTally* tick) {
   const double path_s =
       plan_.command.path_position_m.empty() ? 0.0 : plan_.command.path_position_m[std::min(k, interpolated_ticks - 1)];
   const double largest_sq = tally_.contour_sq;  // the run's so far (the tick's is merged after it)
+  contour_gauge_.MoveTo(k);
+  // Past the arcs (glitch windows) the path position has left, by more than any rounding
+  // of it at a stop (the conditions below are then false for them).
+  constexpr double kPassedM = 1e-9;
+  while (next_arc_ < arcs_.size() &&
+         path_s - arcs_[next_arc_].arc->start_s_m > 0.75 * arcs_[next_arc_].arc->length_m + kPassedM) {
+    ++next_arc_;
+  }
+  while (next_glitch_ < glitches_.size() && path_s > glitches_[next_glitch_].arc->end_s_m() + kPassedM) ++next_glitch_;
   for (int j = 0; j < substeps_; ++j) {
     const double* out = outputs_.data() + static_cast<std::ptrdiff_t>(j) * rows_;
     const double tau = plan_.taus_s[j];
@@ -63,8 +72,11 @@ void PlantSampler::SampleGeneral(std::size_t k, TickTally* tick) {
     }
     peak_axes_ = peak_axes_.cwiseMax(deflection.cwiseAbs());
     if (plan_.has_stroke) overshoot_ = std::max(overshoot_, controller::StrokeOvershoot(p, plan_.scenario.machine.stroke_m));
-    for (ReversalWindows& g : glitches_) g.Add(path_s, actual);
-    for (ArcWindow& w : arcs_) {
+    for (std::size_t i = next_glitch_; i < glitches_.size() && glitches_[i].arc->start_s_m <= path_s; ++i) {
+      glitches_[i].Add(path_s, actual);
+    }
+    for (std::size_t i = next_arc_; i < arcs_.size() && arcs_[i].arc->start_s_m <= path_s; ++i) {
+      ArcWindow& w = arcs_[i];
       const double from_start = path_s - w.arc->start_s_m;
       if (from_start >= 0.25 * w.arc->length_m && from_start <= 0.75 * w.arc->length_m) {
         w.sum_radius_m += std::hypot(actual(w.arc->axis0) - w.arc->center_m(w.arc->axis0),

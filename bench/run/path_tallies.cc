@@ -52,4 +52,41 @@ double ReversalWindows::Glitch() const {
   return glitch;
 }
 
+ContourGauge::ContourGauge(const controller::PathGeometry& path, const std::vector<double>& path_position_m,
+                           double period_s, double lag_s)
+    : path_(path), positions_(path_position_m) {
+  const auto& elements = path.elements();
+  if (elements.size() == 1 && !elements.front().is_arc()) single_ = &elements.front();
+  exact_ = true;
+  for (const controller::PathElement& e : elements) {
+    if (e.is_arc() && (e.rise_m != 0.0 || e.start_radius_m != e.end_radius_m)) exact_ = false;
+  }
+  lag_ticks_ = static_cast<std::size_t>(std::ceil(std::max(lag_s, 0.0) / period_s)) + 1;
+  last_element_ = elements.empty() ? 0 : elements.size() - 1;
+}
+
+void ContourGauge::MoveTo(std::size_t k) {
+  const std::size_t n = path_.elements().size();
+  if (single_ != nullptr || n == 0 || positions_.empty()) return;
+  // The interpolator's ticks lag_ticks_ before the period's start and two after its end.
+  constexpr std::size_t kAheadTicks = 2;
+  constexpr std::size_t kSpareElements = 2;
+  const std::size_t m = positions_.size() - 1;
+  const std::size_t lo_k = std::min(k > lag_ticks_ + 1 ? k - lag_ticks_ - 1 : 0, m);
+  const std::size_t hi_k = std::min(k + kAheadTicks, m);
+  lo_hint_ = path_.ElementAt(positions_[lo_k], lo_hint_);
+  hi_hint_ = path_.ElementAt(positions_[hi_k], std::max(hi_hint_, lo_hint_));
+  first_ = lo_hint_ > kSpareElements ? lo_hint_ - kSpareElements : 0;
+  last_element_ = std::min(hi_hint_ + kSpareElements, n - 1);
+}
+
+double ContourLag(const controller::MultiAxisCommand& command, const model::DriveConfig& drive) {
+  double lag_s = command.filter_lag_s;
+  if (drive.type == model::DriveType::kServo) {
+    lag_s += 10.0 / drive.servo.position_gain_1_s;
+    if (drive.servo.velocity_loop_hz > 0.0) lag_s += 10.0 / (2.0 * kPi * drive.servo.velocity_loop_hz);
+  }
+  return lag_s;
+}
+
 }  // namespace shapebench::bench

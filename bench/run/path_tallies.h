@@ -9,7 +9,9 @@
 #include <Eigen/Dense>
 
 #include "common/math_constants.h"
+#include "controller/controller.h"
 #include "controller/path_geometry.h"
+#include "model/drive.h"
 
 namespace shapebench::bench {
 
@@ -59,6 +61,19 @@ struct ReversalWindows {
 // element (a `move:`, a one-block program) is measured on it directly: the whole path's
 // search gives the same point there.
 //
+// The search is a window of blocks around the current one, not the whole path (whose cost
+// grew with the program at every sample: a run's cost went with the square of its length).
+// The window holds the blocks the interpolator passed from `lag` before the sample's period
+// to two periods after it, and two more on each side; `lag` is how long the tool may trail
+// the interpolator (ContourLag: the post-interpolation filter's length plus 10 time
+// constants of the exponential and of the servo). The window's nearest point is the whole
+// path's wherever that lies in the window (PathGeometry::NearestPointIn), and the tool is
+// near the path it is cutting; the exception, by design: where another pass of the path
+// (an adjacent zig-zag pass, a contour cut again) comes closer to the tool than the pass
+// being cut but lies outside the window, the windowed error is measured against the pass
+// being cut, the larger (docs/metrics.md). Cost per sample: the blocks in the window, which
+// the lag bounds, whatever the program's length.
+//
 // Only the run's largest contour error is kept, so a sample that cannot exceed the largest
 // so far need not be searched for: the last nearest point found lies on the path, so the
 // distance to it bounds the sample's from above. That bound is exact only where the
@@ -68,14 +83,12 @@ struct ReversalWindows {
 // the same bit for bit.
 class ContourGauge {
  public:
-  explicit ContourGauge(const controller::PathGeometry& path) : path_(path) {
-    const auto& elements = path.elements();
-    if (elements.size() == 1 && !elements.front().is_arc()) single_ = &elements.front();
-    exact_ = true;
-    for (const controller::PathElement& e : elements) {
-      if (e.is_arc() && (e.rise_m != 0.0 || e.start_radius_m != e.end_radius_m)) exact_ = false;
-    }
-  }
+  // `path_position_m`: the interpolator's path position per tick (MultiAxisCommand); it
+  // must outlive the gauge.
+  ContourGauge(const controller::PathGeometry& path, const std::vector<double>& path_position_m, double period_s,
+               double lag_s);
+  // Moves the window to period k (the samples between ticks k - 1 and k); k never decreases.
+  void MoveTo(std::size_t k);
   // The sample's squared contour error, or 0 when it is provably below `largest_sq`.
   double SquaredDistanceTo(const Eigen::Vector3d& p, double largest_sq) const {
     if (exact_ && has_last_ && largest_sq > 0.0) {
@@ -83,18 +96,39 @@ class ContourGauge {
       const double bound = (p - last_).norm() + margin;
       if (bound * bound < largest_sq) return 0.0;
     }
-    last_ = single_ != nullptr ? single_->NearestPoint(p) : path_.NearestPoint(p);
+    last_ = NearestPoint(p);
     has_last_ = true;
     return (p - last_).squaredNorm();
   }
+  // The nearest point of `p` in the current window (plots), and its distance in period
+  // k's window (tests).
+  Eigen::Vector3d NearestPoint(const Eigen::Vector3d& p) const {
+    return single_ != nullptr ? single_->NearestPoint(p) : path_.NearestPointIn(p, first_, last_element_);
+  }
+  double WindowedDistance(const Eigen::Vector3d& p, std::size_t k) {
+    MoveTo(k);
+    return (p - NearestPoint(p)).norm();
+  }
   const controller::PathElement* single() const { return single_; }
+  std::size_t lag_ticks() const { return lag_ticks_; }
+  std::size_t first() const { return first_; }  // the window's elements, inclusive
+  std::size_t last() const { return last_element_; }
 
  private:
   const controller::PathGeometry& path_;
+  const std::vector<double>& positions_;
   const controller::PathElement* single_ = nullptr;
   bool exact_ = false;  // the search is exact on every element (no helix, no spiral)
+  std::size_t lag_ticks_ = 0;
+  std::size_t lo_hint_ = 0, hi_hint_ = 0;     // ElementAt's hints (monotone walks)
+  std::size_t first_ = 0, last_element_ = 0;  // the window, inclusive
   mutable Eigen::Vector3d last_;  // the last nearest point found
   mutable bool has_last_ = false;
 };
+
+// How long the tool may trail the interpolator (ContourGauge's window): the command's
+// post-interpolation filter lag plus, for a servo drive, 10 time constants of its position
+// loop (1 / Kp) and of its velocity loop.
+double ContourLag(const controller::MultiAxisCommand& command, const model::DriveConfig& drive);
 
 }  // namespace shapebench::bench

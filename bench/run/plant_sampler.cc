@@ -40,7 +40,7 @@ PlantSampler::PlantSampler(const RunPlan& plan, SamplerKind fastest, RunResult* 
       result_(*result),
       dt_(plan.dt_s),
       substeps_(plan.substeps),
-      contour_gauge_(plan.path),
+      contour_gauge_(plan.path, plan.command.path_position_m, plan.dt_s, ContourLag(plan.command, plan.scenario.drive)),
       machine_(model::BuildMachinePlant(plan.scenario.machine, plan.scenario.drive)),
       integrator_config_(plan.scenario.integrator) {
   nonlinear_ = !machine_.nonlinear.empty();

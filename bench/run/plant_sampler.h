@@ -74,7 +74,7 @@ class PlantSampler final : public Sampler {
   const int substeps_;
   SamplerKind kind_ = SamplerKind::kGeneral;
   MetricTally tally_;
-  const ContourGauge contour_gauge_;
+  ContourGauge contour_gauge_;
   const model::MachinePlant machine_;
   // The scenario's integrator settings, rtol as CrossCheckCvode leaves it.
   model::IntegratorConfig integrator_config_;
@@ -91,6 +91,10 @@ class PlantSampler final : public Sampler {
   int rows_ = 0;
   std::vector<double> outputs_;  // one period's substeps (AdvancePeriod), rows as in MachinePlant
   std::vector<ArcWindow> arcs_;
+  // The first arc (glitch window) the path position has not passed yet: arcs_ and
+  // glitches_ are in path order and the position never decreases, so a sample looks at
+  // the few around it, not at every arc of the program.
+  std::size_t next_arc_ = 0, next_glitch_ = 0;
   SingleAxis single_;
   SingleAxisSampling single_sampling_{};
   double period_start_m_ = 0.0;    // the deflection at the current period's start (deferred)

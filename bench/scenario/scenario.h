@@ -67,7 +67,7 @@ constexpr long kDefaultMaxWork = 2'000'000'000;
 // the host or --jobs. max_wall_s (0: off, the default) stops a run after that many seconds
 // of wall-clock time, looked at where max_work is (exit 3, WALL_LIMIT): the host's verdict.
 struct RunLimits {
-  double max_simulated_s = 600.0;
+  double max_simulated_s = 14400.0;  // 4 h: real jobs run 15-50 min; max_work bounds the cost
   long max_ticks = 10'000'000;
   long max_trace_rows = 1'000'000;
   long max_memory_mb = 1024;

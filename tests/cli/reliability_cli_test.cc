@@ -324,7 +324,10 @@ TEST(GuardRails, RunLongerThanTheLimitIsRefused) {
   ScratchDir dir;
   const std::string scenario = DataPath("shaped_method1.yaml");
   const auto start = std::chrono::steady_clock::now();
-  const CliResult huge = RunCli({"run", scenario, "--set", "move.distance_mm=1.0e+12", "--out", dir.File("o")}, kSourceDir);
+  // A 10 ms period: at 1 ms max_ticks (10,000 s) binds before max_simulated_s (14,400 s).
+  const CliResult huge = RunCli({"run", scenario, "--set", "move.distance_mm=1.0e+12", "--set", "controller.period_s=0.01",
+                                 "--out", dir.File("o")},
+                                kSourceDir);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
   EXPECT_EQ(huge.exit_code, 2) << huge.err;
   EXPECT_EQ(huge.err.rfind("error: " + scenario + ":2:1: limits.max_simulated_s: scenario 'shaped_method1' "
@@ -332,7 +335,7 @@ TEST(GuardRails, RunLongerThanTheLimitIsRefused) {
                            0),
             0u)
       << huge.err;  // located at the top level (no limits: in the file), line 1 a comment
-  EXPECT_NE(huge.err.find("more than limits.max_simulated_s (600 s)"), std::string::npos) << huge.err;
+  EXPECT_NE(huge.err.find("more than limits.max_simulated_s (1.44e+04 s)"), std::string::npos) << huge.err;
   EXPECT_FALSE(fs::exists(dir.File("o")));
 
   const CliResult small = RunCli({"run", scenario, "--set", "limits.max_simulated_s=0.2"}, kSourceDir);
