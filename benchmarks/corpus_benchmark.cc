@@ -5,8 +5,8 @@
 // integrator) with the program swapped in, in its controller's dialect.
 //
 // Two keys of the base scenario are raised so each program runs to its end, and why:
-//   limits.max_simulated_s 600 -> 20000: heart.ngc, cutout.ngc and slant_test.nc take more
-//     than 600 s at their feeds; with the default each is refused at the line crossing it.
+//   limits.max_simulated_s -> 20000: heart.ngc, cutout.ngc and slant_test.nc take more
+//     than the 600 s default this was written under (4 hours since issue 36).
 //   machine.stroke x/y [-1000, 1000] mm, z [-400, 400] mm: the programs are in their part's
 //     coordinates, not the machine's: heart.ngc, cutout.ngc and g17-g18-g19.gcode go below
 //     the column's X end (-5 mm), and with the shipped stroke the run ends at the first
