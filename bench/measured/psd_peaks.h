@@ -24,6 +24,7 @@
 // log gives the modes and their mix).
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "model/machine.h"
@@ -35,6 +36,10 @@ struct LogMode {
   double damping_ratio = 0.0;
   double peak_psd = 0.0;  // the PSD at the peak, (mm/s^2)^2/Hz
   double share = 0.0;     // of the static deflection, summing to 1 over the modes
+  // One standard deviation of each, from the modal fit (bench/measured/log_modes.h);
+  // NaN for a peak as picked here.
+  double frequency_uncertainty_hz = NAN;
+  double damping_uncertainty = NAN;
 };
 
 // The log's modes (above), ascending frequency; gains not yet known (share set).

@@ -9,6 +9,7 @@
 #include <typeinfo>
 
 #include "bench/output/gnuplot.h"
+#include "bench/output/json_number.h"
 #include "bench/output/report.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
@@ -71,11 +72,16 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
   out << "\nvalidate " << v.scenario << ": axis " << model::AxisName(v.axis)
       << " modelled by the log's modes (its static deflection " << FormatNumber(v.static_deflection_per_accel_s2)
       << " m per m/s^2 kept)\n";
-  out << "  mode  frequency_hz  damping_ratio  share     gain\n";
-  for (std::size_t m = 0; m < report.modes.size(); ++m) {
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-4zu  %-12.4g  %-13.4g  %-8.4g  %.6g\n", m + 1, report.modes[m].frequency_hz,
-                  report.modes[m].damping_ratio, report.modes[m].share, v.machine.modes[m].gain);
+  const LogModes& fitted = report.modes;
+  out << "  modes fitted to the " << fitted.spectrum << " (" << FormatNumber(fitted.resolution_hz) << " Hz bins"
+      << (fitted.segments > 0 ? ", " + std::to_string(fitted.segments) + " segment(s)" : std::string()) << "); +/-: one standard deviation\n";
+  out << "  mode  frequency_hz  +/-         damping_ratio  +/-         share     gain\n";
+  for (std::size_t m = 0; m < fitted.modes.size(); ++m) {
+    const LogMode& mode = fitted.modes[m];
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-4zu  %-12.4g  %-10.3g  %-13.4g  %-10.3g  %-8.4g  %.6g\n", m + 1,
+                  mode.frequency_hz, mode.frequency_uncertainty_hz, mode.damping_ratio, mode.damping_uncertainty,
+                  mode.share, v.machine.modes[m].gain);
     out << line;
   }
   const std::string shaped = fit.name + " " + FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
@@ -184,10 +190,14 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   if (report.validation) {
     const ValidationRuns& v = *report.validation;
     nlohmann::ordered_json modes = nlohmann::ordered_json::array();
-    for (std::size_t m = 0; m < report.modes.size(); ++m) {
-      modes.push_back({{"frequency_hz", report.modes[m].frequency_hz},
-                       {"damping_ratio", report.modes[m].damping_ratio},
-                       {"share", report.modes[m].share},
+    const LogModes& fitted = report.modes;
+    for (std::size_t m = 0; m < fitted.modes.size(); ++m) {
+      const LogMode& mode = fitted.modes[m];
+      modes.push_back({{"frequency_hz", mode.frequency_hz},
+                       {"frequency_uncertainty_hz", JsonNumber(mode.frequency_uncertainty_hz)},
+                       {"damping_ratio", mode.damping_ratio},
+                       {"damping_uncertainty", JsonNumber(mode.damping_uncertainty)},
+                       {"share", mode.share},
                        {"gain", v.machine.modes[m].gain}});
     }
     const KlipperShaperResult& shaper = report.klipper_recommended();
@@ -195,6 +205,11 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
                         {"pattern", {{"method", shaper.name}, {"frequency_hz", shaper.frequency_hz}, {"rule", "klipper"}}},
                         {"axis", model::AxisName(v.axis)},
                         {"static_deflection_per_accel_s2", v.static_deflection_per_accel_s2},
+                        {"mode_fit", {{"spectrum", fitted.spectrum},
+                                      {"resolution_hz", fitted.resolution_hz},
+                                      {"segment_samples", fitted.segment_samples},
+                                      {"segments", fitted.segments},
+                                      {"uncertainty", "one standard deviation: " + fitted.uncertainty}}},
                         {"modes", modes},
                         {"none", MetricsJson(v.none)},
                         {"recommended", MetricsJson(v.recommended)}};

@@ -15,6 +15,7 @@
 #include "bench/measured/accel_spectrum.h"
 #include "bench/measured/klipper_calibrate.h"
 #include "bench/measured/klipper_psd.h"
+#include "bench/measured/log_modes.h"
 #include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/run/recommend_validation.h"
@@ -33,7 +34,7 @@ struct RecommendReport {
   ShaperFitOptions options;
   ShaperRecommendation recommendation;
   std::vector<std::string> warnings;      // printed on stderr and listed in the JSON
-  std::vector<LogMode> modes;             // --validate only
+  LogModes modes;                         // --validate only
   std::optional<ValidationRuns> validation;
   const KlipperShaperResult& klipper_recommended() const { return klipper.shapers[klipper.recommended]; }
   const ShaperFit& recommended() const { return recommendation.fits[recommendation.recommended]; }
