@@ -1,7 +1,7 @@
-// PSD peak picking: the peaks of an accelerometer log's PSD taken as its modes
-// (`recommend --validate` puts them in place of a scenario's machine:
-// bench/run/recommend_validation.h). Not a modal identification (model/modal_identification.h
-// fits FRFs); a peak's frequency and half-power width only.
+// PSD peak picking: the peaks of an accelerometer log's PSD, where `recommend --validate`'s
+// modes start (bench/measured/log_modes.h then measures each by a modal fit; the machine
+// they make: bench/run/recommend_validation.h). A peak's frequency and half-power width
+// only: on Klipper's 1.56 Hz bins a narrow mode reads wide.
 //
 // Modes: every local maximum of the PSD in the fit band (5-200 Hz) at or above P_max / 20
 // (the fit's threshold) that stands apart: walking away from it on each side, the PSD
