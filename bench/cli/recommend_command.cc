@@ -76,9 +76,11 @@ void FitKlipper(const AccelAxis axis, RecommendReport* report) {
   report->klipper = KlipperFindBestShaper(data, report->klipper_options);
 }
 
-// shapebench's own view of a Klipper PSD file: the fit band of the PSD the fit reads, as
-// the file has it (unnormalised in resonances_*.csv, normalised in calibration_data_*.csv).
-AccelSpectrum FileSpectrum(const RecommendReport& report) {
+// The fit band of Klipper's normalised PSD as its fit reads it (the first data set, the
+// axis chosen): shapebench's own view of a Klipper PSD file (a resonances_*.csv normalised
+// as Klipper does, a calibration_data_*.csv as read), and where the registry is scored
+// under Klipper's normalisation for a log.
+AccelSpectrum KlipperBandSpectrum(const RecommendReport& report) {
   AccelSpectrum spectrum;
   spectrum.axis = report.axis;
   const KlipperPsd& psd = report.klipper_spectrum.datasets[0];
@@ -103,7 +105,7 @@ void ReadSpectra(const std::string& path, RecommendReport* report) {
   if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
   if (IsKlipperPsdFile(text)) {
     report->klipper_spectrum = ParseKlipperPsdFile(text, path);
-    report->spectrum = FileSpectrum(*report);
+    report->spectrum = KlipperBandSpectrum(*report);
     FitKlipper(report->axis, report);
     return;
   }
@@ -166,6 +168,8 @@ RecommendReport ComputeRecommendation(const RecommendArgs& args) {
   ValidateResolution(args);
   ReadSpectra(args.file, &report);
   report.recommendation = RecommendShapers(report.spectrum.frequency_hz, report.spectrum.psd, report.options);
+  const AccelSpectrum normalised = KlipperBandSpectrum(report);
+  report.normalised = RecommendShapers(normalised.frequency_hz, normalised.psd, report.options);
   if (!args.validate.empty()) {
     report.modes = FitModes(args, report);
     for (const std::string& warning : report.modes.warnings) report.warnings.push_back(args.file + ": " + warning);

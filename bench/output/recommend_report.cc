@@ -45,6 +45,33 @@ nlohmann::ordered_json FitJson(const ShaperFit& fit) {
   return json;
 }
 
+// The rule of the registry's scores on Klipper's normalised PSD.
+constexpr const char* kNormalisedRule = "shapebench on klipper's normalised psd";
+
+// "shapebench_normalised" {psd, shapers, skipped} and "recommended_shapebench_normalised".
+void AddNormalisedJson(const RecommendReport& report, nlohmann::ordered_json* json) {
+  nlohmann::ordered_json view;
+  view["psd"] = {{"source", "klipper"},
+                 {"normalized", true},
+                 {"data_set", report.klipper_spectrum.datasets.front().name},
+                 {"band_hz", {kFitMinHz, kFitMaxHz}}};
+  nlohmann::ordered_json shapers = nlohmann::ordered_json::array();
+  for (const ShaperFit& fit : report.normalised.fits) {
+    shapers.push_back(FitJson(fit));
+    shapers.back()["rule"] = kNormalisedRule;
+  }
+  view["shapers"] = shapers;
+  nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
+  for (const SkippedShaper& skip : report.normalised.skipped) {
+    skipped.push_back({{"method", skip.method}, {"reason", skip.reason}});
+  }
+  view["skipped"] = skipped;
+  (*json)["shapebench_normalised"] = view;
+  nlohmann::ordered_json recommended = FitJson(report.normalised.fits[report.normalised.recommended]);
+  recommended["rule"] = std::string(kNormalisedRule) + ": " + RuleText(report.normalised);
+  (*json)["recommended_shapebench_normalised"] = recommended;
+}
+
 void PrintFitTable(std::ostream& out, const RecommendReport& report) {
   std::size_t width = 6;
   for (const ShaperFit& fit : report.recommendation.fits) width = std::max(width, fit.method.size());
@@ -142,6 +169,11 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
       << FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) << " Hz (remaining vibration "
       << Percent(fit.remaining_vibration) << ", smoothing " << EngineeringText(fit.smoothing_m, "m", 4)
       << "): " << RuleText(report.recommendation) << "\n";
+  const ShaperFit& normalised = report.normalised.fits[report.normalised.recommended];
+  out << "recommended_shapebench_normalised: " << normalised.method << " at "
+      << FormatNumber(std::round(normalised.frequency_hz * 10.0) / 10.0) << " Hz (remaining vibration "
+      << Percent(normalised.remaining_vibration) << ", smoothing " << EngineeringText(normalised.smoothing_m, "m", 4)
+      << "): the same rule, the registry scored on Klipper's normalised PSD\n";
   for (const SkippedShaper& skipped : report.recommendation.skipped) {
     out << "skipped: " << skipped.method << " (" << skipped.reason << ")\n";
   }
@@ -153,7 +185,9 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   nlohmann::ordered_json json;
   json["file"] = report.file;
   json["axis"] = AccelAxisName(report.axis);
-  json["rule"] = {{"recommended", "klipper"}, {"recommended_shapebench", "shapebench"}};
+  json["rule"] = {{"recommended", "klipper"},
+                  {"recommended_shapebench", "shapebench"},
+                  {"recommended_shapebench_normalised", kNormalisedRule}};
   AddKlipperJson(report, &json);
   nlohmann::ordered_json own;
   if (!s.samples.accel_mm_s2[0].empty()) {
@@ -186,6 +220,7 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   nlohmann::ordered_json recommended = FitJson(report.recommended());
   recommended["rule"] = RuleText(report.recommendation);
   json["recommended_shapebench"] = recommended;
+  AddNormalisedJson(report, &json);
   json["warnings"] = report.warnings;
   if (report.validation) {
     const ValidationRuns& v = *report.validation;
