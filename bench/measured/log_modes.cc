@@ -67,22 +67,34 @@ std::vector<PeakGroup> GroupPeaks(const std::vector<LogMode>& found) {
   return groups;
 }
 
-// Fits every group of `input`; modes whose fit fails keep the peaks' values, warned.
-void FitGroups(const ModalPsdInput& input, const std::vector<LogMode>& found, LogModes* out) {
-  out->modes = found;
-  for (const PeakGroup& group : GroupPeaks(found)) {
-    std::vector<ModalPsdGuess> guesses;
-    for (const std::size_t i : group.peaks) guesses.push_back({found[i].frequency_hz, found[i].damping_ratio});
-    const ModalPsdFit fit = FitModalPsd(input, guesses, group.from_hz, group.to_hz);
-    if (!fit.trouble.empty() || fit.modes.size() != group.peaks.size()) {
-      out->warnings.push_back("the modal fit over " + FormatNumber(group.from_hz) + "-" + FormatNumber(group.to_hz) +
-                              " Hz failed (" + fit.trouble + "): the peaks' half-power values kept there");
-      for (const std::size_t i : group.peaks) {
-        out->modes[i].frequency_uncertainty_hz = NAN;
-        out->modes[i].damping_uncertainty = NAN;
-      }
-      continue;
+// Why the fit of `group` is not to be trusted, or "": the fit's own trouble, or a damping
+// ratio above kMaxWidening x the peak's half-power one (an upper bound where the window
+// widens the peak: the model does not describe the spectrum there, e.g. an excitation that
+// ends inside the range).
+std::string Untrusted(const ModalPsdFit& fit, const PeakGroup& group, const std::vector<LogMode>& found) {
+  constexpr double kMaxWidening = 1.5;
+  if (!fit.trouble.empty()) return fit.trouble;
+  if (fit.modes.size() != group.peaks.size()) return "no result";
+  for (std::size_t j = 0; j < group.peaks.size(); ++j) {
+    const LogMode& peak = found[group.peaks[j]];
+    if (fit.modes[j].damping_ratio > kMaxWidening * peak.damping_ratio) {
+      return "damping ratio " + FormatNumber(fit.modes[j].damping_ratio) + " at " +
+             FormatNumber(fit.modes[j].frequency_hz) + " Hz, above " + FormatNumber(kMaxWidening) +
+             " x the peak's half-power " + FormatNumber(peak.damping_ratio) + ": the model does not fit there";
     }
+  }
+  return "";
+}
+
+// Fits `group`'s peaks into out->modes; a group of several whose joint fit is not trusted
+// is fitted peak by peak; a peak whose fit is not trusted keeps its half-power values,
+// warned.
+void FitGroup(const ModalPsdInput& input, const std::vector<LogMode>& found, const PeakGroup& group, LogModes* out) {
+  std::vector<ModalPsdGuess> guesses;
+  for (const std::size_t i : group.peaks) guesses.push_back({found[i].frequency_hz, found[i].damping_ratio});
+  const ModalPsdFit fit = FitModalPsd(input, guesses, group.from_hz, group.to_hz);
+  const std::string why = Untrusted(fit, group, found);
+  if (why.empty()) {
     for (std::size_t j = 0; j < group.peaks.size(); ++j) {
       LogMode& mode = out->modes[group.peaks[j]];
       mode.frequency_hz = fit.modes[j].frequency_hz;
@@ -90,7 +102,24 @@ void FitGroups(const ModalPsdInput& input, const std::vector<LogMode>& found, Lo
       mode.frequency_uncertainty_hz = fit.modes[j].frequency_uncertainty_hz;
       mode.damping_uncertainty = fit.modes[j].damping_uncertainty;
     }
+    return;
   }
+  if (group.peaks.size() > 1) {
+    for (const std::size_t i : group.peaks) {
+      const std::vector<PeakGroup> alone = GroupPeaks({found[i]});
+      FitGroup(input, found, {alone[0].from_hz, alone[0].to_hz, {i}}, out);
+    }
+    return;
+  }
+  out->warnings.push_back("the modal fit of the peak at " + FormatNumber(found[group.peaks[0]].frequency_hz) +
+                          " Hz over " + FormatNumber(group.from_hz) + "-" + FormatNumber(group.to_hz) + " Hz failed (" +
+                          why + "): its half-power values kept");
+}
+
+// Fits every group of `input` (above); the shares from the dampings found.
+void FitGroups(const ModalPsdInput& input, const std::vector<LogMode>& found, LogModes* out) {
+  out->modes = found;
+  for (const PeakGroup& group : GroupPeaks(found)) FitGroup(input, found, group, out);
   double total = 0.0;
   for (LogMode& mode : out->modes) {
     const double w = kTwoPi * mode.frequency_hz;

@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kMinDamping = 1e-4;
 constexpr double kMaxDamping = 0.5;
-constexpr int kMaxIterations = 200;
+constexpr int kMaxIterations = 2000;
 
 // The expected bins of the parameters theta = [f_i, log zeta_i, g_i per mode, log E, c,
 // log B] over the bins first .. first + count - 1.

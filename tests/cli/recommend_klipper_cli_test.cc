@@ -61,14 +61,20 @@ void ExpectKlipper(const nlohmann::json& fixture) {
 // Tests that the default rule gives Klipper's numbers and recommendation on the three
 // synthetic machines' logs and the shipped log, with --max-smoothing and --damping-ratio.
 TEST(RecommendKlipperCli, LogsGiveKlippersRecommendation) {
-  for (const nlohmann::json& fixture : Fixtures("calibrate_shaper_fixtures.json")["cases"]) ExpectKlipper(fixture);
+  // The fixtures held in a local: a range-for over a temporary's ["cases"] would walk freed
+  // memory (it ran no case).
+  const nlohmann::json fixtures = Fixtures("calibrate_shaper_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 6u);
+  for (const nlohmann::json& fixture : fixtures["cases"]) ExpectKlipper(fixture);
 }
 
 // Tests that Klipper's resonances_*.csv (not normalised) and calibration_data_*.csv
 // (normalised, shapers: columns) give Klipper's recommendation on each, and that a
 // per-axis PSD of the resonances file is what --axis x fits.
 TEST(RecommendKlipperCli, PsdFilesGiveKlippersRecommendation) {
-  for (const nlohmann::json& fixture : Fixtures("psd_file_fixtures.json")["cases"]) ExpectKlipper(fixture);
+  const nlohmann::json fixtures = Fixtures("psd_file_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 4u);
+  for (const nlohmann::json& fixture : fixtures["cases"]) ExpectKlipper(fixture);
   const CliResult sum = RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--json"}, kSourceDir);
   const CliResult x =
       RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--axis", "x", "--json"}, kSourceDir);
@@ -130,10 +136,14 @@ TEST(RecommendKlipperCli, MaxSmoothingAndShortLogs) {
 TEST(RecommendKlipperCli, RegistryScoredUnderKlippersNormalisation) {
   const std::vector<std::pair<std::string, std::string>> counterparts = {
       {"zv", "zv"}, {"mzv", "mzv"}, {"ei", "ei"}, {"2hump_ei", "ei_2hump"}, {"3hump_ei", "ei_3hump"}};
-  for (const nlohmann::json& fixture : Fixtures("calibrate_shaper_fixtures.json")["cases"]) {
+  const nlohmann::json fixtures = Fixtures("calibrate_shaper_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 6u);
+  int checked = 0;
+  for (const nlohmann::json& fixture : fixtures["cases"]) {
     if (!fixture["max_smoothing"].is_null() || !fixture["damping_ratio"].is_null()) continue;
     const std::string file = fixture["file"];
     SCOPED_TRACE(file);
+    ++checked;
     const CliResult r = RunCli({"recommend", file, "--json"}, kSourceDir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json json = nlohmann::json::parse(r.out);
@@ -160,6 +170,7 @@ TEST(RecommendKlipperCli, RegistryScoredUnderKlippersNormalisation) {
     EXPECT_EQ(json["rule"]["recommended_shapebench_normalised"], "shapebench on klipper's normalised psd");
     EXPECT_EQ(remaining.count(json["recommended_shapebench_normalised"]["method"].get<std::string>()), 1u);
   }
+  EXPECT_EQ(checked, 4);
   const CliResult file = RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--json"}, kSourceDir);
   ASSERT_EQ(file.exit_code, 0) << file.err;
   const nlohmann::json json = nlohmann::json::parse(file.out);
