@@ -1,0 +1,252 @@
+// Pattern synthesis; see the header and docs/design.md.
+#include "controller/pattern_design.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "common/format.h"
+#include "common/math_constants.h"
+#include "common/validation_error.h"
+#include "controller/impulse.h"
+#include "controller/pattern_lp.h"
+
+namespace shapebench::controller {
+namespace {
+
+// A point (w, zeta) of a band where the modulus is constrained.
+struct DesignSample {
+  double w = 0.0;
+  double zeta = 0.0;
+};
+
+// Coefficients below this (CLP's round-off, negative or positive) are zero.
+constexpr double kZeroCoefficient = 1e-12;
+// A face is violated when Re(S e^{-i theta}) exceeds the tolerance by more than this.
+constexpr double kFaceSlack = 1e-9;
+constexpr int kMaxCutRounds = 1000;
+
+void CheckFinite(const std::string& field, double value, double lo, double hi, const std::string& allowed) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
+    throw ValidationError(field, "must be " + allowed + " (got " + FormatNumber(value) + ")");
+  }
+}
+
+// The samples of `band` for a pattern of duration `duration_s` (header: the spacing).
+std::vector<DesignSample> BandSamples(const DesignBand& band, double duration_s, double margin) {
+  const double w_lo = 2.0 * kPi * band.frequency_lo_hz;
+  const double w_hi = 2.0 * kPi * band.frequency_hi_hz;
+  const bool damping_band = band.damping_hi > band.damping_lo;
+  const double dw = (damping_band ? margin : 2.0 * margin) / duration_s;
+  const long nw = w_hi > w_lo ? static_cast<long>(std::ceil((w_hi - w_lo) / dw)) + 1 : 1;
+  long nz = 1;
+  if (damping_band) {
+    const double dz = margin / (w_hi * duration_s);
+    nz = static_cast<long>(std::ceil((band.damping_hi - band.damping_lo) / dz)) + 1;
+  }
+  if (nw * nz > kMaxDesignSamples) {
+    throw DesignError("a band needs " + std::to_string(nw * nz) + " samples for a " + FormatNumber(duration_s) +
+                      " s pattern, more than " + std::to_string(kMaxDesignSamples) +
+                      ": narrow the band or raise the margin");
+  }
+  std::vector<DesignSample> samples;
+  for (long i = 0; i < nw; ++i) {
+    const double w = nw == 1 ? w_lo : w_lo + (w_hi - w_lo) * static_cast<double>(i) / static_cast<double>(nw - 1);
+    for (long j = 0; j < nz; ++j) {
+      const double z = nz == 1 ? band.damping_lo
+                               : band.damping_lo + (band.damping_hi - band.damping_lo) * static_cast<double>(j) /
+                                                       static_cast<double>(nz - 1);
+      samples.push_back({w, z});
+    }
+  }
+  return samples;
+}
+
+// c_k = e^{-zeta w (D - t_k)} e^{i w_d t_k}: S = sum a_k c_k, V = |S| (sum a_k = 1).
+std::vector<std::complex<double>> Phasors(const DesignSample& s, int n, double h) {
+  const double wd = s.w * std::sqrt(1.0 - s.zeta * s.zeta);
+  const double d = n * h;
+  std::vector<std::complex<double>> c(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    const double t = k * h;
+    c[k] = std::exp(-s.zeta * s.w * (d - t)) * std::complex<double>(std::cos(wd * t), std::sin(wd * t));
+  }
+  return c;
+}
+
+// Re(c e^{-i theta}) per coefficient: one face of one sample's polygon.
+std::vector<double> FaceRow(const std::vector<std::complex<double>>& c, int face) {
+  const double theta = 2.0 * kPi * face / kPolygonSides;
+  std::vector<double> row(c.size());
+  for (std::size_t k = 0; k < c.size(); ++k) row[k] = c[k].real() * std::cos(theta) + c[k].imag() * std::sin(theta);
+  return row;
+}
+
+// m-th derivative conditions at each band's centre: Re and Im of sum a_k (t_k/D)^m c_k = 0.
+void AddDerivativeRows(const DesignSpec& spec, int n, DenseLp* lp) {
+  for (const DesignBand& band : spec.bands) {
+    const DesignSample centre{kPi * (band.frequency_lo_hz + band.frequency_hi_hz),
+                              0.5 * (band.damping_lo + band.damping_hi)};
+    const std::vector<std::complex<double>> c = Phasors(centre, n, spec.grid_s);
+    for (int m = 1; m <= spec.derivatives; ++m) {
+      std::vector<double> re(n + 1), im(n + 1);
+      for (int k = 0; k <= n; ++k) {
+        const double scale = std::pow(static_cast<double>(k) / std::max(n, 1), m);
+        re[k] = scale * c[k].real();
+        im[k] = scale * c[k].imag();
+      }
+      lp->AddRow(re, 0.0, 0.0);
+      lp->AddRow(im, 0.0, 0.0);
+    }
+  }
+}
+
+std::vector<double> Cleaned(std::vector<double> a) {
+  double total = 0.0;
+  for (double& x : a) {
+    if (x < kZeroCoefficient) x = 0.0;
+    total += x;
+  }
+  for (double& x : a) x /= total;
+  return a;
+}
+
+}  // namespace
+
+void DesignSpec::validate() const {
+  if (bands.empty()) throw ValidationError("bands", "at least one band is needed");
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    const DesignBand& b = bands[i];
+    const std::string at = "bands[" + std::to_string(i) + "].";
+    CheckFinite(at + "frequency_lo_hz", b.frequency_lo_hz, 1e-9, 1e9, "> 0 Hz");
+    CheckFinite(at + "frequency_hi_hz", b.frequency_hi_hz, b.frequency_lo_hz, 1e9,
+                "at least frequency_lo_hz (" + FormatNumber(b.frequency_lo_hz) + " Hz)");
+    CheckFinite(at + "damping_lo", b.damping_lo, 0.0, 0.7, "in [0, 0.7]");
+    CheckFinite(at + "damping_hi", b.damping_hi, b.damping_lo, 0.7,
+                "in [damping_lo, 0.7] (damping_lo " + FormatNumber(b.damping_lo) + ")");
+  }
+  CheckFinite("tolerance", tolerance, 0.0, 0.999999, "in [0, 1)");
+  if (derivatives < 0 || derivatives > 4) {
+    throw ValidationError("derivatives", "must be 0 to 4 (got " + std::to_string(derivatives) + ")");
+  }
+  CheckFinite("grid_s", grid_s, 1e-7, 1.0, "in [1e-7, 1] s");
+  CheckFinite("margin", margin, 1e-6, 1.0, "in [1e-6, 1]");
+  CheckFinite("max_duration_s", max_duration_s, grid_s, 1e3, "in [grid_s, 1000] s");
+}
+
+bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coefficients, int* solves) {
+  const double h = spec.grid_s;
+  const double duration = std::max(n, 1) * h;  // n = 0: one impulse, V = 1 everywhere
+  std::vector<double> objective(n + 1);
+  for (int k = 0; k <= n; ++k) objective[k] = static_cast<double>(k) / std::max(n, 1);  // mean time / D
+  DenseLp lp(objective, 1.0);
+  lp.AddRow(std::vector<double>(n + 1, 1.0), 1.0, 1.0);
+  AddDerivativeRows(spec, n, &lp);
+  std::vector<std::vector<std::complex<double>>> phasors;
+  for (const DesignBand& band : spec.bands) {
+    for (const DesignSample& s : BandSamples(band, duration, spec.margin)) {
+      if (static_cast<double>(phasors.size() + 1) * (n + 1) > kMaxDesignEntries ||
+          phasors.size() >= static_cast<std::size_t>(kMaxDesignSamples)) {
+        throw DesignError("a " + FormatNumber(n * h) + " s pattern on the bands needs more than " +
+                          std::to_string(kMaxDesignSamples) + " samples or " + FormatNumber(kMaxDesignEntries) +
+                          " samples x grid points: narrow the bands, coarsen the grid or raise the margin");
+      }
+      phasors.push_back(Phasors(s, n, h));
+    }
+  }
+  std::vector<std::vector<char>> has_face(phasors.size(), std::vector<char>(kPolygonSides, 0));
+  for (std::size_t s = 0; s < phasors.size(); ++s) {  // every solution starts near S = 1
+    lp.AddRow(FaceRow(phasors[s], 0), -1e30, spec.tolerance);
+    has_face[s][0] = 1;
+  }
+  for (int round = 0; round < kMaxCutRounds; ++round) {
+    const DenseLp::Outcome outcome = lp.Solve();
+    ++*solves;
+    if (outcome == DenseLp::Outcome::kInfeasible) return false;
+    if (outcome == DenseLp::Outcome::kFailed) {
+      throw DesignError("the LP solver (CLP) stopped without an answer for a " + FormatNumber(n * h) + " s pattern");
+    }
+    const std::vector<double> a = lp.Solution();
+    int added = 0;
+    for (std::size_t s = 0; s < phasors.size(); ++s) {
+      std::complex<double> sum = 0.0;
+      for (int k = 0; k <= n; ++k) sum += a[k] * phasors[s][k];
+      const double step = 2.0 * kPi / kPolygonSides;
+      int face = static_cast<int>(std::lround(std::arg(sum) / step)) % kPolygonSides;
+      if (face < 0) face += kPolygonSides;
+      const double value = sum.real() * std::cos(face * step) + sum.imag() * std::sin(face * step);
+      if (value > spec.tolerance + kFaceSlack && !has_face[s][face]) {
+        lp.AddRow(FaceRow(phasors[s], face), -1e30, spec.tolerance);
+        has_face[s][face] = 1;
+        ++added;
+      }
+    }
+    if (added == 0) {
+      *coefficients = Cleaned(a);
+      return true;
+    }
+  }
+  throw DesignError("the cutting planes did not settle in " + std::to_string(kMaxCutRounds) + " rounds");
+}
+
+DesignResult DesignPattern(const DesignSpec& spec) {
+  spec.validate();
+  const double h = spec.grid_s;
+  const int n_max = std::min(kMaxDesignGridPoints - 1, static_cast<int>(std::floor(spec.max_duration_s / h + 1e-9)));
+  double f_top = 0.0;
+  for (const DesignBand& band : spec.bands) f_top = std::max(f_top, band.frequency_hi_hz);
+  DesignResult result;
+  result.grid_s = h;
+  // n = 0 (one impulse) leaves V = 1 > tolerance: infeasible. Start near ZV's length for
+  // the highest frequency, double until feasible, then bisect.
+  int lo = 0;
+  int hi = std::clamp(static_cast<int>(std::lround(0.5 / f_top / h)), 1, std::max(n_max, 1));
+  std::vector<double> best;
+  while (!DesignFeasible(spec, hi, &best, &result.lp_solves)) {
+    lo = hi;
+    if (hi >= n_max) {
+      throw DesignError("no pattern of at most " + FormatNumber(n_max * h) + " s (" + std::to_string(n_max + 1) +
+                        " grid points of " + FormatNumber(h) +
+                        " s) meets the tolerance over the bands: widen the tolerance, narrow the bands "
+                        "or allow a longer pattern");
+    }
+    hi = std::min(2 * hi, n_max);
+  }
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    std::vector<double> a;
+    if (DesignFeasible(spec, mid, &a, &result.lp_solves)) {
+      hi = mid;
+      best = std::move(a);
+    } else {
+      lo = mid;
+    }
+  }
+  result.duration_s = hi * h;
+  result.coefficients = std::move(best);
+  for (const DesignBand& band : spec.bands) {
+    result.worst_v.push_back(WorstResidualOverBand(result.coefficients, h, band));
+  }
+  result.guaranteed_v = spec.tolerance / std::cos(kPi / kPolygonSides) + spec.margin;
+  return result;
+}
+
+double WorstResidualOverBand(const std::vector<double>& coefficients, double grid_s, const DesignBand& band,
+                             int frequencies) {
+  const std::vector<Impulse> impulses = TableImpulses(coefficients, grid_s);
+  std::vector<double> dampings{band.damping_lo};
+  if (band.damping_hi > band.damping_lo) {
+    dampings.push_back(0.5 * (band.damping_lo + band.damping_hi));
+    dampings.push_back(band.damping_hi);
+  }
+  double worst = 0.0;
+  const int count = band.frequency_hi_hz > band.frequency_lo_hz ? std::max(frequencies, 2) : 1;
+  for (int i = 0; i < count; ++i) {
+    const double f = count == 1 ? band.frequency_lo_hz
+                                : band.frequency_lo_hz + (band.frequency_hi_hz - band.frequency_lo_hz) * i / (count - 1);
+    for (double z : dampings) worst = std::max(worst, ResidualVibration(impulses, f, z));
+  }
+  return worst;
+}
+
+}  // namespace shapebench::controller
