@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 
 #include "common/format.h"
 #include "common/math_constants.h"
@@ -134,11 +135,14 @@ void DesignSpec::validate() const {
   CheckFinite("max_duration_s", max_duration_s, grid_s, 1e3, "in [grid_s, 1000] s");
 }
 
-bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coefficients, int* solves) {
+bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coefficients, int* solves,
+                    bool least_mean_time) {
   const double h = spec.grid_s;
   const double duration = std::max(n, 1) * h;  // n = 0: one impulse, V = 1 everywhere
   std::vector<double> objective(n + 1);
-  for (int k = 0; k <= n; ++k) objective[k] = static_cast<double>(k) / std::max(n, 1);  // mean time / D
+  if (least_mean_time) {
+    for (int k = 0; k <= n; ++k) objective[k] = static_cast<double>(k) / std::max(n, 1);  // mean time / D
+  }
   DenseLp lp(objective, 1.0);
   lp.AddRow(std::vector<double>(n + 1, 1.0), 1.0, 1.0);
   AddDerivativeRows(spec, n, &lp);
@@ -189,41 +193,83 @@ bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coeffici
   throw DesignError("the cutting planes did not settle in " + std::to_string(kMaxCutRounds) + " rounds");
 }
 
+namespace {
+
+// The least n in (lo, hi] that `feasible` accepts, given that it accepts hi and not lo
+// (feasibility is monotone in n: a pattern padded with a zero coefficient still passes).
+int BisectFeasible(const std::function<bool(int)>& feasible, int lo, int hi) {
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (feasible(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// The least feasible n <= n_max of `feasible`: from `start`, doubling until feasible, then
+// bisecting. Throws DesignError (saying `what`) when n_max is not feasible.
+int LeastFeasible(const std::function<bool(int)>& feasible, int start, int n_max, const std::string& what) {
+  int lo = 0;  // one impulse leaves V = 1 > tolerance
+  int hi = std::clamp(start, 1, std::max(n_max, 1));
+  while (!feasible(hi)) {
+    lo = hi;
+    if (hi >= n_max) {
+      throw DesignError("no pattern of at most " + what +
+                        " meets the tolerance over the bands: widen the tolerance, narrow the bands or allow a "
+                        "longer pattern");
+    }
+    hi = std::min(2 * hi, n_max);
+  }
+  return BisectFeasible(feasible, lo, hi);
+}
+
+}  // namespace
+
 DesignResult DesignPattern(const DesignSpec& spec) {
   spec.validate();
   const double h = spec.grid_s;
   const int n_max = std::min(kMaxDesignGridPoints - 1, static_cast<int>(std::floor(spec.max_duration_s / h + 1e-9)));
+  const std::string what = FormatNumber(n_max * h) + " s (" + std::to_string(n_max + 1) + " grid points of " +
+                           FormatNumber(h) + " s)";
   double f_top = 0.0;
   for (const DesignBand& band : spec.bands) f_top = std::max(f_top, band.frequency_hi_hz);
   DesignResult result;
   result.grid_s = h;
-  // n = 0 (one impulse) leaves V = 1 > tolerance: infeasible. Start near ZV's length for
-  // the highest frequency, double until feasible, then bisect.
-  int lo = 0;
-  int hi = std::clamp(static_cast<int>(std::lround(0.5 / f_top / h)), 1, std::max(n_max, 1));
-  std::vector<double> best;
-  while (!DesignFeasible(spec, hi, &best, &result.lp_solves)) {
-    lo = hi;
-    if (hi >= n_max) {
-      throw DesignError("no pattern of at most " + FormatNumber(n_max * h) + " s (" + std::to_string(n_max + 1) +
-                        " grid points of " + FormatNumber(h) +
-                        " s) meets the tolerance over the bands: widen the tolerance, narrow the bands "
-                        "or allow a longer pattern");
-    }
-    hi = std::min(2 * hi, n_max);
-  }
-  while (hi - lo > 1) {
-    const int mid = lo + (hi - lo) / 2;
+  // The search starts near ZV's length for the highest frequency. On a fine grid it runs
+  // first on a grid `coarse` times coarser (about 10 points per ZV length): its least
+  // duration bounds the fine one from above (its patterns are fine-grid patterns), and the
+  // fine search then looks below it only.
+  const int zv_points = static_cast<int>(std::lround(0.5 / f_top / h));
+  const int coarse = std::max(1, zv_points / 10);
+  DesignSpec coarse_spec = spec;
+  coarse_spec.grid_s = coarse * h;
+  // Every search below only lowers the feasible bound, so the last feasible check's pattern
+  // (on the fine grid) is the one of the current least duration.
+  std::vector<double> found;
+  const auto check = [&](const DesignSpec& on, int scale, int n) {
     std::vector<double> a;
-    if (DesignFeasible(spec, mid, &a, &result.lp_solves)) {
-      hi = mid;
-      best = std::move(a);
-    } else {
-      lo = mid;
+    if (!DesignFeasible(on, n, &a, &result.lp_solves)) return false;
+    found.assign(static_cast<std::size_t>(n * scale + 1), 0.0);
+    for (int k = 0; k <= n; ++k) found[static_cast<std::size_t>(k * scale)] = a[k];
+    return true;
+  };
+  const auto fine = [&](int n) { return check(spec, 1, n); };
+  int hi = coarse * LeastFeasible([&](int n) { return check(coarse_spec, coarse, n); }, zv_points / coarse,
+                                  n_max / coarse, what);
+  if (coarse > 1) {
+    int lo = hi - coarse;  // galloping down from the coarse answer
+    for (int step = coarse; lo > 0 && fine(lo); step *= 2) {
+      hi = lo;
+      lo = std::max(0, hi - 2 * step);
     }
+    hi = BisectFeasible(fine, std::max(lo, 0), hi);
   }
+  // The secondary objective at the least duration: the least mean time. A duration CLP
+  // finds only marginally feasible (its tolerances, 1e-7) may fail with the objective, or
+  // on the fine grid where the coarse grid passed: then the check's own pattern stands
+  // (secondary_objective false).
+  result.secondary_objective = DesignFeasible(spec, hi, &result.coefficients, &result.lp_solves, true);
+  if (!result.secondary_objective) result.coefficients = found;
   result.duration_s = hi * h;
-  result.coefficients = std::move(best);
   for (const DesignBand& band : spec.bands) {
     result.worst_v.push_back(WorstResidualOverBand(result.coefficients, h, band));
   }

@@ -57,6 +57,7 @@ struct DesignResult {
   std::vector<double> coefficients;  // a_0 .. a_n at t = k h
   std::vector<double> worst_v;       // per band: the largest V found by a dense check
   double guaranteed_v = 0.0;         // tolerance / cos(pi / sides) + margin
+  bool secondary_objective = true;   // the least mean time applied (see DesignPattern)
   int lp_solves = 0;
 };
 
@@ -69,9 +70,11 @@ class DesignError : public std::runtime_error {
 // The shortest pattern for `spec` (validated here); deterministic.
 DesignResult DesignPattern(const DesignSpec& spec);
 
-// Whether a pattern of n + 1 grid coefficients meets `spec` (one LP series); the
-// coefficients when it does. Exposed for tests.
-bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coefficients, int* solves);
+// Whether a pattern of n + 1 grid coefficients meets `spec` (one series of LPs, `solves`
+// counting them); the coefficients when it does, of least mean time with
+// `least_mean_time` (else any: a feasibility check without an objective is faster).
+bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coefficients, int* solves,
+                    bool least_mean_time = false);
 
 // The largest V of `coefficients` (on `grid_s`) over `band`, at `frequencies` evenly spaced
 // frequencies times 3 dampings (lo, middle, hi).

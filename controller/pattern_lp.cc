@@ -2,12 +2,18 @@
 #include "controller/pattern_lp.h"
 
 #include <ClpSimplex.hpp>
-#include <CoinHelperFunctions.hpp>
 
 namespace shapebench::controller {
 
 struct DenseLp::Clp {
   ClpSimplex model;
+  // Rows waiting for the next Solve: CLP copies its matrix on every addRow, so rows are
+  // added in one batch (one copy) per Solve.
+  std::vector<CoinBigIndex> starts{0};
+  std::vector<int> columns;
+  std::vector<double> values;
+  std::vector<double> lower;
+  std::vector<double> upper;
 };
 
 DenseLp::DenseLp(const std::vector<double>& objective, double upper_bound)
@@ -24,19 +30,30 @@ DenseLp::DenseLp(const std::vector<double>& objective, double upper_bound)
 DenseLp::~DenseLp() = default;
 
 void DenseLp::AddRow(const std::vector<double>& coefficients, double lower, double upper) {
-  std::vector<int> columns;
-  std::vector<double> values;
+  Clp& c = *clp_;
   for (std::size_t j = 0; j < coefficients.size() && j < columns_; ++j) {
     if (coefficients[j] != 0.0) {
-      columns.push_back(static_cast<int>(j));
-      values.push_back(coefficients[j]);
+      c.columns.push_back(static_cast<int>(j));
+      c.values.push_back(coefficients[j]);
     }
   }
-  clp_->model.addRow(static_cast<int>(columns.size()), columns.data(), values.data(), lower, upper);
+  c.starts.push_back(static_cast<CoinBigIndex>(c.columns.size()));
+  c.lower.push_back(lower);
+  c.upper.push_back(upper);
 }
 
 DenseLp::Outcome DenseLp::Solve() {
-  ClpSimplex& m = clp_->model;
+  Clp& c = *clp_;
+  ClpSimplex& m = c.model;
+  if (!c.lower.empty()) {
+    m.addRows(static_cast<int>(c.lower.size()), c.lower.data(), c.upper.data(), c.starts.data(), c.columns.data(),
+              c.values.data());
+    c.starts.assign(1, 0);
+    c.columns.clear();
+    c.values.clear();
+    c.lower.clear();
+    c.upper.clear();
+  }
   m.dual();
   if (m.isProvenOptimal()) return Outcome::kOptimal;
   if (m.isProvenPrimalInfeasible()) return Outcome::kInfeasible;
