@@ -115,8 +115,8 @@ TEST(DesignCli, BadOptionsExit2NamingTheOption) {
       {{"--derivatives", "7"}, "--derivatives: must be 0 to 4"},
       {{"--form", "steps"}, "--form"},
       {{"--grid-s", "0.001"}, "--grid-s: is for --form impulses only"},
-      {{"--form", "impulses", "--grid-s", "0"}, "--grid-s: must be in [1e-07, 1] s"},
-      {{"--margin", "0"}, "--margin: must be in [1e-06, 1]"},
+      {{"--form", "impulses", "--grid-s", "0"}, "--grid-s: must be in [1e-7, 1] s"},
+      {{"--margin", "0"}, "--margin: must be in [1e-6, 1]"},
   };
   for (const BadOption& c : cases) {
     std::vector<std::string> args{"design", scenario};
