@@ -41,6 +41,7 @@ struct DesignArgs {
   std::optional<double> grid_s;
   std::optional<double> margin;
   bool registry = true;
+  bool validate = false;
   bool json = false;
   std::string out_dir;
 };
@@ -126,7 +127,7 @@ void ValidateSpec(const controller::DesignSpec& spec) {
   }
 }
 
-DesignReport PrepareDesign(const DesignArgs& args) {
+DesignReport PrepareDesign(const DesignArgs& args, Scenario* loaded) {
   DesignReport report;
   report.file = args.file;
   report.form = args.form == "impulses" ? DesignForm::kImpulses : DesignForm::kProfileTable;
@@ -136,7 +137,8 @@ DesignReport PrepareDesign(const DesignArgs& args) {
   }
   LoadOptions options;
   options.plan_move = false;  // the design does not depend on the move
-  const Scenario scenario = LoadScenario(args.file, ParseOverrides(args.sets), options);
+  *loaded = LoadScenario(args.file, ParseOverrides(args.sets), options);
+  const Scenario& scenario = *loaded;
   const DesignModes modes = FindDesignModes(scenario.machine, scenario.RunProgram());
   if (modes.modes.empty()) {
     throw ValidationError(args.file, "the machine has no participating mode along the moved axes (" + modes.axes +
@@ -161,7 +163,8 @@ DesignReport PrepareDesign(const DesignArgs& args) {
 int DesignCommand(const DesignArgs& args) {
   if (!args.out_dir.empty()) RequireWritableOutputDir("--out", args.out_dir);
   Doing("designing a pattern for " + args.file);
-  DesignReport report = PrepareDesign(args);
+  Scenario scenario;
+  DesignReport report = PrepareDesign(args, &scenario);
   try {
     report.result = controller::DesignPattern(report.spec);
   } catch (const controller::DesignError& error) {
@@ -169,6 +172,10 @@ int DesignCommand(const DesignArgs& args) {
     return kExitSolverFailed;
   }
   if (args.registry) report.registry = controller::CompareRegistryShapers(report.spec);
+  if (args.validate) {
+    Doing("running the design across its bands (--validate) for " + args.file, RunMemory(scenario));
+    report.validation = ValidateDesign(scenario, report.spec, report.result, report.form == DesignForm::kImpulses);
+  }
   std::vector<std::string> written;
   if (!args.out_dir.empty()) {
     const DeferInterrupts defer;
@@ -215,6 +222,9 @@ Command AddDesignCommand(CLI::App* app) {
       ->type_name("M");
   design->add_flag("--registry,!--no-registry", args->registry,
                    "compare the registry's shapers and the patent's methods (default on)");
+  design->add_flag("--validate", args->validate,
+                   "run the scenario with the design across each band, one mode at a time, unshaped and shaped, "
+                   "and report the worst residual ratio and peak_ratio");
   design->add_flag("--json", args->json, "print the design as one JSON object");
   design->add_option("--out", args->out_dir, "write design.json, design.yaml and design.png into DIR")
       ->type_name("DIR");

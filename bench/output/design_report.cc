@@ -63,6 +63,19 @@ void PrintRegistry(std::ostream& out, const DesignReport& report) {
   }
 }
 
+void PrintValidation(std::ostream& out, const DesignReport& report) {
+  out << "\n--validate: the bench's own runs, one mode at a time across each band (residual shaped / unshaped)\n";
+  out << "  mode  worst residual ratio  at_hz        at_damping  worst peak_ratio  runs\n";
+  for (std::size_t b = 0; b < report.validation.size(); ++b) {
+    const BandValidation& v = report.validation[b];
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-4d  %-20s  %-11s  %-10s  %-16s  %d\n", report.modes[b],
+                  Percent(v.worst_residual_ratio).c_str(), FormatNumber(v.worst_at_hz, 6).c_str(),
+                  FormatNumber(v.worst_at_damping, 4).c_str(), FormatNumber(v.worst_peak_ratio, 6).c_str(), v.runs);
+    out << line;
+  }
+}
+
 }  // namespace
 
 std::vector<Impulse> DesignImpulses(const controller::DesignResult& result) {
@@ -106,6 +119,7 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report) {
   }
   PrintPattern(out, report);
   if (!report.registry.empty()) PrintRegistry(out, report);
+  if (!report.validation.empty()) PrintValidation(out, report);
   if (report.table_too_long()) {
     out << "\nnote: the table has " << r.coefficients.size() << " coefficients, more than the scenario's "
         << "controller.post_interp.max_table_length (" << report.max_table_length
@@ -149,6 +163,18 @@ nlohmann::ordered_json DesignJson(const DesignReport& report) {
   json["registry"] = nlohmann::ordered_json::array();
   for (const controller::ShaperAgainstSpec& s : report.registry) {
     json["registry"].push_back({{"method", s.method}, {"duration_s", s.duration_s}, {"meets", s.meets}, {"worst_v", s.worst_v}});
+  }
+  if (!report.validation.empty()) {
+    json["validation"] = nlohmann::ordered_json::array();
+    for (std::size_t b = 0; b < report.validation.size(); ++b) {
+      const BandValidation& v = report.validation[b];
+      json["validation"].push_back({{"mode", report.modes[b]},
+                                   {"worst_residual_ratio", JsonNumber(v.worst_residual_ratio)},
+                                   {"at_hz", v.worst_at_hz},
+                                   {"at_damping", v.worst_at_damping},
+                                   {"worst_peak_ratio", JsonNumber(v.worst_peak_ratio)},
+                                   {"runs", v.runs}});
+    }
   }
   return json;
 }

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/run/design_validation.h"
 #include "controller/design_comparison.h"
 #include "controller/impulse.h"
 #include "controller/pattern_design.h"
@@ -31,6 +32,7 @@ struct DesignReport {
   int max_table_length = 64;               // the scenario's controller.post_interp's
   controller::DesignResult result;
   std::vector<controller::ShaperAgainstSpec> registry;
+  std::vector<BandValidation> validation;  // --validate: one per band
   bool table_too_long() const {
     return form == DesignForm::kProfileTable &&
            static_cast<int>(result.coefficients.size()) > max_table_length;
@@ -47,7 +49,8 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report);
 // "impulses": [{time_s, amplitude}], "tolerance", "margin", "polygon_sides",
 // "guaranteed_v", "derivatives", "bands": [{mode, frequency_lo_hz, frequency_hi_hz,
 // damping_lo, damping_hi, worst_v}], "lp_solves", "registry": [{method, duration_s,
-// meets, worst_v}]}
+// meets, worst_v}], with --validate "validation": [{mode, worst_residual_ratio, at_hz,
+// at_damping, worst_peak_ratio, runs}]}
 nlohmann::ordered_json DesignJson(const DesignReport& report);
 
 // The scenario fragment: a `custom` pattern's impulses, or `post_interp: {type:
