@@ -159,6 +159,7 @@ nlohmann::ordered_json DesignJson(const DesignReport& report) {
                              {"worst_v", JsonNumber(r.worst_v[b])}});
   }
   json["lp_solves"] = r.lp_solves;
+  json["secondary_objective"] = r.secondary_objective;
   json["table_too_long"] = report.table_too_long();
   json["registry"] = nlohmann::ordered_json::array();
   for (const controller::ShaperAgainstSpec& s : report.registry) {

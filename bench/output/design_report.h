@@ -48,7 +48,8 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report);
 // {"file", "form", "grid_s", "duration_s", "mean_time_s", "coefficients" (profile_table) or
 // "impulses": [{time_s, amplitude}], "tolerance", "margin", "polygon_sides",
 // "guaranteed_v", "derivatives", "bands": [{mode, frequency_lo_hz, frequency_hi_hz,
-// damping_lo, damping_hi, worst_v}], "lp_solves", "registry": [{method, duration_s,
+// damping_lo, damping_hi, worst_v}], "lp_solves", "secondary_objective", "table_too_long",
+// "registry": [{method, duration_s,
 // meets, worst_v}], with --validate "validation": [{mode, worst_residual_ratio, at_hz,
 // at_damping, worst_peak_ratio, runs}]}
 nlohmann::ordered_json DesignJson(const DesignReport& report);
