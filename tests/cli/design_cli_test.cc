@@ -105,6 +105,20 @@ TEST(DesignCli, OutWritesItsFiles) {
   EXPECT_TRUE(Has(r.out, "scenario fragment"));
 }
 
+// Tests that a table longer than the scenario's max_table_length says so and that --out
+// then also writes the impulses form (design_impulses.yaml, a custom pattern).
+TEST(DesignCli, TooLongTableOffersImpulses) {
+  const ScratchDir dir;
+  const std::string scenario = std::string(SHAPEBENCH_SOURCE_DIR) + "/configs/scenarios/method1.yaml";
+  const CliResult r = RunCli({"design", scenario, "--set", "controller.post_interp.max_table_length=10", "--out", "d",
+                              "--no-registry"},
+                             dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(Has(r.out, "more than the scenario's controller.post_interp.max_table_length (10)")) << r.out;
+  EXPECT_TRUE(Has(r.out, "wrote d/design_impulses.yaml")) << r.out;
+  EXPECT_TRUE(Has(testing::ReadText(dir.File("d/design_impulses.yaml")), "method: custom"));
+}
+
 struct BadOption {
   std::vector<std::string> args;
   std::string message;  // a part of stderr

@@ -164,6 +164,35 @@ TEST(TwoModeDesign, IsNoLongerThanConvolutionsOrTheRegistry) {
     EXPECT_LE(both.duration_s, s.duration_s + spec.grid_s + 1e-12) << s.method;
   }
   EXPECT_GT(meeting, 0);  // EI's convolution at least
+  // Mixed convolutions: any non-negative registry shaper for the first band convolved with
+  // any for the second, each designed at its band's centre.
+  std::vector<std::vector<std::pair<std::string, std::vector<Impulse>>>> per_band(2);
+  for (std::size_t b = 0; b < 2; ++b) {
+    DesignSpec one = spec;
+    one.bands = {spec.bands[b]};
+    for (const ShaperAgainstSpec& s : CompareRegistryShapers(one)) {
+      bool non_negative = true;
+      for (const Impulse& i : s.impulses) non_negative = non_negative && i.amplitude >= 0.0;
+      if (non_negative) per_band[b].push_back({s.method, s.impulses});
+    }
+  }
+  int mixed = 0;
+  double shortest_mixed_s = 1e9;
+  for (const auto& [first, a] : per_band[0]) {
+    for (const auto& [second, b] : per_band[1]) {
+      const std::vector<Impulse> both_bands = ConvolveImpulses(a, b);
+      if (WorstImpulseResidualOverBand(both_bands, spec.bands[0]) > spec.tolerance ||
+          WorstImpulseResidualOverBand(both_bands, spec.bands[1]) > spec.tolerance) {
+        continue;
+      }
+      ++mixed;
+      shortest_mixed_s = std::min(shortest_mixed_s, ShaperDuration(both_bands));
+      EXPECT_LE(both.duration_s, ShaperDuration(both_bands) + spec.grid_s + 1e-12) << first << " * " << second;
+    }
+  }
+  RecordProperty("mixed_convolutions_meeting", std::to_string(mixed));
+  RecordProperty("shortest_mixed_convolution_s", std::to_string(shortest_mixed_s));
+  EXPECT_GT(mixed, 0);
   for (std::size_t b = 0; b < spec.bands.size(); ++b) {
     const DesignBand& band = spec.bands[b];
     EXPECT_LE(OwnWorstV(both.coefficients, spec.grid_s, band.frequency_lo_hz, band.frequency_hi_hz,
