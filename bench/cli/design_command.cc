@@ -35,7 +35,7 @@ int DesignCommand(const DesignArgs& args) {
     std::cerr << "error: " << request.file << ": design: " << Safe(error.what()) << "\n";
     return kExitSolverFailed;
   }
-  if (request.registry) report.registry = controller::CompareRegistryShapers(report.spec);
+  FinishDesign(request, scenario, &report);
   if (request.validate) {
     Doing("running the design across its bands (--validate) for " + request.file, RunMemory(scenario));
     report.validation = ValidateDesign(scenario, report.spec, report.result, report.form == DesignForm::kImpulses);

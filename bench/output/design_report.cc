@@ -48,17 +48,19 @@ void PrintPattern(std::ostream& out, const DesignReport& report) {
 void PrintRegistry(std::ostream& out, const DesignReport& report) {
   out << "\nthe registry and the patent's methods against the same specification (each designed at every "
          "band's centre, convolved; ranked by duration)\n";
-  out << "  method        duration_s    vs design     worst V per band           meets\n";
-  for (const controller::ShaperAgainstSpec& s : report.registry) {
+  out << "  method        duration_s    vs design     added_s     worst V per band           meets\n";
+  for (std::size_t i = 0; i < report.registry.size(); ++i) {
+    const controller::ShaperAgainstSpec& s = report.registry[i];
+    const double added = i < report.registry_added_time_s.size() ? report.registry_added_time_s[i] : NAN;
     std::string worst;
     for (double v : s.worst_v) worst += (worst.empty() ? "" : ", ") + Percent(v);
     char line[200];
-    std::snprintf(line, sizeof line, "  %-12s  %-12s  %-12s  %-25s  %s\n", s.method.c_str(),
+    std::snprintf(line, sizeof line, "  %-12s  %-12s  %-12s  %-10s  %-25s  %s\n", s.method.c_str(),
                   FormatNumber(s.duration_s, 6).c_str(),
                   ((s.duration_s >= report.result.duration_s ? "+" : "") +
                    FormatNumber(s.duration_s - report.result.duration_s, 4))
                       .c_str(),
-                  worst.c_str(), s.meets ? "yes" : "no");
+                  FormatNumber(added, 4).c_str(), worst.c_str(), s.meets ? "yes" : "no");
     out << line;
   }
 }
@@ -101,6 +103,8 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report) {
   out << "\n  guaranteed_v    " << Percent(r.guaranteed_v) << " anywhere in the bands (polygon of "
       << controller::kPolygonSides << " sides: V / cos(pi/" << controller::kPolygonSides << "); sampling margin "
       << Percent(report.spec.margin) << ")\n";
+  out << "  motion added    " << FormatNumber(report.added_motion_time_s) << " s (the scenario's move or program, "
+      << "over no shaping)\n";
   out << "  lp_solves       " << r.lp_solves << " (COIN-OR CLP, dual simplex)\n";
   out << "\nbands (axes " << report.axes << ")\n";
   out << "  mode  frequency_hz  band_hz              damping_ratio      worst_v\n";
@@ -161,9 +165,16 @@ nlohmann::ordered_json DesignJson(const DesignReport& report) {
   json["lp_solves"] = r.lp_solves;
   json["secondary_objective"] = r.secondary_objective;
   json["table_too_long"] = report.table_too_long();
+  json["added_motion_time_s"] = JsonNumber(report.added_motion_time_s);
   json["registry"] = nlohmann::ordered_json::array();
-  for (const controller::ShaperAgainstSpec& s : report.registry) {
-    json["registry"].push_back({{"method", s.method}, {"duration_s", s.duration_s}, {"meets", s.meets}, {"worst_v", s.worst_v}});
+  for (std::size_t i = 0; i < report.registry.size(); ++i) {
+    const controller::ShaperAgainstSpec& s = report.registry[i];
+    const double added = i < report.registry_added_time_s.size() ? report.registry_added_time_s[i] : NAN;
+    json["registry"].push_back({{"method", s.method},
+                                {"duration_s", s.duration_s},
+                                {"added_motion_time_s", JsonNumber(added)},
+                                {"meets", s.meets},
+                                {"worst_v", s.worst_v}});
   }
   if (!report.validation.empty()) {
     json["validation"] = nlohmann::ordered_json::array();

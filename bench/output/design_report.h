@@ -6,6 +6,7 @@
 // and design.png (V over each band).
 #pragma once
 
+#include <cmath>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -33,6 +34,10 @@ struct DesignReport {
   controller::DesignResult result;
   std::vector<controller::ShaperAgainstSpec> registry;
   std::vector<BandValidation> validation;  // --validate: one per band
+  // The motion time added to the scenario's move or program over no shaping (NaN when it
+  // cannot be planned): the design's, each registry entry's.
+  double added_motion_time_s = NAN;
+  std::vector<double> registry_added_time_s;
   bool table_too_long() const {
     return form == DesignForm::kProfileTable &&
            static_cast<int>(result.coefficients.size()) > max_table_length;
@@ -49,9 +54,9 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report);
 // "impulses": [{time_s, amplitude}], "tolerance", "margin", "polygon_sides",
 // "guaranteed_v", "derivatives", "bands": [{mode, frequency_lo_hz, frequency_hi_hz,
 // damping_lo, damping_hi, worst_v}], "lp_solves", "secondary_objective", "table_too_long",
-// "registry": [{method, duration_s,
-// meets, worst_v}], with --validate "validation": [{mode, worst_residual_ratio, at_hz,
-// at_damping, worst_peak_ratio, runs}]}
+// "added_motion_time_s", "registry": [{method, duration_s, added_motion_time_s, meets,
+// worst_v}], with --validate "validation": [{mode, worst_residual_ratio, at_hz, at_damping,
+// worst_peak_ratio, runs}]}
 nlohmann::ordered_json DesignJson(const DesignReport& report);
 
 // The scenario fragment: a `custom` pattern's impulses, or `post_interp: {type:

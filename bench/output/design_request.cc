@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "bench/config/override.h"
+#include "bench/output/pattern_report.h"
 #include "bench/scenario/pattern_defaults.h"
 #include "bench/scenario/scenario_loader.h"
 #include "common/validation_error.h"
@@ -102,6 +103,54 @@ void ValidateSpec(const controller::DesignSpec& spec) {
   }
 }
 
+// The motion time of `base`'s move or program with `pattern` and `post_interp` in place of
+// its own (NaN when it cannot be planned).
+double MotionTimeWith(const Scenario& base, const controller::PatternConfig& pattern,
+                      const controller::PostInterpConfig& post_interp) {
+  Scenario s = base;
+  const controller::PatternConfig& own = base.controller.pattern;
+  s.controller.pattern = pattern;
+  s.controller.pattern.mode = own.mode;
+  s.controller.pattern.realization = own.realization;
+  s.controller.pattern.step_resolution_s = own.step_resolution_s;
+  s.controller.post_interp = post_interp;
+  return MotionTimesWithAndWithoutPattern(s).shaped_s;
+}
+
+// `impulses` as a custom pattern, realised on the period grid for the bands' centres.
+controller::PatternConfig CustomPattern(const std::vector<controller::Impulse>& impulses,
+                                        const controller::DesignSpec& spec) {
+  controller::PatternConfig pattern;
+  pattern.method = "custom";
+  pattern.impulses = impulses;
+  for (const controller::DesignBand& band : spec.bands) {
+    pattern.frequencies_hz.push_back(0.5 * (band.frequency_lo_hz + band.frequency_hi_hz));
+    pattern.damping_ratios.push_back(0.5 * (band.damping_lo + band.damping_hi));
+  }
+  return pattern;
+}
+
+// The motion time the design and each registry entry add to the scenario's move or
+// program, over no shaping at all (pattern none, no post-interpolation filter).
+void AddMotionTimes(const Scenario& scenario, DesignReport* report) {
+  const controller::PostInterpConfig no_filter;
+  const double unshaped = MotionTimeWith(scenario, controller::PatternConfig{}, no_filter);
+  if (report->form == DesignForm::kImpulses) {
+    report->added_motion_time_s =
+        MotionTimeWith(scenario, CustomPattern(DesignImpulses(report->result), report->spec), no_filter) - unshaped;
+  } else {
+    controller::PostInterpConfig table;
+    table.type = controller::PostInterpType::kProfileTable;
+    table.table = report->result.coefficients;
+    table.max_table_length = std::max<int>(table.max_table_length, static_cast<int>(table.table.size()));
+    report->added_motion_time_s = MotionTimeWith(scenario, controller::PatternConfig{}, table) - unshaped;
+  }
+  for (const controller::ShaperAgainstSpec& s : report->registry) {
+    report->registry_added_time_s.push_back(MotionTimeWith(scenario, CustomPattern(s.impulses, report->spec),
+                                                           no_filter) - unshaped);
+  }
+}
+
 }  // namespace
 
 DesignReport PrepareDesign(const DesignRequest& args, Scenario* loaded) {
@@ -138,11 +187,16 @@ DesignReport PrepareDesign(const DesignRequest& args, Scenario* loaded) {
 }
 
 
+void FinishDesign(const DesignRequest& request, const Scenario& scenario, DesignReport* report) {
+  if (request.registry) report->registry = controller::CompareRegistryShapers(report->spec);
+  AddMotionTimes(scenario, report);
+}
+
 DesignReport ComputeDesign(const DesignRequest& request) {
   Scenario scenario;
   DesignReport report = PrepareDesign(request, &scenario);
   report.result = controller::DesignPattern(report.spec);
-  if (request.registry) report.registry = controller::CompareRegistryShapers(report.spec);
+  FinishDesign(request, scenario, &report);
   if (request.validate) {
     report.validation = ValidateDesign(scenario, report.spec, report.result, report.form == DesignForm::kImpulses);
   }

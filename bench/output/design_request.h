@@ -32,8 +32,12 @@ struct DesignRequest {
 // scenario's errors (ConfigError).
 DesignReport PrepareDesign(const DesignRequest& request, Scenario* loaded);
 
-// PrepareDesign, then the design (controller::DesignError propagates: exit 3), the registry
-// and --validate's runs as asked.
+// PrepareDesign, then the design (controller::DesignError propagates: exit 3), the registry,
+// the motion time each adds (FinishDesign) and --validate's runs as asked.
 DesignReport ComputeDesign(const DesignRequest& request);
+
+// After the design: the registry (when asked) and the motion time the design and each
+// registry entry add to the scenario's move or program.
+void FinishDesign(const DesignRequest& request, const Scenario& scenario, DesignReport* report);
 
 }  // namespace shapebench::bench

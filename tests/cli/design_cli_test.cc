@@ -31,7 +31,7 @@ bool Has(const std::string& text, const std::string& part) { return text.find(pa
 
 // Tests that a two-mode impulses design prints its duration, impulses summing to 1 on the
 // 0.1 ms grid, both bands (+/- 10% of each mode at its damping) with a worst V within the
-// guaranteed bound, the registry ranked, and that --validate's runs of the bench itself
+// guaranteed bound, the motion time it adds, the registry ranked, and that --validate's runs of the bench itself
 // (each band swept, shaped over unshaped residual) stay within the same bound (issue 39's
 // must-show 2: the impulses run on a 0.1 ms period, so the realisation adds no error).
 TEST(DesignCli, TwoModeImpulsesJsonAndValidation) {
@@ -58,6 +58,9 @@ TEST(DesignCli, TwoModeImpulsesJsonAndValidation) {
   EXPECT_DOUBLE_EQ(j["bands"][1]["damping_lo"].get<double>(), 0.035);
   for (const auto& band : j["bands"]) EXPECT_LE(band["worst_v"].get<double>(), j["guaranteed_v"].get<double>());
   EXPECT_FALSE(j["registry"].empty());
+  // The impulses realised on the 1 ms period: the motion grows by the duration rounded up.
+  EXPECT_NEAR(j["added_motion_time_s"].get<double>(), std::ceil(j["duration_s"].get<double>() / 0.001) * 0.001, 1e-9);
+  for (const auto& entry : j["registry"]) EXPECT_GE(entry["added_motion_time_s"].get<double>(), 0.0);
   ASSERT_EQ(j["validation"].size(), 2u);
   for (const auto& v : j["validation"]) {
     EXPECT_LE(v["worst_residual_ratio"].get<double>(), j["guaranteed_v"].get<double>());
@@ -67,7 +70,7 @@ TEST(DesignCli, TwoModeImpulsesJsonAndValidation) {
 }
 
 // Tests that the profile-table design of a 25 Hz undamped mode has one coefficient per
-// controller.period_s and that its fragment, given to `run` with --set, leaves at most the
+// controller.period_s, adds its duration to the motion, and that its fragment, given to `run` with --set, leaves at most the
 // guaranteed V of the unshaped run's residual.
 TEST(DesignCli, ProfileTableFragmentRuns) {
   const ScratchDir dir;
@@ -77,6 +80,7 @@ TEST(DesignCli, ProfileTableFragmentRuns) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   const std::vector<double> table = j["coefficients"].get<std::vector<double>>();
   EXPECT_NEAR((table.size() - 1) * 0.001, j["duration_s"].get<double>(), 1e-12);
+  EXPECT_NEAR(j["added_motion_time_s"].get<double>(), j["duration_s"].get<double>(), 1e-9);  // the table's length
   std::string text = "[";
   for (std::size_t k = 0; k < table.size(); ++k) text += (k ? ", " : "") + nlohmann::json(table[k]).dump();
   text += "]";
