@@ -273,7 +273,13 @@ DesignResult DesignPattern(const DesignSpec& spec) {
   for (const DesignBand& band : spec.bands) {
     result.worst_v.push_back(WorstResidualOverBand(result.coefficients, h, band));
   }
-  result.guaranteed_v = spec.tolerance / std::cos(kPi / kPolygonSides) + spec.margin;
+  // The margin covers the points between samples; a band of one frequency and one damping
+  // is its one sample.
+  bool between_samples = false;
+  for (const DesignBand& band : spec.bands) {
+    between_samples = between_samples || band.frequency_hi_hz > band.frequency_lo_hz || band.damping_hi > band.damping_lo;
+  }
+  result.guaranteed_v = spec.tolerance / std::cos(kPi / kPolygonSides) + (between_samples ? spec.margin : 0.0);
   return result;
 }
 

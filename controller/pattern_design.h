@@ -56,7 +56,7 @@ struct DesignResult {
   double grid_s = 0.0;
   std::vector<double> coefficients;  // a_0 .. a_n at t = k h
   std::vector<double> worst_v;       // per band: the largest V found by a dense check
-  double guaranteed_v = 0.0;         // tolerance / cos(pi / sides) + margin
+  double guaranteed_v = 0.0;         // tolerance / cos(pi / sides) + margin (no margin: one-point bands)
   bool secondary_objective = true;   // the least mean time applied (see DesignPattern)
   int lp_solves = 0;
 };

@@ -70,6 +70,7 @@ TEST_P(ZeroVibrationDesignTest, HasTheClosedFormDuration) {
   EXPECT_GE(r.duration_s, expected - 1e-12);
   EXPECT_LE(r.duration_s, expected + h + 1e-12);
   EXPECT_LT(OwnV(r.coefficients, h, kModeHz, c.zeta), 1e-6);
+  EXPECT_EQ(r.guaranteed_v, 0.0);  // one sample, nothing between samples
   double total = 0.0;
   for (double a : r.coefficients) {
     EXPECT_GE(a, 0.0);
