@@ -11,6 +11,8 @@ PYTHON_PACKAGES = pybind11-dev python3-dev python3-pytest python3-numpy python3-
 PACKAGES += libfftw3-dev pkgconf
 # identify: the nonlinear refinement of modes (model/modal_refinement.h)
 PACKAGES += libceres-dev
+# design: the linear programs of pattern synthesis (controller/pattern_design.h), COIN-OR CLP
+PACKAGES += coinor-libclp-dev
 # sweep and check on MPI ranks (docs/scaling.md): Open MPI, found by CMake's FindMPI
 PACKAGES += libopenmpi-dev openmpi-bin
 

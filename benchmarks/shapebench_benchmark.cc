@@ -8,6 +8,8 @@
 //           (case4_lugre_circle.yaml): a plant with nonlinear elements, CVODE with events
 //   case 4d case 3 on a 2% damped mode with every metric (case4_damped_sweep.yaml): the
 //           sweep users run, with the settling tail; exact and CVODE, 1 and 2 jobs
+//   case 41 case 1's 5000-point sweep, 1 job, and the same with a 1000 mm move
+//           (case41_sweep_5k*.yaml): a closed-form point's cost, whatever the cruise
 //   floor   the bare exact zero-order hold of case 1's mode over case 1's ticks with the
 //           exact extremum inside each tick, the command built once (BM_Floor): what a
 //           sweep point cannot beat; the table gives every sweep figure as a ratio to it
@@ -191,6 +193,9 @@ void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
 void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }
 void BM_Case3_Exact10k(benchmark::State& state) { Case3(state, "exact", "case3_sweep_10k.yaml"); }
 void BM_Case4Damped_Exact(benchmark::State& state) { Case3(state, "exact", "case4_damped_sweep.yaml"); }
+// Issue 41: case 1's 5000-point sweep, and the same with a move ten times longer.
+void BM_Case41_Exact5k(benchmark::State& state) { Case3(state, "exact", "case41_sweep_5k.yaml"); }
+void BM_Case41_Exact5kLong(benchmark::State& state) { Case3(state, "exact", "case41_sweep_5k_long.yaml"); }
 void BM_Case4Damped_Cvode(benchmark::State& state) { Case3(state, "cvode", "case4_damped_sweep.yaml"); }
 // `sweep --no-sync`: the same sweeps without their three syncs of the disk (about half a
 // millisecond a sweep here), what the sweep's own work gives from 1 to 2 jobs.
@@ -697,6 +702,10 @@ BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRea
 BENCHMARK(BM_Case3_ExactNoSync)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1)
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case3_Exact10k)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case41_Exact5k)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case41_Exact5kLong)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3)
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case3_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2);
 BENCHMARK(BM_Floor)->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);

@@ -32,6 +32,7 @@
 #include "bench/run/located_run.h"
 #include "bench/config/override.h"
 #include "bench/scenario/scenario_loader.h"
+#include "bench/output/design_request.h"
 #include "bench/output/html_report.h"
 #include "bench/output/modes_report.h"
 #include "bench/output/pattern_report.h"
@@ -115,6 +116,10 @@ void RegisterErrors() {
     } catch (const model::SolverError& error) {
       const py::object type = py::module_::import("shapebench._errors").attr("SolverError");
       const py::object value = type(error.flag_name(), std::string(error.what()), bench::SolverFailureText(error));
+      PyErr_SetObject(type.ptr(), value.ptr());
+    } catch (const controller::DesignError& error) {  // `design` found no pattern (the CLI's exit 3)
+      const py::object type = py::module_::import("shapebench._errors").attr("SolverError");
+      const py::object value = type("DESIGN", std::string(error.what()));
       PyErr_SetObject(type.ptr(), value.ptr());
     } catch (const ValidationError& error) {  // not located in a file (the CLI's "error: FIELD: ...")
       const py::object type = py::module_::import("shapebench._errors").attr("ConfigError");
@@ -541,6 +546,24 @@ PYBIND11_MODULE(_core, m) {
   m.def("pattern", &python::Pattern, py::arg("scenario"));
   m.def("modes", &python::Modes, py::arg("path"), py::arg("sets"));
   m.def("sensitivity", &python::Sensitivity, py::arg("path"), py::arg("sets"));
+  // `shapebench design`'s JSON (bench/output/design_report.h).
+  m.def(
+      "design",
+      [](const std::string& path, const std::vector<std::string>& sets, const std::vector<std::string>& bands,
+         const std::vector<std::string>& dampings, double tolerance, int derivatives, const std::string& form,
+         std::optional<double> grid_s, std::optional<double> margin, bool registry, bool validate) {
+        bench::DesignRequest request{path, sets,   bands,  dampings, tolerance, derivatives,
+                                     form, grid_s, margin, registry, validate};
+        nlohmann::ordered_json json;
+        {
+          py::gil_scoped_release release;
+          json = bench::DesignJson(bench::ComputeDesign(request));
+        }
+        return FromJson(json);
+      },
+      py::arg("path"), py::arg("sets"), py::arg("bands"), py::arg("dampings"), py::arg("tolerance"),
+      py::arg("derivatives"), py::arg("form"), py::arg("grid_s"), py::arg("margin"), py::arg("registry"),
+      py::arg("validate"));
   m.def(
       "residual_vibration",
       [](const std::vector<double>& times_s, const std::vector<double>& amplitudes, double frequency_hz,

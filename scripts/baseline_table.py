@@ -340,6 +340,17 @@ def main(argv):
             b.get("peak_ratio"), "%.1f s simulated, %.1fx faster than real time, %d blocks" % (
                 b.get("sim_s", float("nan")), b.get("real_time_factor", float("nan")), int(b.get("blocks", 0))))
 
+    # `design`'s synthesis (benchmarks/design_benchmark.cc): goal under 1 s each, on CPU
+    # time (single-threaded: the wall time of an idle machine); the wall time in the note.
+    for name, what in (("BM_Design_OneMode", "design, one mode (18 Hz +/-10%, 5%, 0.1 ms grid)"),
+                       ("BM_Design_TwoModes", "design, two modes (18 and 47 Hz +/-10%, 5%, 0.1 ms grid)")):
+        b = find(bench, name)
+        if b:
+            s = seconds(b)
+            add(what, s, None, None, None, "%.4f s pattern, %d LP solves, wall %s" % (
+                b.get("duration_s", float("nan")), int(b.get("lp_solves", 0)), fmt_time(seconds(b, real=True))))
+            checks.append(("%s < 1 s" % what, s < 1.0, fmt_time(s)))
+
     if memory:
         rows.append(("1,000,000-point sweep (exact, 2 jobs): peak resident %.0f MB" % memory["rss_mb"],
                      memory["seconds"] / memory["points"] if memory.get("seconds") and memory.get("points") else None,

@@ -25,5 +25,6 @@ Command AddMergeCommand(CLI::App* app);
 Command AddCompareCommand(CLI::App* app);
 Command AddIdentifyCommand(CLI::App* app);
 Command AddRecommendCommand(CLI::App* app);
+Command AddDesignCommand(CLI::App* app);
 
 }  // namespace shapebench::bench::cli

@@ -21,10 +21,6 @@
 namespace shapebench::bench::cli {
 namespace {
 
-// Above it the modes do not explain the data: identify still writes its output, warns
-// and exits 3 (docs/reliability.md). The shipped and synthetic FRFs fit within 6 %.
-constexpr double kDefaultMaxFitErrorPercent = 20.0;
-
 struct IdentifyArgs {
   std::string file;
   std::string axis;   // "", "x", "y", "z"

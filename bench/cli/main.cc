@@ -1,5 +1,5 @@
 // shapebench command line: run, check, modes, pattern, sensitivity,
-// sweep, merge, compare, identify, recommend (one file each: bench/cli/*_command.cc).
+// sweep, merge, compare, identify, recommend, design (one file each: bench/cli/*_command.cc).
 // Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage, unwritable
 // output (stdout included) or out of memory; 3 the solver failed. Errors go to stderr as
 // "error: ...".
@@ -26,6 +26,7 @@ using shapebench::kExitOk;
 constexpr Command (*kCommands[])(CLI::App*) = {
     AddRunCommand,   AddCheckCommand, AddModesCommand,   AddPatternCommand,  AddSensitivityCommand,
     AddSweepCommand, AddMergeCommand, AddCompareCommand, AddIdentifyCommand, AddRecommendCommand,
+    AddDesignCommand,
 };
 
 }  // namespace

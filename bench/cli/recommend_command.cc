@@ -15,6 +15,7 @@
 #include "bench/measured/klipper_calibrate.h"
 #include "bench/measured/klipper_psd.h"
 #include "bench/measured/klipper_psd_file.h"
+#include "bench/measured/log_modes.h"
 #include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/output/output_path.h"
@@ -38,6 +39,8 @@ struct RecommendArgs {
   bool json = false;
   std::string out_dir;
   std::string validate;  // a scenario file; empty: no validation runs
+  double resolution_hz = 0.0;  // of the modes' fit; 0: the log's length
+  const CLI::Option* resolution = nullptr;
 };
 
 AccelAxis ParseAxis(const std::string& text) {
@@ -73,9 +76,11 @@ void FitKlipper(const AccelAxis axis, RecommendReport* report) {
   report->klipper = KlipperFindBestShaper(data, report->klipper_options);
 }
 
-// shapebench's own view of a Klipper PSD file: the fit band of the PSD the fit reads, as
-// the file has it (unnormalised in resonances_*.csv, normalised in calibration_data_*.csv).
-AccelSpectrum FileSpectrum(const RecommendReport& report) {
+// The fit band of Klipper's normalised PSD as its fit reads it (the first data set, the
+// axis chosen): shapebench's own view of a Klipper PSD file (a resonances_*.csv normalised
+// as Klipper does, a calibration_data_*.csv as read), and where the registry is scored
+// under Klipper's normalisation for a log.
+AccelSpectrum KlipperBandSpectrum(const RecommendReport& report) {
   AccelSpectrum spectrum;
   spectrum.axis = report.axis;
   const KlipperPsd& psd = report.klipper_spectrum.datasets[0];
@@ -100,7 +105,7 @@ void ReadSpectra(const std::string& path, RecommendReport* report) {
   if (!ReadInputFile(path, &text, &error)) throw ConfigError(path, 0, 0, "", error);
   if (IsKlipperPsdFile(text)) {
     report->klipper_spectrum = ParseKlipperPsdFile(text, path);
-    report->spectrum = FileSpectrum(*report);
+    report->spectrum = KlipperBandSpectrum(*report);
     FitKlipper(report->axis, report);
     return;
   }
@@ -117,6 +122,36 @@ void ReadSpectra(const std::string& path, RecommendReport* report) {
   WarnShortLog(report);
 }
 
+// --resolution-hz before the file is read: positive, at most kMaxModeResolutionHz.
+void ValidateResolution(const RecommendArgs& args) {
+  if (args.resolution->count() == 0) return;
+  if (args.validate.empty()) {
+    throw ValidationError("--resolution-hz", "sets the resolution of --validate's modes: give --validate too");
+  }
+  if (!(args.resolution_hz > 0.0) || args.resolution_hz > kMaxModeResolutionHz) {
+    throw ValidationError("--resolution-hz", "must be above 0 and at most " + FormatNumber(kMaxModeResolutionHz) +
+                                                 " Hz (a peak must span a few bins), got " + FormatNumber(args.resolution_hz));
+  }
+}
+
+// The log's modes for --validate: the peaks of shapebench's PSD, each measured by the modal
+// fit (bench/measured/log_modes.h) on the log's samples, or on a PSD file's bins.
+LogModes FitModes(const RecommendArgs& args, const RecommendReport& report) {
+  const std::vector<LogMode> found = PickPsdPeaks(report.spectrum.frequency_hz, report.spectrum.psd);
+  if (report.spectrum.samples.accel_mm_s2[0].empty()) {
+    if (args.resolution->count() > 0) {
+      throw ValidationError("--resolution-hz", "a PSD file's resolution is the file's (" +
+                                                   FormatNumber(report.spectrum.frequency_hz.size() > 1
+                                                                    ? report.spectrum.frequency_hz[1] -
+                                                                          report.spectrum.frequency_hz[0]
+                                                                    : 0.0) +
+                                                   " Hz); give an accelerometer log");
+    }
+    return FitPsdModes(report.spectrum.frequency_hz, report.spectrum.psd, found);
+  }
+  return FitLogModes(report.spectrum.samples, report.axis, found, args.resolution_hz);
+}
+
 // Reads the log, fits every method, runs --validate. Throws ConfigError (the log, the
 // scenario), ValidationError (an option, named), model::SolverError.
 RecommendReport ComputeRecommendation(const RecommendArgs& args) {
@@ -130,11 +165,15 @@ RecommendReport ComputeRecommendation(const RecommendArgs& args) {
   if (args.max_smoothing->count() > 0) report.klipper_options.max_smoothing_mm = args.max_smoothing_mm;
   report.klipper_options.validate();
   report.axis = ParseAxis(args.axis);
+  ValidateResolution(args);
   ReadSpectra(args.file, &report);
   report.recommendation = RecommendShapers(report.spectrum.frequency_hz, report.spectrum.psd, report.options);
+  const AccelSpectrum normalised = KlipperBandSpectrum(report);
+  report.normalised = RecommendShapers(normalised.frequency_hz, normalised.psd, report.options);
   if (!args.validate.empty()) {
-    report.modes = PickPsdPeaks(report.spectrum.frequency_hz, report.spectrum.psd);
-    report.validation = RunValidation(args.validate, report.modes, KlipperPattern(report.klipper_recommended()));
+    report.modes = FitModes(args, report);
+    for (const std::string& warning : report.modes.warnings) report.warnings.push_back(args.file + ": " + warning);
+    report.validation = RunValidation(args.validate, report.modes.modes, KlipperPattern(report.klipper_recommended()));
   }
   return report;
 }
@@ -190,6 +229,10 @@ Command AddRecommendCommand(CLI::App* app) {
                    "run SCENARIO with the log's modes in place of its machine, unshaped and with the "
                    "recommendation")
       ->type_name("SCENARIO.yaml");
+  args->resolution = recommend->add_option("--resolution-hz", args->resolution_hz,
+                                           "resolution of the spectrum --validate's modes are fitted to, Hz "
+                                           "(default: 1 / the log's length)")
+                         ->type_name("HZ");
   recommend->footer("docs/measured-data.md#accelerometer-logs");
   return {recommend, [args] { return RecommendCommand(*args); }};
 }

@@ -1,7 +1,7 @@
-// PSD peak picking: the peaks of an accelerometer log's PSD taken as its modes
-// (`recommend --validate` puts them in place of a scenario's machine:
-// bench/run/recommend_validation.h). Not a modal identification (model/modal_identification.h
-// fits FRFs); a peak's frequency and half-power width only.
+// PSD peak picking: the peaks of an accelerometer log's PSD, where `recommend --validate`'s
+// modes start (bench/measured/log_modes.h then measures each by a modal fit; the machine
+// they make: bench/run/recommend_validation.h). A peak's frequency and half-power width
+// only: on Klipper's 1.56 Hz bins a narrow mode reads wide.
 //
 // Modes: every local maximum of the PSD in the fit band (5-200 Hz) at or above P_max / 20
 // (the fit's threshold) that stands apart: walking away from it on each side, the PSD
@@ -24,6 +24,7 @@
 // log gives the modes and their mix).
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "model/machine.h"
@@ -35,6 +36,10 @@ struct LogMode {
   double damping_ratio = 0.0;
   double peak_psd = 0.0;  // the PSD at the peak, (mm/s^2)^2/Hz
   double share = 0.0;     // of the static deflection, summing to 1 over the modes
+  // One standard deviation of each, from the modal fit (bench/measured/log_modes.h);
+  // NaN for a peak as picked here.
+  double frequency_uncertainty_hz = NAN;
+  double damping_uncertainty = NAN;
 };
 
 // The log's modes (above), ascending frequency; gains not yet known (share set).

@@ -9,6 +9,7 @@
 #include <typeinfo>
 
 #include "bench/output/gnuplot.h"
+#include "bench/output/json_number.h"
 #include "bench/output/report.h"
 #include "common/atomic_file.h"
 #include "common/csv.h"
@@ -44,6 +45,33 @@ nlohmann::ordered_json FitJson(const ShaperFit& fit) {
   return json;
 }
 
+// The rule of the registry's scores on Klipper's normalised PSD.
+constexpr const char* kNormalisedRule = "shapebench on klipper's normalised psd";
+
+// "shapebench_normalised" {psd, shapers, skipped} and "recommended_shapebench_normalised".
+void AddNormalisedJson(const RecommendReport& report, nlohmann::ordered_json* json) {
+  nlohmann::ordered_json view;
+  view["psd"] = {{"source", "klipper"},
+                 {"normalized", true},
+                 {"data_set", report.klipper_spectrum.datasets.front().name},
+                 {"band_hz", {kFitMinHz, kFitMaxHz}}};
+  nlohmann::ordered_json shapers = nlohmann::ordered_json::array();
+  for (const ShaperFit& fit : report.normalised.fits) {
+    shapers.push_back(FitJson(fit));
+    shapers.back()["rule"] = kNormalisedRule;
+  }
+  view["shapers"] = shapers;
+  nlohmann::ordered_json skipped = nlohmann::ordered_json::array();
+  for (const SkippedShaper& skip : report.normalised.skipped) {
+    skipped.push_back({{"method", skip.method}, {"reason", skip.reason}});
+  }
+  view["skipped"] = skipped;
+  (*json)["shapebench_normalised"] = view;
+  nlohmann::ordered_json recommended = FitJson(report.normalised.fits[report.normalised.recommended]);
+  recommended["rule"] = std::string(kNormalisedRule) + ": " + RuleText(report.normalised);
+  (*json)["recommended_shapebench_normalised"] = recommended;
+}
+
 void PrintFitTable(std::ostream& out, const RecommendReport& report) {
   std::size_t width = 6;
   for (const ShaperFit& fit : report.recommendation.fits) width = std::max(width, fit.method.size());
@@ -71,11 +99,16 @@ void PrintValidation(std::ostream& out, const RecommendReport& report) {
   out << "\nvalidate " << v.scenario << ": axis " << model::AxisName(v.axis)
       << " modelled by the log's modes (its static deflection " << FormatNumber(v.static_deflection_per_accel_s2)
       << " m per m/s^2 kept)\n";
-  out << "  mode  frequency_hz  damping_ratio  share     gain\n";
-  for (std::size_t m = 0; m < report.modes.size(); ++m) {
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-4zu  %-12.4g  %-13.4g  %-8.4g  %.6g\n", m + 1, report.modes[m].frequency_hz,
-                  report.modes[m].damping_ratio, report.modes[m].share, v.machine.modes[m].gain);
+  const LogModes& fitted = report.modes;
+  out << "  modes fitted to the " << fitted.spectrum << " (" << FormatNumber(fitted.resolution_hz) << " Hz bins"
+      << (fitted.segments > 0 ? ", " + std::to_string(fitted.segments) + " segment(s)" : std::string()) << "); +/-: one standard deviation\n";
+  out << "  mode  frequency_hz  +/-         damping_ratio  +/-         share     gain\n";
+  for (std::size_t m = 0; m < fitted.modes.size(); ++m) {
+    const LogMode& mode = fitted.modes[m];
+    char line[200];
+    std::snprintf(line, sizeof line, "  %-4zu  %-12.4g  %-10.3g  %-13.4g  %-10.3g  %-8.4g  %.6g\n", m + 1,
+                  mode.frequency_hz, mode.frequency_uncertainty_hz, mode.damping_ratio, mode.damping_uncertainty,
+                  mode.share, v.machine.modes[m].gain);
     out << line;
   }
   const std::string shaped = fit.name + " " + FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) + " Hz";
@@ -136,6 +169,11 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report) {
       << FormatNumber(std::round(fit.frequency_hz * 10.0) / 10.0) << " Hz (remaining vibration "
       << Percent(fit.remaining_vibration) << ", smoothing " << EngineeringText(fit.smoothing_m, "m", 4)
       << "): " << RuleText(report.recommendation) << "\n";
+  const ShaperFit& normalised = report.normalised.fits[report.normalised.recommended];
+  out << "recommended_shapebench_normalised: " << normalised.method << " at "
+      << FormatNumber(std::round(normalised.frequency_hz * 10.0) / 10.0) << " Hz (remaining vibration "
+      << Percent(normalised.remaining_vibration) << ", smoothing " << EngineeringText(normalised.smoothing_m, "m", 4)
+      << "): the same rule, the registry scored on Klipper's normalised PSD\n";
   for (const SkippedShaper& skipped : report.recommendation.skipped) {
     out << "skipped: " << skipped.method << " (" << skipped.reason << ")\n";
   }
@@ -147,7 +185,9 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   nlohmann::ordered_json json;
   json["file"] = report.file;
   json["axis"] = AccelAxisName(report.axis);
-  json["rule"] = {{"recommended", "klipper"}, {"recommended_shapebench", "shapebench"}};
+  json["rule"] = {{"recommended", "klipper"},
+                  {"recommended_shapebench", "shapebench"},
+                  {"recommended_shapebench_normalised", kNormalisedRule}};
   AddKlipperJson(report, &json);
   nlohmann::ordered_json own;
   if (!s.samples.accel_mm_s2[0].empty()) {
@@ -180,14 +220,19 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
   nlohmann::ordered_json recommended = FitJson(report.recommended());
   recommended["rule"] = RuleText(report.recommendation);
   json["recommended_shapebench"] = recommended;
+  AddNormalisedJson(report, &json);
   json["warnings"] = report.warnings;
   if (report.validation) {
     const ValidationRuns& v = *report.validation;
     nlohmann::ordered_json modes = nlohmann::ordered_json::array();
-    for (std::size_t m = 0; m < report.modes.size(); ++m) {
-      modes.push_back({{"frequency_hz", report.modes[m].frequency_hz},
-                       {"damping_ratio", report.modes[m].damping_ratio},
-                       {"share", report.modes[m].share},
+    const LogModes& fitted = report.modes;
+    for (std::size_t m = 0; m < fitted.modes.size(); ++m) {
+      const LogMode& mode = fitted.modes[m];
+      modes.push_back({{"frequency_hz", mode.frequency_hz},
+                       {"frequency_uncertainty_hz", JsonNumber(mode.frequency_uncertainty_hz)},
+                       {"damping_ratio", mode.damping_ratio},
+                       {"damping_uncertainty", JsonNumber(mode.damping_uncertainty)},
+                       {"share", mode.share},
                        {"gain", v.machine.modes[m].gain}});
     }
     const KlipperShaperResult& shaper = report.klipper_recommended();
@@ -195,6 +240,11 @@ nlohmann::ordered_json RecommendJson(const RecommendReport& report) {
                         {"pattern", {{"method", shaper.name}, {"frequency_hz", shaper.frequency_hz}, {"rule", "klipper"}}},
                         {"axis", model::AxisName(v.axis)},
                         {"static_deflection_per_accel_s2", v.static_deflection_per_accel_s2},
+                        {"mode_fit", {{"spectrum", fitted.spectrum},
+                                      {"resolution_hz", fitted.resolution_hz},
+                                      {"segment_samples", fitted.segment_samples},
+                                      {"segments", fitted.segments},
+                                      {"uncertainty", "one standard deviation: " + fitted.uncertainty}}},
                         {"modes", modes},
                         {"none", MetricsJson(v.none)},
                         {"recommended", MetricsJson(v.recommended)}};

@@ -15,6 +15,7 @@
 #include "bench/measured/accel_spectrum.h"
 #include "bench/measured/klipper_calibrate.h"
 #include "bench/measured/klipper_psd.h"
+#include "bench/measured/log_modes.h"
 #include "bench/measured/psd_peaks.h"
 #include "bench/measured/shaper_fit.h"
 #include "bench/run/recommend_validation.h"
@@ -32,8 +33,11 @@ struct RecommendReport {
   AccelSpectrum spectrum;
   ShaperFitOptions options;
   ShaperRecommendation recommendation;
+  // shapebench's registry scored the same way on Klipper's normalised PSD (its first data
+  // set, the axis chosen, 5-200 Hz): what `recommended_shapebench_normalised` is.
+  ShaperRecommendation normalised;
   std::vector<std::string> warnings;      // printed on stderr and listed in the JSON
-  std::vector<LogMode> modes;             // --validate only
+  LogModes modes;                         // --validate only
   std::optional<ValidationRuns> validation;
   const KlipperShaperResult& klipper_recommended() const { return klipper.shapers[klipper.recommended]; }
   const ShaperFit& recommended() const { return recommendation.fits[recommendation.recommended]; }
@@ -57,7 +61,9 @@ void PrintRecommendation(std::ostream& out, const RecommendReport& report);
 // "rule"}, "shapebench": {"samples", "psd", "design_damping_ratio", "test_damping_ratios",
 // "feed_mm_min", "accel_mm_s2", "shapers": [{method, parameters, frequency_hz,
 // remaining_vibration, duration_s, added_time_s, smoothing_m, rule}], "skipped"},
-// "recommended_shapebench": {the same fields, "rule"}, "warnings", and with --validate
+// "recommended_shapebench": {the same fields, "rule"}, "shapebench_normalised": {"psd",
+// "shapers", "skipped"} and "recommended_shapebench_normalised" (the registry on Klipper's
+// normalised PSD), "warnings", and with --validate
 // "validate": {scenario, pattern, axis, static_deflection_per_accel_s2, modes: [...], none:
 // {metrics}, recommended: {metrics}}}; SI units (Klipper's smoothing also in its mm).
 nlohmann::ordered_json RecommendJson(const RecommendReport& report);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/run/deferred_substeps.h"
+#include "bench/run/single_mode_kernel.h"
 #include "bench/run/run_work.h"
 #include "bench/run/finish_metrics.h"
 #include "common/math_constants.h"
@@ -18,196 +19,13 @@
 namespace shapebench::bench {
 namespace {
 
+using single_mode::SingleModeKernel;
+
 // What a substep's deflection can exceed the period's bound by: its rounding (a few
 // operations on values of the run's scale, ~1e-15 of it) with a thousandfold margin. (The
 // general path's 1e-9, deferred_substeps.h, would keep a quiet residual window sampled:
 // a contour error of rounding size, 1e-15 m, stays below a margin of 1e-13 m.)
 constexpr double kSampleMargin = 1e-12;
-
-// q' changed sign over the period: a stationary point lies inside it.
-bool SignChanged(double v0, double v1) { return (v0 > 0.0 && v1 < 0.0) || (v0 < 0.0 && v1 > 0.0); }
-
-// The mode's transition over tau: x(tau) = phi (x0, v0), x = q - q_eq (a held).
-struct Transition {
-  double xx = 1.0, xv = 0.0, vx = 0.0, vv = 1.0;
-};
-
-// One mode, one line: the constant part of the run (MuJoCo's model), then the run's state.
-class SingleModeKernel {
- public:
-  SingleModeKernel(const model::ModalMode& mode, const controller::PathElement& line, int axis,
-                   const CommandSamples& samples, double dt, int substeps)
-      : s_(samples), axis_(axis), dt_(dt), substeps_(substeps) {
-    const double w = 2.0 * kPi * mode.frequency_hz;
-    w2_ = w * w;
-    sigma_ = mode.damping_ratio * w;
-    wd_ = w * std::sqrt(1.0 - mode.damping_ratio * mode.damping_ratio);
-    gain_ = mode.gain;
-    cap_ = model::ResidualCap(mode.damping_ratio);
-    start_ = line.start_m(axis);
-    direction_ = line.direction(axis);
-    length_ = line.length_m;
-    period_ = At(dt);
-    g_q_ = -(1.0 - period_.xx) / w2_;
-    g_v_ = period_.vx / w2_;
-    twice_ = At(2.0 * dt);
-    h_q_ = period_.xx * g_q_ + period_.xv * g_v_;  // phi gamma: a held over the first of two
-    h_v_ = period_.vx * g_q_ + period_.vv * g_v_;
-    inner_.resize(static_cast<std::size_t>(substeps));
-    taus_.resize(static_cast<std::size_t>(substeps));
-    for (int j = 1; j <= substeps; ++j) {
-      taus_[j - 1] = dt * static_cast<double>(j) / substeps;
-      inner_[j - 1] = At(taus_[j - 1]);
-    }
-  }
-
-  // Of the free vibration about q = 0 (a = 0): the envelope, capped at ResidualCap(zeta)
-  // times the free response's largest |value| (model/free_response.h, CappedResidual).
-  double ModalAmplitude() const {
-    const double envelope = std::abs(gain_) * std::hypot(q_, (v_ + sigma_ * q_) / wd_);
-    return model::CappedResidual(envelope, std::abs(gain_) * model::PairPeak(q_, v_, sigma_, wd_), cap_);
-  }
-  double StaticGain() const { return -gain_ / w2_; }  // deflection per m/s^2
-  // |deflection| never exceeds this from rest under accelerations of the given sum of
-  // |a| dt (m/s): |impulse response| <= 1 / w_d.
-  double DeflectionBound(double accel_l1_m_s) const { return std::abs(gain_) / wd_ * accel_l1_m_s; }
-
-  // Period k under the held a: the state to its end, as the floor benchmark steps it;
-  // returns |deflection| at the end. *inside: the largest |deflection| at a stationary
-  // point inside the period, computed only where it can exceed `needed` (the metrics it
-  // could raise), else 0; *within: a bound of |deflection| inside the period (the extremum
-  // where computed, else ExtremumBound; 0 without a stationary point).
-  double Advance(double a, double needed, double* inside, double* within) {
-    const double q1 = period_.xx * q_ + period_.xv * v_ + g_q_ * a;
-    const double v1 = period_.vx * q_ + period_.vv * v_ + g_v_ * a;
-    q0_ = q_;
-    v0_ = v_;
-    a_ = a;
-    q_ = q1;
-    v_ = v1;
-    *inside = 0.0;
-    *within = 0.0;
-    if (SignChanged(v0_, v1)) {
-      *within = ExtremumBound(q0_, v0_, a);
-      if (!(*within < needed)) *inside = *within = Extremum(q0_, v0_, a);
-    }
-    return std::abs(gain_ * q1);
-  }
-  // Periods [from, to) of the motion in which only the peak can change (the tool stays
-  // inside the line, no cruise probe): Advance's arithmetic with the state in registers,
-  // the floor's loop. Returns the peak so far; *end_abs the last period's |deflection|.
-  double AdvancePeaks(std::size_t from, std::size_t to, double peak, double* end_abs) {
-    const double* accel = s_.accel.front().data() + axis_;  // Vector3d: 3 doubles, packed
-    double q = q_;
-    double v = v_;
-    std::size_t k = from;
-    // Two periods a step: the state two periods on straight from (q, v) through the
-    // two-period transition, the one between off that chain: the chain of dependent
-    // products (the loop's latency) is half as long a period.
-    for (; k + 1 < to; k += 2) {
-      const double a0 = accel[3 * k];
-      const double a1 = accel[3 * k + 3];
-      const double qm = period_.xx * q + period_.xv * v + g_q_ * a0;
-      const double vm = period_.vx * q + period_.vv * v + g_v_ * a0;
-      const double q2 = (twice_.xx * q + twice_.xv * v) + (h_q_ * a0 + g_q_ * a1);
-      const double v2 = (twice_.vx * q + twice_.vv * v) + (h_v_ * a0 + g_v_ * a1);
-      peak = Turning(q, v, a0, vm, peak);
-      peak = Turning(qm, vm, a1, v2, peak);
-      peak = std::max(peak, std::max(std::abs(gain_ * qm), std::abs(gain_ * q2)));
-      q = q2;
-      v = v2;
-    }
-    double q0 = q, v0 = v, a = 0.0;
-    for (; k < to; ++k) {
-      q0 = q;
-      v0 = v;
-      a = accel[3 * k];
-      q = period_.xx * q0 + period_.xv * v0 + g_q_ * a;
-      v = period_.vx * q0 + period_.vv * v0 + g_v_ * a;
-      peak = std::max(Turning(q0, v0, a, v, peak), std::abs(gain_ * q));
-    }
-    q_ = q;
-    v_ = v;
-    q0_ = q0;
-    v0_ = v0;
-    a_ = a;
-    *end_abs = std::abs(gain_ * q);
-    return peak;
-  }
-  // The peak after a period from (q0, v0) under a that ends at rate v1: its stationary
-  // point's |deflection| where q' changed sign and it can exceed the peak.
-  double Turning(double q0, double v0, double a, double v1, double peak) const {
-    if (SignChanged(v0, v1) && !(ExtremumBound(q0, v0, a) < peak)) {
-      return std::max(peak, Extremum(q0, v0, a));
-    }
-    return peak;
-  }
-  // The deflection at substep j (0-based) of the period Advance stepped last.
-  double Substep(int j) const {
-    const Transition& t = inner_[static_cast<std::size_t>(j)];
-    const double q_eq = -a_ / w2_;
-    return gain_ * (t.xx * (q0_ - q_eq) + t.xv * v0_ + q_eq);
-  }
-  // The free response from the current state (input 0 from now on) as one pole pair.
-  model::FreeTerms Free() const {
-    model::FreeTerms terms;
-    terms.q = {std::complex<double>(gain_ * q_, -gain_ * (v_ + sigma_ * q_) / wd_)};
-    terms.lambda = {std::complex<double>(-sigma_, wd_)};
-    return terms;
-  }
-
-  const CommandSamples& s_;
-  const int axis_;
-  const double dt_;
-  const int substeps_;
-  double start_ = 0.0, direction_ = 1.0, length_ = 0.0;
-  std::vector<double> taus_;
-
- private:
-  Transition At(double tau) const {
-    const double e = std::exp(-sigma_ * tau);
-    const double c = std::cos(wd_ * tau);
-    const double sn = std::sin(wd_ * tau);
-    return {e * (c + sigma_ / wd_ * sn), e * sn / wd_, -e * w2_ / wd_ * sn, e * (c - sigma_ / wd_ * sn)};
-  }
-  // |deflection| within the period starting at (q0, v0) under a: the free oscillation's
-  // amplitude about the equilibrium (which decays) plus the equilibrium's distance from 0,
-  // with a margin for the rounding of both (1e-12: a bound, not a value).
-  double ExtremumBound(double q0, double v0, double a) const {
-    const double q_eq = -a / w2_;
-    const double x0 = q0 - q_eq;
-    const double b = (v0 + sigma_ * x0) / wd_;
-    return std::abs(gain_) * (std::sqrt(x0 * x0 + b * b) + std::abs(q_eq)) * (1.0 + 1e-12);
-  }
-  // The period's stationary point (q' changed sign). About the equilibrium, x0 = q0 + a /
-  // w^2; undamped, the extremum is the free oscillation's amplitude sqrt(x0^2 + (v0 /
-  // w)^2), a maximum where v0 > 0; damped, it lies where q' = e^{-sigma t} (v0 cos(w_d t) -
-  // ((sigma v0 + w^2 x0) / w_d) sin(w_d t)) vanishes: w_d t = atan2(w_d v0, sigma v0 + w^2
-  // x0) (mod pi). Out of line: rare (twice a natural period), and the loops stay small.
-  [[gnu::noinline]] double Extremum(double q0, double v0, double a) const {
-    const double q_eq = -a / w2_;
-    const double x0 = q0 - q_eq;
-    double x = 0.0;
-    if (sigma_ == 0.0) {
-      x = std::copysign(std::sqrt(x0 * x0 + v0 * v0 / w2_), v0);
-    } else {
-      double t = std::fmod(std::atan2(wd_ * v0, sigma_ * v0 + w2_ * x0), kPi) / wd_;
-      if (t < 0.0) t += kPi / wd_;
-      if (!(t > 0.0 && t < dt_)) return 0.0;  // rounding at an end: the ends are samples
-      x = std::exp(-sigma_ * t) * (x0 * std::cos(wd_ * t) + (v0 + sigma_ * x0) / wd_ * std::sin(wd_ * t));
-    }
-    return std::abs(gain_ * (x + q_eq));
-  }
-
-  double w2_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0, cap_ = 1.0;
-  Transition period_;
-  double g_q_ = 0.0, g_v_ = 0.0;  // the period's response to a held a = 1 from rest
-  Transition twice_;               // over two periods
-  double h_q_ = 0.0, h_v_ = 0.0;  // two periods on, of a = 1 held over the first
-  std::vector<Transition> inner_;
-  double q_ = 0.0, v_ = 0.0;              // the state at the last period's end
-  double q0_ = 0.0, v0_ = 0.0, a_ = 0.0;  // the last period's start and input
-};
 
 // The sampler: the kernel through the run's ticks, its tally as the plant samplers keep it
 // (plant_sampler.cc: SampleTick, DeferredTick, SettleTail).
@@ -253,6 +71,11 @@ class ClosedFormSampler final : public Sampler {
   [[gnu::always_inline]] bool ContourCannotGrow(std::size_t k, double bound) const;
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
   long LastSampleOutside(const model::FreeTerms& free) const;
+  std::size_t QuietStretchEnd(std::size_t k) const;
+  bool FreeWindowApplies(std::size_t k) const;
+  void FreeWindow(std::size_t from);
+  long LastWindowSampleOutside(long count) const;
+  void FreeWindowContour(long count);
 
   const RunPlan& plan_;
   RunResult& result_;
@@ -461,6 +284,11 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
         return end - 1;
       }
     }
+    if (const std::size_t end = QuietStretchEnd(k); end > k) {
+      tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
+      deferred_ += static_cast<long>(end - k);
+      return end - 1;
+    }
     TickIn<RunPhase::kMotion>(k);
     if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
       ++next_probe_;
@@ -471,12 +299,142 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
     return k;
   }
   if (k <= window_.window_end()) {
+    if (FreeWindowApplies(k)) {
+      FreeWindow(k);
+      return window_.window_end();
+    }
     TickIn<RunPhase::kWindow>(k);
     if (k == motion) tally_.residual_m = kernel_.ModalAmplitude();
   } else {
     TickIn<RunPhase::kTail>(k);
   }
   return k;
+}
+
+// Outside FindInnerTicks' ticks, per stretch of held a: the end of the one starting at
+// motion tick k when no sample inside it can leave the line, else k. The test is
+// FindInnerTicks' with the deflection bounded by the stretch's own free oscillation
+// (ExtremumBound: its amplitude about the equilibrium decays), not the whole command's.
+std::size_t ClosedFormSampler::QuietStretchEnd(std::size_t k) const {
+  const CommandSamples& s = kernel_.s_;
+  const int ax = kernel_.axis_;
+  if (kernel_.start_ != 0.0 || s.monotone[ax] != (kernel_.direction_ > 0.0 ? 1 : -1)) return k;
+  const auto change = std::upper_bound(s.accel_changes.begin(), s.accel_changes.end(), k);
+  std::size_t stop = change == s.accel_changes.end() ? window_.motion_ticks : std::min(*change, window_.motion_ticks);
+  if (next_probe_ != window_.cruise_probe_ticks.end()) stop = std::min(stop, *next_probe_);
+  if (stop <= k) return k;
+  // Within a period the command moves at most its speed at either end of the stretch
+  // (the velocity is linear in it) times dt, plus |a| dt^2 / 2, from a period's ends.
+  const double dt = kernel_.dt_;
+  const double a = s.accel[k](ax);
+  const double speed = std::max(std::abs(s.velocity[k - 1](ax)), std::abs(s.velocity[stop - 1](ax)));
+  const double margin = 1e-9 * kernel_.length_ + 1e-12;
+  const double bound = kernel_.ExtremumBound(kernel_.q(), kernel_.v(), a);
+  const double keep = speed * dt + 0.5 * std::abs(a) * dt * dt + bound * (1.0 + 1e-9) + margin;
+  const auto along = [&](std::size_t i) { return (s.positions[i](ax) - kernel_.start_) * kernel_.direction_; };
+  if (!(along(k - 1) > keep)) return k;
+  // Toward the line's end: up to the first position within `keep` of it (monotone).
+  std::size_t lo = k - 1;  // along(lo) < length - keep, the last known so
+  if (!(along(lo) < kernel_.length_ - keep)) return k;
+  std::size_t hi = stop;  // one past the last candidate
+  while (hi - lo > 1) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (along(mid) < kernel_.length_ - keep) lo = mid; else hi = mid;
+  }
+  return lo + 1;  // ticks [k, lo + 1) span positions k - 1..lo
+}
+
+// The residual window after the motion's last period, when the command rests at its end
+// from then on (a = 0, the position its last): a free response, which FreeWindow tallies
+// in closed form.
+bool ClosedFormSampler::FreeWindowApplies(std::size_t k) const {
+  const CommandSamples& s = kernel_.s_;
+  return k == window_.motion_ticks + 1 && k > s.n && k <= window_.window_end();
+}
+
+// Ticks from..window_end() of the free response in one step: what TickIn<kWindow> tallies
+// tick by tick. The residual and the peak: the largest |deflection| over the stretch
+// (Jump: its end and stationary points); the settling band's last sample outside, from
+// the window's end back; the contour error from the largest and smallest deflection on
+// the sample grid.
+void ClosedFormSampler::FreeWindow(std::size_t from) {
+  const std::size_t ticks = window_.window_end() - from + 1;
+  const long count = static_cast<long>(ticks) * kernel_.substeps_;
+  const long last = LastWindowSampleOutside(count);
+  if (last > 0) {
+    tally_.last_outside_band = static_cast<long>(from - 1) * kernel_.substeps_ + last;
+    tally_.quiet_since_tick = from + static_cast<std::size_t>((last - 1) / kernel_.substeps_);
+  }
+  FreeWindowContour(count);
+  double q = kernel_.q();
+  double v = kernel_.v();
+  const double largest = kernel_.Jump(0.0, ticks, 0.0, &q, &v);
+  tally_.peak = std::max(tally_.peak, largest);
+  tally_.residual = std::max(tally_.residual, largest);
+  kernel_.SetState(q, v);
+  start_abs_ = std::abs(kernel_.FreeAt(0.0));
+  deferred_ += static_cast<long>(ticks);
+}
+
+// The last sample j (1..count, on the grid dt / substeps after the window's first tick
+// begins) with |deflection| >= band, 0 when none: none once the envelope is below the
+// band, so from where it crosses it (or the window's end) back, one complex product a
+// sample (LastSampleOutside's walk).
+long ClosedFormSampler::LastWindowSampleOutside(long count) const {
+  const double band = tally_.band;
+  const model::FreeTerms free = kernel_.Free();
+  const std::complex<double> q = free.q.front();
+  const std::complex<double> lambda = free.lambda.front();
+  if (!(band > 0.0) || std::abs(q) < band) return 0;
+  const double h = kernel_.dt_ / kernel_.substeps_;
+  long top = count;
+  if (lambda.real() < 0.0) {
+    const double crossing = std::log(std::abs(q) / band) / -lambda.real();
+    top = std::min(count, static_cast<long>(std::floor(crossing / h)) + 1);
+  }
+  std::complex<double> term = q * std::exp(lambda * (h * static_cast<double>(top)));
+  const std::complex<double> back = std::exp(-lambda * h);
+  for (long j = top; j >= 1; --j, term *= back) {
+    if (std::abs(term.real()) >= band) return j;
+  }
+  return 0;
+}
+
+// The contour error over the window: the command rests at its end, the tool at it plus
+// the deflection, so the distance off the line grows with the deflection beyond either
+// end; its largest on the grid is at the largest or smallest deflection sampled. Between
+// two stationary points the deflection is monotone: those lie at the grid's ends or next
+// to a stationary point.
+void ClosedFormSampler::FreeWindowContour(long count) {
+  const CommandSamples& s = kernel_.s_;
+  const double end = s.positions.back()(kernel_.axis_);
+  const double envelope = kernel_.FreeEnvelope() * (1.0 + 1e-12);
+  const double along_end = (end - kernel_.start_) * kernel_.direction_;
+  const double reach = std::max(along_end + envelope - kernel_.length_, envelope - along_end);
+  if (reach + rounding_ < contour_floor_ || (reach + rounding_) * (reach + rounding_) < tally_.contour_sq) return;
+  const double h = kernel_.dt_ / kernel_.substeps_;
+  double high = -std::numeric_limits<double>::infinity();
+  double low = std::numeric_limits<double>::infinity();
+  const auto sample = [&](long j) {
+    if (j < 1 || j > count) return;
+    const double y = kernel_.FreeAt(h * static_cast<double>(j));
+    high = std::max(high, y);
+    low = std::min(low, y);
+  };
+  sample(1);
+  sample(count);
+  const double span = h * static_cast<double>(count);
+  for (double t = kernel_.FirstStationary(kernel_.q(), kernel_.v(), 0.0); t < span; t += kernel_.HalfPeriod()) {
+    const long j = static_cast<long>(std::floor(t / h));
+    sample(j);
+    sample(j + 1);
+  }
+  for (const double y : {high, low}) {
+    const double actual = end + y;
+    const double along = std::clamp((actual - kernel_.start_) * kernel_.direction_, 0.0, kernel_.length_);
+    const double off = actual - (kernel_.start_ + along * kernel_.direction_);
+    tally_.contour_sq = std::max(tally_.contour_sq, off * off);
+  }
 }
 
 MetricTally ClosedFormSampler::Run() {

@@ -8,6 +8,7 @@
 #include "bench/config/input_path.h"
 #include "bench/config/override.h"
 #include "common/format.h"
+#include "model/integrator.h"
 
 namespace shapebench::bench {
 namespace {
@@ -68,11 +69,34 @@ FrfSelection ReadSelection(const NodeReader& machine, int axis) {
   return selection;
 }
 
+// Modes that do not explain the data would make every verdict of the run a verdict on
+// a different machine: refused as solver trouble (exit 3, as identify's --max-fit-error),
+// located at frf_file and naming the key that allows more.
+void CheckFitError(const NodeReader& machine, const NodeReader& frf_file, const std::string& path,
+                   const model::ModalIdentification& identification) {
+  double limit = kDefaultMaxFitErrorPercent;
+  if (const auto key = machine.Child("max_fit_error_percent")) {
+    limit = key->AsNumber();
+    if (!(limit > 0.0) || !std::isfinite(limit)) throw key->Error("expected a number > 0 (percent of the data's norm)");
+  }
+  const double error = identification.fit_error_percent;
+  if (!(error > limit)) return;
+  const std::size_t modes = identification.modes.size();
+  throw model::SolverError(
+      "FIT_ERROR_ABOVE_LIMIT",
+      frf_file.Error("the modes identified from " + path + " leave a fit error of " + FormatNumber(error, 4) +
+                     " %, above max_fit_error_percent (" + FormatNumber(limit, 4) + " %) with " +
+                     std::to_string(modes) + " mode" + (modes == 1 ? "" : "s") +
+                     ": they do not explain the data; narrow band_hz around the peaks of interest, raise "
+                     "max_order, or raise max_fit_error_percent")
+          .what());
+}
+
 }  // namespace
 
 const std::vector<std::string>& FrfFormKeys() {
   static const std::vector<std::string> kKeys = {"frf_file", "moving_mass_kg", "band_hz", "max_order",
-                                                 "max_work", "response_node"};
+                                                 "max_work", "response_node", "max_fit_error_percent"};
   return kKeys;
 }
 
@@ -100,6 +124,7 @@ model::ModalMachineConfig ReadFrfMachine(const NodeReader& machine, int axis) {
     throw frf_file.Error("no mode identified from " + path + " in the band (no cluster of stable physical poles); "
                          "run `shapebench identify " + path + "` to see the stabilisation diagram");
   }
+  CheckFitError(machine, frf_file, path, frfs.identification);
   model::ModalMachineConfig modal;
   modal.modes.clear();
   for (const model::IdentifiedMode& mode : frfs.identification.modes) {

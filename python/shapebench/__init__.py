@@ -37,7 +37,7 @@ __version__: str = _core.__version__
 __all__ = [
     "Band", "ConfigError", "Error", "Modes", "Pattern", "Result", "Scenario", "Sensitivity",
     "SensitivityCurve", "SolverError", "SweepResult", "load", "modes", "pattern",
-    "residual_vibration", "run", "sensitivity", "shapers", "sweep",
+    "design", "residual_vibration", "run", "sensitivity", "shapers", "sweep",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -400,6 +400,41 @@ def sensitivity(source: Source, set: Sets = None) -> Sensitivity:
                                impulse_amplitude=c["impulses"]["amplitude"])
               for c in raw["curves"]]
     return Sensitivity(ratio=raw["ratio"], level=raw["level"], period_s=raw["period_s"], curves=curves)
+
+
+def _ranges(ranges: Mapping[int, tuple[float, float]] | None) -> list[str]:
+    return [f"{int(mode)}={float(lo)!r}:{float(hi)!r}" for mode, (lo, hi) in (ranges or {}).items()]
+
+
+def design(source: Source | Scenario, set: Sets = None, *, band: Mapping[int, tuple[float, float]] | None = None,
+           damping: Mapping[int, tuple[float, float]] | None = None, tolerance: float = 0.05,
+           derivatives: int = 0, form: str = "profile_table", grid_s: float | None = None,
+           margin: float | None = None, registry: bool = True, validate: bool = False,
+           base_dir: PathLike | None = None) -> dict[str, Any]:
+    """The shortest pattern whose residual vibration stays within `tolerance` over a band
+    around each participating mode of the scenario's machine (`shapebench design`,
+    docs/design.md): its JSON as a dict, "coefficients" a numpy array (for form "impulses"
+    too: one per grid point, the first at t = 0). `band` and `damping` map a mode's index
+    to (low, high) as --band and --damping. SolverError (flag DESIGN) when no pattern meets it."""
+    sets = _set_texts(set)
+    written = None
+    if isinstance(source, Scenario):
+        path, sets = source.source_file, list(source.sets) + sets
+    else:
+        path, written = _path(source, "scenario", base_dir)
+    try:
+        raw = _core.design(path, sets, _ranges(band), _ranges(damping), float(tolerance), int(derivatives), form,
+                           None if grid_s is None else float(grid_s), None if margin is None else float(margin),
+                           bool(registry), bool(validate))
+    except ConfigError as error:
+        raise _relocated(error, written) from None
+    if "coefficients" not in raw:
+        coefficients = np.zeros(int(round(raw["duration_s"] / raw["grid_s"])) + 1)
+        for impulse in raw["impulses"]:
+            coefficients[int(round(impulse["time_s"] / raw["grid_s"]))] = impulse["amplitude"]
+        raw["coefficients"] = coefficients
+    raw["coefficients"] = np.asarray(raw["coefficients"], dtype=float)
+    return raw
 
 
 def residual_vibration(impulses: Iterable[tuple[float, float]] | Mapping[str, Any], frequency_hz: float,

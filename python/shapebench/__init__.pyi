@@ -213,6 +213,14 @@ class Sensitivity:
 def sensitivity(source: Source, set: Sets = None) -> Sensitivity:
     """Sensitivity curves of a sensitivity file or a dict of one (`shapebench sensitivity`)."""
 
+def design(source: Source | Scenario, set: Sets = None, *, band: Mapping[int, tuple[float, float]] | None = None,
+           damping: Mapping[int, tuple[float, float]] | None = None, tolerance: float = 0.05,
+           derivatives: int = 0, form: str = "profile_table", grid_s: float | None = None,
+           margin: float | None = None, registry: bool = True, validate: bool = False,
+           base_dir: PathLike | None = None) -> dict[str, Any]:
+    """The shortest pattern within `tolerance` over each mode's band (`shapebench design`):
+    its JSON as a dict, "coefficients" a numpy array."""
+
 def residual_vibration(impulses: Iterable[tuple[float, float]] | Mapping[str, Any], frequency_hz: float,
                        damping_ratio: float = 0.0) -> float:
     """The residual vibration an impulse sequence leaves in a mode, as a fraction of an

@@ -165,6 +165,30 @@ TEST(IdentifyCli, FitErrorAboveTheLimitExits3) {
   EXPECT_GT(parsed["modes"][0]["prominence"].get<double>(), 0.1);
 }
 
+// Tests that a scenario's frf_file machine whose identified modes fit the FRF worse than
+// max_fit_error_percent is refused with exit 3, located at frf_file and naming the key,
+// before anything runs; the shipped scenario's fit passes the default limit, and a limit
+// that is not a positive number is bad input (2) at its key.
+TEST(IdentifyCli, FrfMachineAboveItsFitErrorLimitExits3) {
+  ScratchDir dir;
+  const std::string measurement = kSourceDir + "/configs/measurements/column_y_accelerance.uff";
+  const std::string base = "machine:\n  frf_file: " + measurement +
+                           "\n  axis: y\n  moving_mass_kg: 2400\n  band_hz: [5, 80]\n";
+  const std::string rest = "drive: {type: kinematic}\nmove: {distance_mm: 20}\n";
+  const std::string strict = dir.Write("strict.yaml", base + "  max_fit_error_percent: 0.001\n" + rest);
+  const CliResult refused = RunCli({"run", strict}, dir.path().string());
+  EXPECT_EQ(refused.exit_code, 3) << refused.err;
+  EXPECT_NE(refused.err.find("FIT_ERROR_ABOVE_LIMIT"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find(strict + ":2:"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("above max_fit_error_percent (0.001 %)"), std::string::npos) << refused.err;
+  EXPECT_TRUE(refused.out.empty()) << refused.out;
+  const CliResult passes = RunCli({"run", dir.Write("default.yaml", base + rest), "--json"}, dir.path().string());
+  EXPECT_EQ(passes.exit_code, 0) << passes.err;
+  const std::string bad = dir.Write("bad.yaml", base + "  max_fit_error_percent: -1\n" + rest);
+  ExpectLocated(RunCli({"run", bad}, dir.path().string()), bad, 6, "machine.max_fit_error_percent",
+                "expected a number > 0");
+}
+
 // Tests that the real measured beam (pyuff's accelerances, tests/data/uff/README.md) gives six
 // modes, each physical (damping in (0, 0.5), inside the band) and each within a line (1 Hz) of a
 // peak of |H| found in the test by peak picking, with the fit error under 6 %.

@@ -1,8 +1,11 @@
 // `shapebench recommend` as Klipper's calibrate_shaper through the built CLI: the
 // default rule on logs and on Klipper's own PSD files against the numbers Klipper printed
 // (tests/data/klipper/README.md), --max-smoothing, files that are neither, short logs.
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -58,14 +61,20 @@ void ExpectKlipper(const nlohmann::json& fixture) {
 // Tests that the default rule gives Klipper's numbers and recommendation on the three
 // synthetic machines' logs and the shipped log, with --max-smoothing and --damping-ratio.
 TEST(RecommendKlipperCli, LogsGiveKlippersRecommendation) {
-  for (const nlohmann::json& fixture : Fixtures("calibrate_shaper_fixtures.json")["cases"]) ExpectKlipper(fixture);
+  // The fixtures held in a local: a range-for over a temporary's ["cases"] would walk freed
+  // memory (it ran no case).
+  const nlohmann::json fixtures = Fixtures("calibrate_shaper_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 6u);
+  for (const nlohmann::json& fixture : fixtures["cases"]) ExpectKlipper(fixture);
 }
 
 // Tests that Klipper's resonances_*.csv (not normalised) and calibration_data_*.csv
 // (normalised, shapers: columns) give Klipper's recommendation on each, and that a
 // per-axis PSD of the resonances file is what --axis x fits.
 TEST(RecommendKlipperCli, PsdFilesGiveKlippersRecommendation) {
-  for (const nlohmann::json& fixture : Fixtures("psd_file_fixtures.json")["cases"]) ExpectKlipper(fixture);
+  const nlohmann::json fixtures = Fixtures("psd_file_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 4u);
+  for (const nlohmann::json& fixture : fixtures["cases"]) ExpectKlipper(fixture);
   const CliResult sum = RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--json"}, kSourceDir);
   const CliResult x =
       RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--axis", "x", "--json"}, kSourceDir);
@@ -113,6 +122,65 @@ TEST(RecommendKlipperCli, MaxSmoothingAndShortLogs) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(Has(r.err, "warning: " + path + ": the log averages only 2 Welch segments of 2048 samples")) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["warnings"].size(), 1u);
+}
+
+// Tests that shapebench's registry is also scored on Klipper's normalised PSD
+// (`shapebench_normalised`, `recommended_shapebench_normalised`): on every Klipper
+// fixture log without options, every method of shapebench's own view is there (the
+// patent's methods 1-4 among them), each under its rule; each of Klipper's candidates
+// whose design the registry has leaves at most Klipper's own remaining vibration + 1e-3
+// there (the same PSD and formula, the lowest over the same 0.2 Hz grid, EI's curve fits
+// within 1e-3 of the registry's designs), and some method scores differently than on
+// the unnormalised PSD of shapebench's own view; on a Klipper PSD file, whose PSD both
+// views read, the two views are the same.
+TEST(RecommendKlipperCli, RegistryScoredUnderKlippersNormalisation) {
+  const std::vector<std::pair<std::string, std::string>> counterparts = {
+      {"zv", "zv"}, {"mzv", "mzv"}, {"ei", "ei"}, {"2hump_ei", "ei_2hump"}, {"3hump_ei", "ei_3hump"}};
+  const nlohmann::json fixtures = Fixtures("calibrate_shaper_fixtures.json");
+  ASSERT_EQ(fixtures["cases"].size(), 6u);
+  int checked = 0;
+  for (const nlohmann::json& fixture : fixtures["cases"]) {
+    if (!fixture["max_smoothing"].is_null() || !fixture["damping_ratio"].is_null()) continue;
+    const std::string file = fixture["file"];
+    SCOPED_TRACE(file);
+    ++checked;
+    const CliResult r = RunCli({"recommend", file, "--json"}, kSourceDir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    const nlohmann::json& own = json["shapebench"]["shapers"];
+    const nlohmann::json& normalised = json["shapebench_normalised"]["shapers"];
+    ASSERT_EQ(normalised.size(), own.size());
+    std::map<std::string, double> remaining;
+    bool differs = false;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      EXPECT_EQ(normalised[i]["method"], own[i]["method"]);
+      EXPECT_EQ(normalised[i]["rule"], "shapebench on klipper's normalised psd");
+      remaining[normalised[i]["method"]] = normalised[i]["remaining_vibration"].get<double>();
+      differs |= std::abs(normalised[i]["remaining_vibration"].get<double>() -
+                          own[i]["remaining_vibration"].get<double>()) > 1e-3;
+    }
+    EXPECT_TRUE(differs);
+    for (const char* method : {"1", "2", "3", "4"}) EXPECT_EQ(remaining.count(method), 1u) << method;
+    for (const nlohmann::json& klipper : fixture["shapers"]) {
+      for (const auto& [name, registry] : counterparts) {
+        if (klipper["name"] != name || remaining.count(registry) == 0) continue;
+        EXPECT_LE(remaining[registry], klipper["remaining_vibration"].get<double>() + 1e-3) << name;
+      }
+    }
+    EXPECT_EQ(json["rule"]["recommended_shapebench_normalised"], "shapebench on klipper's normalised psd");
+    EXPECT_EQ(remaining.count(json["recommended_shapebench_normalised"]["method"].get<std::string>()), 1u);
+  }
+  EXPECT_EQ(checked, 4);
+  const CliResult file = RunCli({"recommend", "tests/data/klipper/resonances_x_corexy.csv", "--json"}, kSourceDir);
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  const nlohmann::json json = nlohmann::json::parse(file.out);
+  ASSERT_EQ(json["shapebench_normalised"]["shapers"].size(), json["shapebench"]["shapers"].size());
+  for (std::size_t i = 0; i < json["shapebench"]["shapers"].size(); ++i) {
+    EXPECT_EQ(json["shapebench_normalised"]["shapers"][i]["remaining_vibration"],
+              json["shapebench"]["shapers"][i]["remaining_vibration"]);
+  }
+  const CliResult text = RunCli({"recommend", "configs/measurements/accel_x.csv"}, kSourceDir);
+  EXPECT_TRUE(Has(text.out, "\nrecommended_shapebench_normalised: ")) << text.out;
 }
 
 }  // namespace

@@ -219,6 +219,38 @@ def test_modes_equal_cli_modes_json():
     assert m.static_deflection_per_accel_s2 == expected["static_deflection_per_accel_s2"]
 
 
+def test_design_equals_cli_design_json():
+    """Tests that design() of the gantry (18 and 55 Hz, +/-10%, 5%) is `design --json`'s
+    object, its coefficients a numpy array of the same doubles summing to 1, and that the
+    impulses form gives them one per grid point too."""
+    path = "configs/scenarios/gantry_zvd.yaml"
+    done = run_cli("design", path, "--json", "--no-registry")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(done.stdout)
+    d = shapebench.design(path, registry=False)
+    assert isinstance(d["coefficients"], np.ndarray)
+    assert [bits(x) for x in d["coefficients"]] == [bits(x) for x in expected["coefficients"]]
+    assert d["duration_s"] == expected["duration_s"]
+    assert d["bands"] == expected["bands"]
+    assert d["coefficients"].sum() == pytest.approx(1.0, abs=1e-12)
+    impulses = shapebench.design(path, band={0: (17.0, 19.0)}, form="impulses", grid_s=0.0005, registry=False)
+    assert len(impulses["bands"]) == 1
+    assert len(impulses["coefficients"]) == round(impulses["duration_s"] / 0.0005) + 1
+    assert impulses["coefficients"].sum() == pytest.approx(1.0, abs=1e-12)
+
+
+def test_design_errors_are_the_clis():
+    """Tests that a bad band is a ConfigError naming --band, and a specification no pattern
+    meets a SolverError with flag DESIGN."""
+    with pytest.raises(shapebench.ConfigError) as raised:
+        shapebench.design("configs/scenarios/gantry_zvd.yaml", band={5: (1.0, 2.0)})
+    assert "--band" in str(raised.value)
+    with pytest.raises(shapebench.SolverError) as solver:
+        shapebench.design("configs/scenarios/gantry_zvd.yaml", band={0: (15.0, 25.0)}, tolerance=0.0, margin=0.5,
+                          registry=False)
+    assert solver.value.flag_name == "DESIGN"
+
+
 def test_modes_of_a_scenario_take_its_overrides():
     """Tests that modes(Scenario) reads the scenario's machine with its set: a 30 Hz mode."""
     scenario = shapebench.load("configs/scenarios/sdof_method1.yaml", set={"machine.modes[0].frequency_hz": 30})
