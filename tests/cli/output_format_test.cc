@@ -147,7 +147,7 @@ TEST(OutputFormat, ExactDoubleIsShortestRoundTrip) {
   }
 }
 
-// Tests that run --out lists the four files it wrote as "wrote DIR/FILE" after the table,
+// Tests that run --out lists the five files it wrote as "wrote DIR/FILE" after the table,
 // that they exist, and that every number of trace.csv is in its shortest exact form.
 TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   ScratchDir dir;
@@ -155,7 +155,7 @@ TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   const CliResult r = RunCli({"run", DataPath("shaped_method1_xy.yaml")  /* an XY path: path.png too */, "--out", out}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::string> wrote = WroteLines(r.out);
-  EXPECT_EQ(wrote, (std::vector<std::string>{out + "/metrics.json", out + "/trace.csv",
+  EXPECT_EQ(wrote, (std::vector<std::string>{out + "/metrics.json", out + "/trace.csv", out + "/trace.mat",
                                              out + "/deflection.png", out + "/path.png"}))
       << r.out;
   for (const std::string& file : wrote) EXPECT_TRUE(std::filesystem::exists(file)) << file;
