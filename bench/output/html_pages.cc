@@ -178,6 +178,18 @@ HtmlReport RunHtmlReport(const Scenario& scenario, const RunResult& result,
   metrics.heading = "Metrics";
   metrics.table = MetricsHtmlTable(result.metrics);
   report.sections.push_back(metrics);
+  HtmlSection sources;
+  sources.heading = "Where in the program";
+  sources.note = "The block executing when each largest value was reached, and the latest change of the "
+                 "commanded acceleration within one damped period of the lowest mode before it (the likely cause).";
+  sources.table.header = {"metric", "at", "cause"};
+  for (const auto& [name, source] : SourceEntries(result.sources)) {
+    if (!source->present) continue;
+    const std::string text = SourceText(*source);
+    const std::size_t split = text.find("; cause ");
+    sources.table.rows.push_back({name, text.substr(0, split), text.substr(split + 8)});
+  }
+  if (!sources.table.rows.empty()) report.sections.push_back(sources);
   HtmlSection plot;
   plot.heading = "Deflection";
   plot.note = "Deflection in um and command acceleration in m/s² against time; the static band dashed, "

@@ -170,7 +170,7 @@ TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   const CliResult j = RunCli({"run", DataPath("shaped_method1_xy.yaml")  /* an XY path: path.png too */, "--json", "--out", json_out}, kSourceDir);
   ASSERT_EQ(j.exit_code, 0) << j.err;
   EXPECT_TRUE(nlohmann::json::accept(j.out)) << j.out;
-  EXPECT_EQ(WroteLines(j.err).size(), 4u) << j.err;
+  EXPECT_EQ(WroteLines(j.err).size(), 5u) << j.err;
 }
 
 // Tests that sensitivity --out lists its CSV and plot.
