@@ -9,6 +9,7 @@
 
 #include "bench/cli/cli_support.h"
 #include "bench/cli/commands.h"
+#include "bench/output/command_plot.h"
 #include "bench/output/mat_file.h"
 #include "bench/output/output_path.h"
 #include "bench/output/report.h"
@@ -76,6 +77,8 @@ std::vector<std::string> WriteRunOutputs(const std::string& out_dir, const Scena
     WriteTraceMat((dir / "trace.mat").string(), result.trace, scenario.limits.max_trace_rows);
     written = {"metrics.json", "trace.csv", "trace.mat"};
     WriteRunPlots(dir, scenario, result, RunPlotTitle(scenario, overrides), &written);
+    WriteCommandPlot((dir / "command.png").string(), result, scenario, RunPlotTitle(scenario, overrides));
+    written.push_back("command.png");
   } catch (const std::runtime_error& error) {
     if (typeid(error) != typeid(std::runtime_error)) throw;
     throw std::runtime_error(staged.Shown(error.what()));  // DIR/FILE, not the temporary name

@@ -10,6 +10,7 @@
 #include "bench/scenario/scenario_loader.h"
 #include "bench/output/gnuplot.h"
 #include "bench/output/html_report.h"
+#include "bench/output/interactive_trace.h"
 
 namespace shapebench::bench {
 namespace {
@@ -196,6 +197,11 @@ HtmlReport RunHtmlReport(const Scenario& scenario, const RunResult& result,
               "the end of the commanded motion dotted.";
   plot.svg = DeflectionSvg(result, scenario);
   report.sections.push_back(plot);
+  HtmlSection interactive;
+  interactive.heading = "Interactive trace";
+  interactive.note = "Drag to zoom (shift-drag to pan), double-click to reset; hover for the values.";
+  interactive.svg = InteractiveTraceHtml(result);  // "" without libjs-dygraphs: the static plot only
+  if (!interactive.svg.empty()) report.sections.push_back(interactive);
   if (!checks.empty()) {
     HtmlSection section;
     const bool passed = std::all_of(checks.begin(), checks.end(), [](const CheckResult& c) { return c.passed; });
