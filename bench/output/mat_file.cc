@@ -130,12 +130,12 @@ void MatFile::WriteStrings(const std::string& name, const std::vector<std::strin
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
-void MatFile::Commit() {
+void MatFile::Commit(Durability durability) {
   errno = 0;
   const int failed = Mat_Close(Mat(mat_));
   mat_ = nullptr;
   if (failed) throw MatFailure(path_, "libmatio failed closing the file");
-  temp_.Commit();
+  temp_.Commit(durability);
 }
 
 std::string MatlabName(const std::string& column) {
@@ -167,7 +167,7 @@ void WriteTraceMat(const std::string& path, const Trace& trace, long max_rows) {
   mat.Commit();
 }
 
-void WriteResultsMat(const std::string& results_csv, const std::string& path) {
+void WriteResultsMat(const std::string& results_csv, const std::string& path, Durability durability) {
   std::vector<std::string> header;
   {
     std::ifstream in(results_csv, std::ios::binary);
@@ -185,7 +185,7 @@ void WriteResultsMat(const std::string& results_csv, const std::string& path) {
     }
   }
   mat.WriteStrings("columns", header);
-  mat.Commit();
+  mat.Commit(durability);
 }
 
 }  // namespace shapebench::bench

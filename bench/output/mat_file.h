@@ -27,7 +27,7 @@ class MatFile {
   void WriteColumn(const std::string& name, const std::vector<double>& values);
   // An N x 1 cell array of char row vectors.
   void WriteStrings(const std::string& name, const std::vector<std::string>& values);
-  void Commit();
+  void Commit(Durability durability = Durability::kSynced);  // TempFile::Commit's
 
  private:
   std::string path_;
@@ -48,6 +48,7 @@ void WriteTraceMat(const std::string& path, const Trace& trace, long max_rows);
 // column): a column whose every non-empty field is a number becomes an N x 1 double (an empty
 // field NaN), any other an N x 1 cell of strings; each variable named MatlabName(header),
 // and `columns`, a cell of the header's names as written, in order.
-void WriteResultsMat(const std::string& results_csv, const std::string& path);
+void WriteResultsMat(const std::string& results_csv, const std::string& path,
+                     Durability durability = Durability::kSynced);
 
 }  // namespace shapebench::bench
