@@ -49,7 +49,8 @@ program_file: corner.nc
 // out of the third block (line 7, the block that turns the corner, block 3 0-based) at the
 // corner's time, and the block executing at the peak's time (its `block`, `line`) is the
 // one trace.csv shows at the largest |deflection|: the fifth block (line 8); the table and
-// JSON agree, and the file is the G-code file.
+// JSON agree, the file is the G-code file, and the report's table and deflection plot show
+// the cause.
 TEST(AttributionCli, CornerOfTheThirdBlockIsTheCauseOfThePeak) {
   const ScratchDir dir;
   dir.Write("corner.nc", kProgram);
@@ -83,10 +84,14 @@ TEST(AttributionCli, CornerOfTheThirdBlockIsTheCauseOfThePeak) {
   EXPECT_LT(peak["time_s"].get<double>(), peak_time + 0.001);
   EXPECT_GT(peak_time, 1.35);
 
-  const CliResult table = RunCli({"run", scenario}, kSourceDir);
+  const CliResult table = RunCli({"run", scenario, "--report", dir.File("report.html")}, kSourceDir);
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("; cause at 1.351 s in block 3 (" + gcode + ":7)"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("\npeak_deflection_source "), std::string::npos) << table.out;
+  // The report: the table of sources, and the deflection plot marks the cause.
+  const std::string html = testing::ReadText(dir.File("report.html"));
+  EXPECT_NE(html.find("<td>peak_deflection_source</td>"), std::string::npos);
+  EXPECT_NE(html.find("cause of the peak: block 3 (line 7)"), std::string::npos);
 }
 
 // Tests that a single move (`move:`) reports block 0 and no file (file and line null) for
