@@ -9,6 +9,9 @@ PACKAGES = cmake ninja-build g++ libsundials-dev libeigen3-dev libyaml-cpp-dev l
 PYTHON_PACKAGES = pybind11-dev python3-dev python3-pytest python3-numpy python3-scipy python3-yaml
 # recommend: the Welch PSD of accelerometer logs (bench/measured/welch_psd.h)
 PACKAGES += libfftw3-dev pkgconf
+# run --out's trace.mat and a sweep's results.mat (bench/output/mat_file.h); dygraphs (MIT),
+# inlined into run --report's interactive trace (bench/output/interactive_trace.h)
+PACKAGES += libmatio-dev libjs-dygraphs
 # identify: the nonlinear refinement of modes (model/modal_refinement.h)
 PACKAGES += libceres-dev
 # design: the linear programs of pattern synthesis (controller/pattern_design.h), COIN-OR CLP

@@ -59,6 +59,9 @@ struct Program {
   std::vector<std::string> warnings;
   // The blocks' source_line are G-code line numbers (ParseGcode), not `program:` indices.
   bool gcode_lines = false;
+  // The G-code file those lines are in, as the scenario resolved it ("" for `program:`,
+  // `move:` and text parsed without a file): where a run's attribution points.
+  std::string source_file;
 };
 
 }  // namespace shapebench::controller

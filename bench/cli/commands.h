@@ -19,6 +19,7 @@ Command AddRunCommand(CLI::App* app);
 Command AddCheckCommand(CLI::App* app);
 Command AddModesCommand(CLI::App* app);
 Command AddPatternCommand(CLI::App* app);
+Command AddBodeCommand(CLI::App* app);
 Command AddSensitivityCommand(CLI::App* app);
 Command AddSweepCommand(CLI::App* app);
 Command AddMergeCommand(CLI::App* app);

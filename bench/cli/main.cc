@@ -1,4 +1,4 @@
-// shapebench command line: run, check, modes, pattern, sensitivity,
+// shapebench command line: run, check, modes, pattern, bode, sensitivity,
 // sweep, merge, compare, identify, recommend, design (one file each: bench/cli/*_command.cc).
 // Exit codes: 0 ok; 1 a check or a compare gate failed; 2 bad input, usage, unwritable
 // output (stdout included) or out of memory; 3 the solver failed. Errors go to stderr as
@@ -24,9 +24,9 @@ using shapebench::kExitOk;
 
 // The commands in the order `shapebench --help` lists them.
 constexpr Command (*kCommands[])(CLI::App*) = {
-    AddRunCommand,   AddCheckCommand, AddModesCommand,   AddPatternCommand,  AddSensitivityCommand,
-    AddSweepCommand, AddMergeCommand, AddCompareCommand, AddIdentifyCommand, AddRecommendCommand,
-    AddDesignCommand,
+    AddRunCommand,         AddCheckCommand, AddModesCommand, AddPatternCommand,  AddBodeCommand,
+    AddSensitivityCommand, AddSweepCommand, AddMergeCommand, AddCompareCommand,  AddIdentifyCommand,
+    AddRecommendCommand,   AddDesignCommand,
 };
 
 }  // namespace

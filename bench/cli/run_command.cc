@@ -9,6 +9,8 @@
 
 #include "bench/cli/cli_support.h"
 #include "bench/cli/commands.h"
+#include "bench/output/command_plot.h"
+#include "bench/output/mat_file.h"
 #include "bench/output/output_path.h"
 #include "bench/output/report.h"
 #include "bench/scenario/scenario_loader.h"
@@ -72,8 +74,11 @@ std::vector<std::string> WriteRunOutputs(const std::string& out_dir, const Scena
                 << "): trace.csv and the plots keep 1 in " << stride
                 << "; the metrics use every sample\n";
     }
-    written = {"metrics.json", "trace.csv"};
+    WriteTraceMat((dir / "trace.mat").string(), result.trace, scenario.limits.max_trace_rows);
+    written = {"metrics.json", "trace.csv", "trace.mat"};
     WriteRunPlots(dir, scenario, result, RunPlotTitle(scenario, overrides), &written);
+    WriteCommandPlot((dir / "command.png").string(), result, scenario, RunPlotTitle(scenario, overrides));
+    written.push_back("command.png");
   } catch (const std::runtime_error& error) {
     if (typeid(error) != typeid(std::runtime_error)) throw;
     throw std::runtime_error(staged.Shown(error.what()));  // DIR/FILE, not the temporary name
@@ -125,7 +130,7 @@ Command AddRunCommand(CLI::App* app) {
   run->add_option("scenario", args->scenario, "scenario file")->required()->type_name("SCENARIO.yaml");
   AddSetOption(run, &args->sets);
   run->add_flag("--json", args->json, "print the metrics as one JSON object");
-  run->add_option("--out", args->out_dir, "write metrics.json, trace.csv and deflection.png into DIR (created)")
+  run->add_option("--out", args->out_dir, "write metrics.json, trace.csv, trace.mat and the plots into DIR (created)")
       ->type_name("DIR");
   run->add_option("--report", args->report, kReportHelp)->type_name("FILE.html");
   return {run, [args] { return RunCommand(*args); }};

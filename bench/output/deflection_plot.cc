@@ -71,6 +71,19 @@ void WriteMarks(std::FILE* gnuplot, const RunResult& result, double end_s) {
   }
 }
 
+// The peak's likely cause (metric_sources.h): a dashed line at its time, labelled with its
+// block and line, when it lies before the peak (a cause at the peak's own tick is no news).
+void WriteCauseMark(std::FILE* gnuplot, const RunResult& result) {
+  const MetricSource& source = result.sources.peak_deflection;
+  if (!source.present || !(source.cause.time_s < source.at.time_s)) return;
+  std::string text = "cause of the peak: block " + std::to_string(source.cause.block);
+  if (!source.cause.file.empty()) text += " (line " + std::to_string(source.cause.line) + ")";
+  std::fprintf(gnuplot, "set arrow from %.17g, graph 0 to %.17g, graph 1 nohead dt 3 lc rgb '#d62728' back\n",
+               source.cause.time_s, source.cause.time_s);
+  std::fprintf(gnuplot, "set label %s at %.17g, graph 0.04 right offset -0.5, 0 front tc rgb '#d62728'\n",
+               GnuplotQuoted(text).c_str(), source.cause.time_s);
+}
+
 void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunResult& result,
                  const Scenario& scenario, const std::string& title, bool svg = false) {
   const Trace& trace = result.trace;
@@ -78,6 +91,7 @@ void WriteScript(std::FILE* gnuplot, const std::string& output_path, const RunRe
   const double end_s = trace.time_s.empty() ? 1.0 : trace.time_s.back();
   WriteFrame(gnuplot, output_path, title, svg);
   WriteMarks(gnuplot, result, end_s);
+  WriteCauseMark(gnuplot, result);
   std::fprintf(gnuplot, "set offsets 0, 0, graph 0.12, 0\n");  // headroom for the labels
   std::fprintf(gnuplot, "set y2label 'command acceleration [m/s²]'\n");
   std::fprintf(gnuplot, "set ytics nomirror\nset y2tics\nset grid\n");

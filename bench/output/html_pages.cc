@@ -10,6 +10,7 @@
 #include "bench/scenario/scenario_loader.h"
 #include "bench/output/gnuplot.h"
 #include "bench/output/html_report.h"
+#include "bench/output/interactive_trace.h"
 
 namespace shapebench::bench {
 namespace {
@@ -178,12 +179,29 @@ HtmlReport RunHtmlReport(const Scenario& scenario, const RunResult& result,
   metrics.heading = "Metrics";
   metrics.table = MetricsHtmlTable(result.metrics);
   report.sections.push_back(metrics);
+  HtmlSection sources;
+  sources.heading = "Where in the program";
+  sources.note = "The block executing when each largest value was reached, and the latest change of the "
+                 "commanded acceleration within one damped period of the lowest mode before it (the likely cause).";
+  sources.table.header = {"metric", "at", "cause"};
+  for (const auto& [name, source] : SourceEntries(result.sources)) {
+    if (!source->present) continue;
+    const std::string text = SourceText(*source);
+    const std::size_t split = text.find("; cause ");
+    sources.table.rows.push_back({name, text.substr(0, split), text.substr(split + 8)});
+  }
+  if (!sources.table.rows.empty()) report.sections.push_back(sources);
   HtmlSection plot;
   plot.heading = "Deflection";
   plot.note = "Deflection in um and command acceleration in m/s² against time; the static band dashed, "
               "the end of the commanded motion dotted.";
   plot.svg = DeflectionSvg(result, scenario);
   report.sections.push_back(plot);
+  HtmlSection interactive;
+  interactive.heading = "Interactive trace";
+  interactive.note = "Drag to zoom (shift-drag to pan), double-click to reset; hover for the values.";
+  interactive.svg = InteractiveTraceHtml(result);  // "" without libjs-dygraphs: the static plot only
+  if (!interactive.svg.empty()) report.sections.push_back(interactive);
   if (!checks.empty()) {
     HtmlSection section;
     const bool passed = std::all_of(checks.begin(), checks.end(), [](const CheckResult& c) { return c.passed; });

@@ -1,5 +1,6 @@
 // `--report FILE.html` of run, check, sweep and compare: one self-contained page (inline
-// <style>, inline SVG plots, no script, nothing fetched), every text from the input
+// <style>, inline SVG plots, nothing fetched; run's interactive trace inlines its charting
+// library, bench/output/interactive_trace.h, the only script), every text from the input
 // HTML-escaped. The commands fill an HtmlReport with plain data (the rooms above this one,
 // sweep and compare, hand theirs in) and write it atomically.
 #pragma once
@@ -36,7 +37,8 @@ struct HtmlSection {
   std::string note;           // a paragraph
   HtmlTable table;            // shown when it has a header
   std::vector<HtmlCheck> checks;
-  std::string svg;            // an <svg> element from gnuplot (ours, inlined as is)
+  std::string svg;            // an <svg> element from gnuplot, or the interactive trace's
+                              // elements (ours, inlined as is)
   // A collapsible table (<details>, closed) under `details_summary`, after the checks: a
   // sweep's failing points, which may be hundreds.
   std::string details_summary;

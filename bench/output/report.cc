@@ -52,9 +52,13 @@ void PrintRunTable(std::ostream& out, const RunResult& result) {
   PrintMetricRows(out, result.metrics, [&result](std::string_view name) {
     return name == "stroke_alarm" && result.command.stroke_alarm ? result.command.stroke_alarm_site.Text() : "";
   });
+  std::size_t width = 0;
+  for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
+  // Where in the program the largest values come from (metric_sources.h).
+  for (const auto& [name, source] : SourceEntries(result.sources)) {
+    if (source->present) out << std::left << std::setw(static_cast<int>(width) + 2) << name << SourceText(*source) << "\n";
+  }
   if (std::isfinite(result.integrator_rtol_used)) {
-    std::size_t width = 0;
-    for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
     out << std::left << std::setw(static_cast<int>(width) + 2) << "integrator_rtol_used"
         << FormatNumber(result.integrator_rtol_used) << "\n";
   }
@@ -91,6 +95,27 @@ nlohmann::ordered_json StrokeAlarmJson(const controller::StrokeAlarmSite& site) 
   return json;
 }
 
+std::vector<std::pair<std::string, const MetricSource*>> SourceEntries(const MetricSources& sources) {
+  return {{"peak_deflection_source", &sources.peak_deflection},
+          {"max_contour_error_source", &sources.max_contour_error},
+          {"cruise_residual_source", &sources.cruise_residual}};
+}
+
+nlohmann::ordered_json SourceJson(const MetricSource& source) {
+  if (!source.present) return nullptr;
+  const auto site = [](const ProgramSite& at) {
+    nlohmann::ordered_json json;
+    json["time_s"] = JsonNumber(at.time_s);
+    json["block"] = at.block;
+    json["file"] = at.file.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(at.file);
+    json["line"] = at.file.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(at.line);
+    return json;
+  };
+  nlohmann::ordered_json json = site(source.at);
+  json["cause"] = site(source.cause);
+  return json;
+}
+
 nlohmann::ordered_json RunJson(const RunResult& result) {
   nlohmann::ordered_json json = MetricsJson(result.metrics);
   nlohmann::ordered_json modes = nlohmann::ordered_json::array();
@@ -106,6 +131,7 @@ nlohmann::ordered_json RunJson(const RunResult& result) {
   if (result.command.stroke_alarm) json["stroke_alarm_source"] = StrokeAlarmJson(result.command.stroke_alarm_site);
   json["integrator_rtol_used"] =
       std::isfinite(result.integrator_rtol_used) ? nlohmann::ordered_json(result.integrator_rtol_used) : nullptr;
+  for (const auto& [name, source] : SourceEntries(result.sources)) json[name] = SourceJson(*source);
   return json;
 }
 

@@ -39,6 +39,13 @@ nlohmann::ordered_json MetricsJson(const Metrics& metrics);
 // ratio 1), then "stroke_alarm_source" (StrokeAlarmJson; only where the alarm fired), then
 // "integrator_rtol_used" (RunResult::integrator_rtol_used; null where no CVODE ran).
 nlohmann::ordered_json RunJson(const RunResult& result);
+// run --json's "peak_deflection_source", "max_contour_error_source" and
+// "cruise_residual_source" (after integrator_rtol_used): {time_s, block (0-based, -1 after
+// the program), file, line (null without a G-code file), cause: {the same four}}, or null
+// where the run has none (bench/run/metric_sources.h; docs/views.md#attribution).
+nlohmann::ordered_json SourceJson(const MetricSource& source);
+// The three sources under those names, in that order.
+std::vector<std::pair<std::string, const MetricSource*>> SourceEntries(const MetricSources& sources);
 // Where a stroke alarm fired, as run --json's "stroke_alarm_source" (only where it fired):
 // {time_s, block (1-based), line (G-code; null otherwise), axis, position_m, limit_m}.
 nlohmann::ordered_json StrokeAlarmJson(const controller::StrokeAlarmSite& site);

@@ -40,6 +40,16 @@ struct TickTally {
   }
 };
 
+// The ticks where the run's maxima were first reached (bench/run/metric_sources.h turns them
+// into blocks and lines): kept beside the maxima, by the samplers that step every tick
+// (the closed form skips ticks; a traced run's general sampler gives them).
+struct SourceTicks {
+  std::size_t peak = 0;     // the tick holding peak
+  std::size_t contour = 0;  // contour_sq
+  std::size_t cruise = 0;   // the cruise probe holding cruise_m
+  bool stepped = false;     // set by a sampler that keeps them
+};
+
 // The run's: the per-sample maxima, then what the sampler concludes at the end. Every
 // field FinishMetrics reads is here, so a sampler cannot leave a metric out.
 struct MetricTally {
@@ -69,6 +79,7 @@ struct MetricTally {
 
   std::size_t last_tick = 0;  // the run's end
   bool settled = false;
+  SourceTicks sources;
 
   void SetStatic(double static_displacement_m, const Eigen::Vector3d& vector, double settling_band) {
     static_m = static_displacement_m;
@@ -85,6 +96,8 @@ struct MetricTally {
 
   // Tick k's samples into the run's.
   void Merge(const TickTally& tick, std::size_t k, int substeps) {
+    if (tick.peak > peak) sources.peak = k;
+    if (tick.contour_sq > contour_sq) sources.contour = k;
     peak = std::max(peak, tick.peak);
     contour_sq = std::max(contour_sq, tick.contour_sq);
     residual = std::max(residual, tick.residual);

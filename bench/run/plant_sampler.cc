@@ -336,7 +336,10 @@ void PlantSampler::ProbeCruise(std::size_t k) {
       : nonlinear_        ? NAN
                           : 0.0;
   // The largest; a failed split (NaN) stays.
-  if (next_probe_ == 1 || std::isnan(amplitude) || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
+  if (next_probe_ == 1 || std::isnan(amplitude) || amplitude > tally_.cruise_m) {
+    tally_.cruise_m = amplitude;
+    tally_.sources.cruise = k;
+  }
 }
 
 // What the tally takes from the sampler's own state at the run's end.
@@ -347,6 +350,7 @@ void PlantSampler::Conclude() {
   if (exact_extrema_) peak_axes(plan_.view.axis) = std::max(peak_axes(plan_.view.axis), tally_.peak);
   tally_.peak_axes = peak_axes;
   tally_.overshoot_m = overshoot_;
+  tally_.sources.stepped = true;  // every tick went through Merge
   for (const ArcWindow& w : arcs_) {
     if (w.samples == 0) continue;
     const double programmed = 0.5 * (w.arc->start_radius_m + w.arc->end_radius_m);

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "bench/scenario/metrics.h"
+#include "bench/run/metric_sources.h"
 #include "bench/run/run_plan.h"
 #include "controller/controller.h"
 #include "model/free_response.h"
@@ -64,6 +65,10 @@ struct RunResult {
   // passed (IntegratorConfig::rtol_given). NaN where no CVODE ran (the exact path, the
   // closed form, a machine without states).
   double integrator_rtol_used = std::numeric_limits<double>::quiet_NaN();
+  // Where in the program the peak deflection, the largest contour error and the largest
+  // cruise vibration come from (metric_sources.h); absent where no sampler stepped every
+  // tick (a closed-form run without a trace).
+  MetricSources sources;
 };
 
 }  // namespace shapebench::bench

@@ -1,6 +1,8 @@
 #include "bench/run/run_scenario.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -33,6 +35,25 @@ void AddUnitSlipWarnings(const RunPlan& plan, RunResult* result) {
   for (std::string& warning : UnitSlipWarnings(plan, result->metrics)) result->warnings.push_back(std::move(warning));
 }
 
+// The attribution of a tally whose sampler stepped every tick (metric_sources.h): the cause
+// looked for within one damped period of the lowest mode plus one tick.
+MetricSources Sources(const RunPlan& plan, const controller::MultiAxisCommand& command,
+                      const controller::Program& program, const MetricTally& tally) {
+  if (!tally.sources.stepped) return {};
+  double lookback_s = plan.dt_s;
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const model::AxisModes& axis : plan.dynamics.axes) {
+    for (const model::ModeInfo& mode : axis.analysis.modes) {
+      if (!(mode.frequency_hz > 0.0) || mode.frequency_hz >= lowest_hz) continue;
+      lowest_hz = mode.frequency_hz;
+      const double zeta = std::min(mode.damping_ratio, 0.99);
+      lookback_s = plan.dt_s + 1.0 / (mode.frequency_hz * std::sqrt(1.0 - zeta * zeta));
+    }
+  }
+  return AttributeSources(command, program, tally.sources.peak, tally.sources.contour, tally.sources.cruise,
+                          !plan.window.cruise_probe_ticks.empty(), lookback_s);
+}
+
 }  // namespace
 
 controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, const controller::Program& program) {
@@ -62,6 +83,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
     result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
     result.metrics = FinishMetrics(plan, tally);
+    result.sources = Sources(plan, command, result.program, tally);
     AddUnitSlipWarnings(plan, &result);
     return result;
   }
@@ -74,6 +96,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   FinishMetrics(plan, traced);  // refuses an overflow as an untraced run would
   result.simulated_s = static_cast<double>(traced.last_tick) * plan.dt_s;
   result.metrics = metrics;
+  result.sources = Sources(plan, command, result.program, traced);
   result.residual_modes = std::move(closed.residual_modes);
   result.sampler = SamplerKind::kClosedForm;
   result.single_mode = true;

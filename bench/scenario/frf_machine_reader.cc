@@ -13,6 +13,8 @@
 namespace shapebench::bench {
 namespace {
 
+thread_local MeasuredFrfCapture* g_measured_capture = nullptr;
+
 // The record whose modal constants become the gains: `response_node` if given, the only
 // record along the axis, or the driving point (response = reference DOF) among several.
 std::size_t ChooseRecord(const IdentifiedFrfs& frfs, const NodeReader& machine, const std::string& path) {
@@ -100,6 +102,9 @@ const std::vector<std::string>& FrfFormKeys() {
   return kKeys;
 }
 
+MeasuredFrfCapture::MeasuredFrfCapture() : outer_(g_measured_capture) { g_measured_capture = this; }
+MeasuredFrfCapture::~MeasuredFrfCapture() { g_measured_capture = outer_; }
+
 model::ModalMachineConfig ReadFrfMachine(const NodeReader& machine, int axis) {
   const NodeReader frf_file = *machine.Child("frf_file");
   const std::string path = ResolvedInputPath(frf_file);
@@ -125,6 +130,7 @@ model::ModalMachineConfig ReadFrfMachine(const NodeReader& machine, int axis) {
                          "run `shapebench identify " + path + "` to see the stabilisation diagram");
   }
   CheckFitError(machine, frf_file, path, frfs.identification);
+  if (g_measured_capture != nullptr) g_measured_capture->axes_.push_back({axis, path, chosen, frfs});
   model::ModalMachineConfig modal;
   modal.modes.clear();
   for (const model::IdentifiedMode& mode : frfs.identification.modes) {

@@ -153,7 +153,9 @@ controller::Program ReadProgramFile(const NodeReader& program_file,
     throw program_file.Error("G-code file " + shown + ": " + error);
   }
   try {
-    return controller::ParseGcode(text, start_m, limits, options);
+    controller::Program program = controller::ParseGcode(text, start_m, limits, options);
+    program.source_file = file;
+    return program;
   } catch (const controller::ProgramError& error) {
     throw ConfigError(file, std::max(1, error.line()), std::max(1, error.column()),
                       program_file.path(), error.message());

@@ -24,6 +24,7 @@
 #include "common/fd_stream.h"
 #include "common/csv.h"
 #include "common/interrupt.h"
+#include "bench/output/mat_file.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
 #include "bench/sweep/point_loop.h"
@@ -198,10 +199,19 @@ void RunRemainingPoints(const Sweep& sweep, const std::vector<Override>& sets, c
   fs::remove(dir / kSweepAheadFile, ec);  // every row of it is in results.csv
 }
 
-// The plots of a complete, unsharded sweep.
-void DrawPlots(const Sweep& sweep, const fs::path& dir, SweepRunSummary* summary) {
+// results.mat beside a complete results.csv (bench/output/mat_file.h); its path.
+// Synced as results.csv is (`sweep --no-sync`: not).
+std::string WriteResultsMatBeside(const std::string& results_csv, Durability durability = Durability::kSynced) {
+  const std::string path = (fs::path(results_csv).parent_path() / "results.mat").string();
+  WriteResultsMat(results_csv, path, durability);
+  return path;
+}
+
+// The plots of a complete, unsharded sweep, and results.mat.
+void DrawPlots(const Sweep& sweep, const fs::path& dir, Durability durability, SweepRunSummary* summary) {
   try {
     summary->plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary->results);
+    summary->plots.push_back(WriteResultsMatBeside(summary->results, durability));
   } catch (const std::exception&) {
     // gnuplot gets the terminal's SIGINT too: report the interruption, not its failure.
     ThrowIfInterrupted(summary->results + " is complete; run the same command again to draw the plots");
@@ -263,7 +273,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   summary.ok = summary.points - summary.errors;
   ThrowIfInterrupted("all " + std::to_string(summary.points) + " points done, " + summary.results +
                      " is complete; run the same command again to draw the plots");
-  if (options.shard_count == 1) DrawPlots(sweep, dir, &summary);
+  if (options.shard_count == 1) DrawPlots(sweep, dir, options.durability, &summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }
@@ -367,6 +377,7 @@ MergeSummary MergeShards(const std::string& out_dir, const std::vector<std::stri
     summary.plots =
         WriteSweepPlots(out_dir, SweepLayout::FromJson(manifests[order[0]].at("layout")), summary.results);
   }
+  summary.plots.push_back(WriteResultsMatBeside(summary.results));
   return summary;
 }
 

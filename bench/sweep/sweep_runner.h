@@ -12,7 +12,9 @@
 //                        not run them again;
 //   results.csv          the finished file: the partial file renamed when the last row is
 //                        written (so a results.csv is always complete);
-//   *.png                the plots (not for a shard; `merge` draws them).
+//   *.png                the plots (not for a shard; `merge` draws them);
+//   results.mat          results.csv as a MAT file (bench/output/mat_file.h; not for a
+//                        shard, `merge` writes it), listed in the summaries' `plots`.
 // results.csv: `point` (0-based index in the whole grid; the last key varies fastest),
 // the swept keys as written in the grid, the kept metrics (ExactDouble, common/csv.h: the
 // shortest text that reads back exactly; empty when undefined or the point failed),

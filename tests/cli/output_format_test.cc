@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/output/gnuplot.h"
 #include "bench/output/report.h"
 #include "bench/scenario/checks.h"
 #include "common/format.h"
@@ -147,7 +148,7 @@ TEST(OutputFormat, ExactDoubleIsShortestRoundTrip) {
   }
 }
 
-// Tests that run --out lists the four files it wrote as "wrote DIR/FILE" after the table,
+// Tests that run --out lists the six files it wrote as "wrote DIR/FILE" after the table,
 // that they exist, and that every number of trace.csv is in its shortest exact form.
 TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   ScratchDir dir;
@@ -155,10 +156,11 @@ TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   const CliResult r = RunCli({"run", DataPath("shaped_method1_xy.yaml")  /* an XY path: path.png too */, "--out", out}, kSourceDir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::string> wrote = WroteLines(r.out);
-  EXPECT_EQ(wrote, (std::vector<std::string>{out + "/metrics.json", out + "/trace.csv",
-                                             out + "/deflection.png", out + "/path.png"}))
+  EXPECT_EQ(wrote, (std::vector<std::string>{out + "/metrics.json", out + "/trace.csv", out + "/trace.mat",
+                                             out + "/deflection.png", out + "/path.png", out + "/command.png"}))
       << r.out;
   for (const std::string& file : wrote) EXPECT_TRUE(std::filesystem::exists(file)) << file;
+  EXPECT_EQ(PngDefect(out + "/command.png"), "");  // shaped against unshaped: gnuplot drew both
   EXPECT_EQ(r.err, "");
   const std::vector<std::string> numbers = NumberFields(ReadText(out + "/trace.csv"));
   ASSERT_GT(numbers.size(), 1000u);
@@ -170,7 +172,7 @@ TEST(OutputFormat, RunOutListsWhatItWroteAndTraceNumbersAreShortest) {
   const CliResult j = RunCli({"run", DataPath("shaped_method1_xy.yaml")  /* an XY path: path.png too */, "--json", "--out", json_out}, kSourceDir);
   ASSERT_EQ(j.exit_code, 0) << j.err;
   EXPECT_TRUE(nlohmann::json::accept(j.out)) << j.out;
-  EXPECT_EQ(WroteLines(j.err).size(), 4u) << j.err;
+  EXPECT_EQ(WroteLines(j.err).size(), 6u) << j.err;
 }
 
 // Tests that sensitivity --out lists its CSV and plot.

@@ -62,9 +62,10 @@ SweepFiles RunInto(const Sweep& sweep, const std::string& out, int jobs, Durabil
 }
 
 // Tests that a fresh sweep syncs its manifest, the manifest's directory and its rows
-// (three syncs) on one job and on two (where the manifest is written by the calling
-// thread), that kUnsynced syncs none, and that both write the same bytes.
-TEST(Durability, SweepSyncsThreeTimesOrNeverWithTheSameBytes) {
+// (three syncs), then results.mat and its directory (two), on one job and on two (where
+// the manifest is written by the calling thread), that kUnsynced syncs none, and that both
+// write the same bytes.
+TEST(Durability, SweepSyncsFiveTimesOrNeverWithTheSameBytes) {
   const SweepFile file(kGrid);
   const Sweep sweep = file.Load();
   ScratchDir dir;
@@ -72,7 +73,7 @@ TEST(Durability, SweepSyncsThreeTimesOrNeverWithTheSameBytes) {
     const std::string tag = std::to_string(jobs);
     const SweepFiles synced = RunInto(sweep, dir.File("synced" + tag), jobs, Durability::kSynced);
     const SweepFiles unsynced = RunInto(sweep, dir.File("unsynced" + tag), jobs, Durability::kUnsynced);
-    EXPECT_EQ(synced.syncs, 3u) << jobs << " jobs";
+    EXPECT_EQ(synced.syncs, 5u) << jobs << " jobs";
     EXPECT_EQ(unsynced.syncs, 0u) << jobs << " jobs";
     EXPECT_EQ(unsynced.manifest, synced.manifest);
     EXPECT_EQ(unsynced.results, synced.results);

@@ -1,0 +1,191 @@
+// MatFile, WriteTraceMat, WriteResultsMat (bench/output/mat_file.h).
+#include "bench/output/mat_file.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include <matio.h>
+
+#include "bench/output/report.h"
+#include "common/csv.h"
+
+namespace shapebench::bench {
+namespace {
+
+// Version 5 stores a variable's size in 32 bits (with its header): above this, version 7.3.
+constexpr std::uint64_t kMat5VariableBytes = (std::uint64_t{1} << 31) - 4096;
+
+mat_t* Mat(void* mat) { return static_cast<mat_t*>(mat); }
+
+std::runtime_error MatFailure(const std::string& path, const std::string& what) {
+  return std::runtime_error("cannot write " + path + ": " + what +
+                            (errno != 0 ? std::string(" (") + std::strerror(errno) + ")" : std::string()));
+}
+
+// A field of results.csv as a number: the whole text, or NaN when empty; false for text.
+bool FieldNumber(const std::string& field, double* value) {
+  if (field.empty()) {
+    *value = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  char* end = nullptr;
+  *value = std::strtod(field.c_str(), &end);
+  return end == field.c_str() + field.size() && !std::isspace(static_cast<unsigned char>(field.front()));
+}
+
+// Column `column` of results.csv, read through once: as numbers when every field is one.
+struct CsvColumn {
+  bool numeric = true;
+  std::vector<double> numbers;
+  std::vector<std::string> texts;
+};
+CsvColumn ReadCsvColumn(const std::string& path, std::size_t column) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path + " for results.mat");
+  CsvReader reader(in);
+  std::vector<std::string> fields;
+  reader.Next(&fields);  // the header
+  CsvColumn out;
+  while (reader.Next(&fields)) {
+    const std::string field = column < fields.size() ? fields[column] : std::string();
+    double value = 0.0;
+    if (out.numeric && !FieldNumber(field, &value)) out.numeric = false;
+    if (out.numeric) out.numbers.push_back(value);
+    out.texts.push_back(field);
+  }
+  if (out.numeric) out.texts.clear();
+  return out;
+}
+
+// trace.csv's column `c` (TraceColumns() order) at sample i.
+double TraceValue(const Trace& trace, std::size_t c, std::size_t i) {
+  switch (c) {
+    case 0: return trace.time_s[i];
+    case 1: return trace.command_position_m[i];
+    case 2: return trace.command_velocity_m_s[i];
+    case 3: return trace.command_accel_m_s2[i];
+    case 4: return trace.deflection_m[i];
+    case 14: return trace.block[i];
+    case 15: return trace.planned_feed_mm_min[i];
+    default: break;
+  }
+  const std::size_t axis = (c - 5) % 3;
+  const Eigen::Vector3d& v = c < 8 ? trace.command_m[i] : c < 11 ? trace.actual_m[i] : trace.deflection_axes_m[i];
+  return v[static_cast<Eigen::Index>(axis)];
+}
+
+// The rows trace.csv has (its columns may differ in length: the shortest).
+std::size_t TraceSamples(const Trace& trace) {
+  return std::min({trace.time_s.size(), trace.command_position_m.size(), trace.command_velocity_m_s.size(),
+                   trace.command_accel_m_s2.size(), trace.deflection_m.size(), trace.command_m.size(),
+                   trace.actual_m.size(), trace.deflection_axes_m.size(), trace.block.size(),
+                   trace.planned_feed_mm_min.size()});
+}
+
+}  // namespace
+
+MatFile::MatFile(const std::string& path, std::uint64_t largest_variable_bytes) : path_(path), temp_(path) {
+  errno = 0;
+  const mat_ft version = largest_variable_bytes > kMat5VariableBytes ? MAT_FT_MAT73 : MAT_FT_MAT5;
+  mat_ = Mat_CreateVer(temp_.path().c_str(), "shapebench", version);
+  if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
+}
+
+MatFile::~MatFile() {
+  if (mat_ != nullptr) Mat_Close(Mat(mat_));
+}
+
+void MatFile::WriteColumn(const std::string& name, const std::vector<double>& values) {
+  std::size_t dims[2] = {values.size(), 1};
+  // matio reads the data through a non-const pointer; it does not write to it.
+  matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                                const_cast<double*>(values.data()), MAT_F_DONT_COPY_DATA);
+  errno = 0;
+  const int failed = var == nullptr ? 1 : Mat_VarWrite(Mat(mat_), var, MAT_COMPRESSION_NONE);
+  if (var != nullptr) Mat_VarFree(var);
+  if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
+}
+
+void MatFile::WriteStrings(const std::string& name, const std::vector<std::string>& values) {
+  std::size_t dims[2] = {values.size(), 1};
+  matvar_t* cell = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
+  if (cell == nullptr) throw MatFailure(path_, "libmatio failed creating variable " + name);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::size_t text_dims[2] = {1, values[i].size()};
+    // Copied: the cell frees its elements with it.
+    matvar_t* text = Mat_VarCreate(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, text_dims,
+                                   const_cast<char*>(values[i].data()), 0);
+    Mat_VarSetCell(cell, static_cast<int>(i), text);
+  }
+  errno = 0;
+  const int failed = Mat_VarWrite(Mat(mat_), cell, MAT_COMPRESSION_NONE);
+  Mat_VarFree(cell);
+  if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
+}
+
+void MatFile::Commit(Durability durability) {
+  errno = 0;
+  const int failed = Mat_Close(Mat(mat_));
+  mat_ = nullptr;
+  if (failed) throw MatFailure(path_, "libmatio failed closing the file");
+  temp_.Commit(durability);
+}
+
+std::string MatlabName(const std::string& column) {
+  std::string name;
+  for (const char c : column) {
+    if (std::isalnum(static_cast<unsigned char>(c)) != 0 && static_cast<unsigned char>(c) < 128) {
+      name += c;
+    } else if (name.empty() || name.back() != '_') {
+      name += '_';
+    }
+  }
+  while (!name.empty() && name.back() == '_') name.pop_back();
+  if (name.empty() || std::isalpha(static_cast<unsigned char>(name.front())) == 0) name = "x_" + name;
+  return name.substr(0, 63);
+}
+
+void WriteTraceMat(const std::string& path, const Trace& trace, long max_rows) {
+  const std::size_t samples = TraceSamples(trace);
+  const std::size_t stride = TraceStride(trace.time_s.size(), max_rows);
+  const std::size_t rows = samples == 0 ? 0 : (samples - 1) / stride + 1;
+  MatFile mat(path, rows * sizeof(double));
+  const std::vector<std::string>& columns = TraceColumns();
+  std::vector<double> values;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    values.clear();
+    for (std::size_t i = 0; i < samples; i += stride) values.push_back(TraceValue(trace, c, i));
+    mat.WriteColumn(columns[c], values);
+  }
+  mat.Commit();
+}
+
+void WriteResultsMat(const std::string& results_csv, const std::string& path, Durability durability) {
+  std::vector<std::string> header;
+  {
+    std::ifstream in(results_csv, std::ios::binary);
+    CsvReader reader(in);
+    if (!in || !reader.Next(&header)) throw std::runtime_error("cannot read " + results_csv + " for results.mat");
+  }
+  const CsvColumn first = ReadCsvColumn(results_csv, 0);
+  MatFile mat(path, std::max(first.numbers.size(), first.texts.size()) * sizeof(double));
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    const CsvColumn column = c == 0 ? first : ReadCsvColumn(results_csv, c);
+    if (column.numeric) {
+      mat.WriteColumn(MatlabName(header[c]), column.numbers);
+    } else {
+      mat.WriteStrings(MatlabName(header[c]), column.texts);
+    }
+  }
+  mat.WriteStrings("columns", header);
+  mat.Commit(durability);
+}
+
+}  // namespace shapebench::bench
