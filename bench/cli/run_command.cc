@@ -99,6 +99,7 @@ int RunCommand(const RunArgs& args) {
   // the run's memory is its command and samples (bench/scenario/run_memory.h).
   RunOptions options;
   options.record_trace = !args.out_dir.empty() || !args.report.empty();
+  options.attribute_sources = true;  // the table and JSON name the lines, traced or not
   const RunResult result = RunScenarioLocated(scenario, overrides, options);
   Doing("writing the outputs of scenario '" + scenario.name + "'");
   PrintRunWarnings(scenario.source_file, result);

@@ -30,7 +30,7 @@ std::string Exact(double value) {
 
 std::string FormName(DesignForm form) { return form == DesignForm::kImpulses ? "impulses" : "profile_table"; }
 
-std::string Percent(double fraction) { return FormatNumber(fraction * 100.0, 4) + "%"; }
+std::string DesignPercent(double fraction) { return FormatNumber(fraction * 100.0, 4) + "%"; }
 
 double MeanTime(const controller::DesignResult& r) {
   double mean = 0.0;
@@ -53,7 +53,7 @@ void PrintRegistry(std::ostream& out, const DesignReport& report) {
     const controller::ShaperAgainstSpec& s = report.registry[i];
     const double added = i < report.registry_added_time_s.size() ? report.registry_added_time_s[i] : NAN;
     std::string worst;
-    for (double v : s.worst_v) worst += (worst.empty() ? "" : ", ") + Percent(v);
+    for (double v : s.worst_v) worst += (worst.empty() ? "" : ", ") + DesignPercent(v);
     char line[200];
     std::snprintf(line, sizeof line, "  %-12s  %-12s  %-12s  %-10s  %-25s  %s\n", s.method.c_str(),
                   FormatNumber(s.duration_s, 6).c_str(),
@@ -72,7 +72,7 @@ void PrintValidation(std::ostream& out, const DesignReport& report) {
     const BandValidation& v = report.validation[b];
     char line[200];
     std::snprintf(line, sizeof line, "  %-4d  %-20s  %-11s  %-10s  %-16s  %d\n", report.modes[b],
-                  Percent(v.worst_residual_ratio).c_str(), FormatNumber(v.worst_at_hz, 6).c_str(),
+                  DesignPercent(v.worst_residual_ratio).c_str(), FormatNumber(v.worst_at_hz, 6).c_str(),
                   FormatNumber(v.worst_at_damping, 4).c_str(), FormatNumber(v.worst_peak_ratio, 6).c_str(), v.runs);
     out << line;
   }
@@ -98,11 +98,11 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report) {
       << (report.form == DesignForm::kProfileTable ? " (controller.period_s)" : "") << "\n";
   out << "  duration_s      " << FormatNumber(r.duration_s) << " s (" << r.coefficients.size() << " grid points)\n";
   out << "  mean_time_s     " << FormatNumber(MeanTime(r)) << " s (the secondary objective: least)\n";
-  out << "  tolerance       " << Percent(report.spec.tolerance) << " over every band";
+  out << "  tolerance       " << DesignPercent(report.spec.tolerance) << " over every band";
   if (report.spec.derivatives > 0) out << ", " << report.spec.derivatives << " derivative(s) zero at each centre";
-  out << "\n  guaranteed_v    " << Percent(r.guaranteed_v) << " anywhere in the bands (polygon of "
+  out << "\n  guaranteed_v    " << DesignPercent(r.guaranteed_v) << " anywhere in the bands (polygon of "
       << controller::kPolygonSides << " sides: V / cos(pi/" << controller::kPolygonSides << "); sampling margin "
-      << Percent(report.spec.margin) << ")\n";
+      << DesignPercent(report.spec.margin) << ")\n";
   out << "  motion added    " << FormatNumber(report.added_motion_time_s) << " s (the scenario's move or program, "
       << "over no shaping)\n";
   out << "  lp_solves       " << r.lp_solves << " (COIN-OR CLP, dual simplex)\n";
@@ -118,7 +118,7 @@ void PrintDesignReport(std::ostream& out, const DesignReport& report) {
                        ? FormatNumber(band.damping_lo, 4) + ".." + FormatNumber(band.damping_hi, 4)
                        : FormatNumber(band.damping_lo, 4))
                       .c_str(),
-                  Percent(r.worst_v[b]).c_str());
+                  DesignPercent(r.worst_v[b]).c_str());
     out << line;
   }
   PrintPattern(out, report);
@@ -194,7 +194,7 @@ nlohmann::ordered_json DesignJson(const DesignReport& report) {
 std::string DesignFragment(const DesignReport& report, DesignForm form) {
   std::ostringstream out;
   out << "# shapebench design " << report.file << ": " << FormatNumber(report.result.duration_s) << " s, V <= "
-      << Percent(report.spec.tolerance) << " over every band (docs/design.md)\n";
+      << DesignPercent(report.spec.tolerance) << " over every band (docs/design.md)\n";
   out << "controller:\n";
   if (form == DesignForm::kImpulses) {
     out << "  pattern:\n    method: custom\n    impulses:\n";

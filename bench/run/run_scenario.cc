@@ -78,7 +78,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   const RunPlan plan(scenario, command, path, shared, options.record_trace);
   CheckEstimatedWork(plan, 0);  // its samples alone; the exact path adds its extremum grid
   // The sampler, its ticks, the metrics.
-  if (!options.record_trace || options.fastest_sampler != SamplerKind::kClosedForm ||
+  if (!(options.record_trace || options.attribute_sources) || options.fastest_sampler != SamplerKind::kClosedForm ||
       plan.single_mode.mode == nullptr) {
     const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
     result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
@@ -87,8 +87,8 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     AddUnitSlipWarnings(plan, &result);
     return result;
   }
-  // A trace of a closed-form run: the general sampler records it, the metrics stay the
-  // closed form's (one answer whatever a run records: run, run --json, a sweep's point,
+  // A trace (or the attribution) of a closed-form run: the general sampler records it,
+  // the metrics stay the closed form's (one answer whatever a run records: run, run --json, a sweep's point,
   // the Python API).
   RunResult closed;
   const Metrics metrics = FinishMetrics(plan, MakeClosedFormSampler(plan, &closed)->Run());

@@ -26,6 +26,11 @@ struct RunOptions {
   // the closed form's); kDeferredSubsteps: the plant is stepped (the same to rounding).
   // A run takes the fastest that qualifies at or below this one (RunResult::sampler).
   SamplerKind fastest_sampler = SamplerKind::kClosedForm;
+  // Attribute the peak, the contour error and the cruise vibration to program lines
+  // (RunResult::sources) also when the closed form takes the run and no trace is recorded:
+  // the general sampler then steps the plant once more, untraced, for them (`run` does; a
+  // sweep's points and Python's run() without trace=True do not: their sources are empty).
+  bool attribute_sources = false;
 };
 
 // The command RunScenario generates for the scenario's controller and program (the CNC's
