@@ -121,7 +121,8 @@ void BM_Case1_CommandOnly(benchmark::State& state) {
 
 // Case 3 (and 4d): the sweep as `shapebench sweep` runs it (results.csv written, no plots).
 void Case3(benchmark::State& state, const std::string& method,
-           const std::string& file = "case3_sweep.yaml", Durability durability = Durability::kSynced) {
+           const std::string& file = "case3_sweep.yaml", Durability durability = Durability::kSynced,
+           bool write_mat = false) {
   const std::vector<Override> sets = {{"integrator.method", method}};
   const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/" + file, sets);
   const std::string dir = (std::filesystem::temp_directory_path() /
@@ -145,6 +146,7 @@ void Case3(benchmark::State& state, const std::string& method,
     options.out_dir = dir;
     options.jobs = static_cast<int>(state.range(0));
     options.durability = durability;
+    options.write_mat = write_mat;
     const double before = process_cpu_s();
     benchmark::DoNotOptimize(RunSweep(sweep, sets, options).ok);
     cpu_s += process_cpu_s() - before;
@@ -191,6 +193,11 @@ void Case3(benchmark::State& state, const std::string& method,
 }
 void BM_Case3_Exact(benchmark::State& state) { Case3(state, "exact"); }
 void BM_Case3_Cvode(benchmark::State& state) { Case3(state, "cvode"); }
+// Case 3 with results.mat (issue 38), as `shapebench sweep` writes it; the other sweep
+// cases leave it out, as the versions bench-compare compares with did.
+void BM_Case3_ExactWithMat(benchmark::State& state) {
+  Case3(state, "exact", "case3_sweep.yaml", Durability::kSynced, true);
+}
 void BM_Case3_Exact10k(benchmark::State& state) { Case3(state, "exact", "case3_sweep_10k.yaml"); }
 void BM_Case4Damped_Exact(benchmark::State& state) { Case3(state, "exact", "case4_damped_sweep.yaml"); }
 // Issue 41: case 1's 5000-point sweep, and the same with a move ten times longer.
@@ -698,6 +705,8 @@ BENCHMARK(BM_Case2_Exact)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Case2_Cvode)->Unit(benchmark::kMillisecond);
 // Case 3 exact, the floor and case 4d: medians of five (the must-show ratios compare them).
 BENCHMARK(BM_Case3_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case3_ExactWithMat)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1)
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case3_ExactNoSync)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1)
     ->Repetitions(5)->ReportAggregatesOnly(true);

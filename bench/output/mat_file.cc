@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -40,28 +41,47 @@ bool FieldNumber(const std::string& field, double* value) {
   return end == field.c_str() + field.size() && !std::isspace(static_cast<unsigned char>(field.front()));
 }
 
-// Column `column` of results.csv, read through once: as numbers when every field is one.
+// Columns [first, first + count) of results.csv, read through once: each as numbers when
+// every field is one.
 struct CsvColumn {
   bool numeric = true;
   std::vector<double> numbers;
   std::vector<std::string> texts;
 };
-CsvColumn ReadCsvColumn(const std::string& path, std::size_t column) {
+std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path + " for results.mat");
   CsvReader reader(in);
   std::vector<std::string> fields;
   reader.Next(&fields);  // the header
-  CsvColumn out;
+  std::vector<CsvColumn> out(count);
   while (reader.Next(&fields)) {
-    const std::string field = column < fields.size() ? fields[column] : std::string();
-    double value = 0.0;
-    if (out.numeric && !FieldNumber(field, &value)) out.numeric = false;
-    if (out.numeric) out.numbers.push_back(value);
-    out.texts.push_back(field);
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::size_t column = first + j;
+      std::string field = column < fields.size() ? std::move(fields[column]) : std::string();
+      double value = 0.0;
+      CsvColumn& into = out[j];
+      if (into.numeric && !FieldNumber(field, &value)) into.numeric = false;
+      if (into.numeric) into.numbers.push_back(value);
+      into.texts.push_back(std::move(field));
+    }
   }
-  if (out.numeric) out.texts.clear();
+  for (CsvColumn& column : out) {
+    if (column.numeric) std::vector<std::string>().swap(column.texts);
+  }
   return out;
+}
+
+// How many columns a pass over results.csv holds: all of them while their text (with a
+// string's overhead, about four times the file's share) fits kColumnBytes, else fewer, so
+// that memory stays bounded for a sweep of millions of points while a small one is read once.
+constexpr double kColumnBytes = 256.0 * 1024 * 1024;
+std::size_t ColumnsPerPass(const std::string& path, std::size_t columns) {
+  std::error_code error;
+  const double file_bytes = static_cast<double>(std::filesystem::file_size(path, error));
+  if (error || columns == 0) return 1;
+  const double per_column = 4.0 * file_bytes / static_cast<double>(columns);
+  return std::clamp<std::size_t>(static_cast<std::size_t>(kColumnBytes / std::max(per_column, 1.0)), 1, columns);
 }
 
 // trace.csv's column `c` (TraceColumns() order) at sample i.
@@ -174,14 +194,19 @@ void WriteResultsMat(const std::string& results_csv, const std::string& path, Du
     CsvReader reader(in);
     if (!in || !reader.Next(&header)) throw std::runtime_error("cannot read " + results_csv + " for results.mat");
   }
-  const CsvColumn first = ReadCsvColumn(results_csv, 0);
-  MatFile mat(path, std::max(first.numbers.size(), first.texts.size()) * sizeof(double));
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    const CsvColumn column = c == 0 ? first : ReadCsvColumn(results_csv, c);
-    if (column.numeric) {
-      mat.WriteColumn(MatlabName(header[c]), column.numbers);
-    } else {
-      mat.WriteStrings(MatlabName(header[c]), column.texts);
+  const std::size_t per_pass = ColumnsPerPass(results_csv, header.size());
+  std::vector<CsvColumn> batch = ReadCsvColumns(results_csv, 0, std::min(per_pass, header.size()));
+  const std::size_t rows = batch.empty() ? 0 : std::max(batch.front().numbers.size(), batch.front().texts.size());
+  MatFile mat(path, rows * sizeof(double));
+  for (std::size_t first = 0; first < header.size(); first += per_pass) {
+    if (first > 0) batch = ReadCsvColumns(results_csv, first, std::min(per_pass, header.size() - first));
+    for (std::size_t j = 0; j < batch.size(); ++j) {
+      const std::string name = MatlabName(header[first + j]);
+      if (batch[j].numeric) {
+        mat.WriteColumn(name, batch[j].numbers);
+      } else {
+        mat.WriteStrings(name, batch[j].texts);
+      }
     }
   }
   mat.WriteStrings("columns", header);

@@ -44,8 +44,8 @@ std::string MatlabName(const std::string& column);
 // decimated with the same stride to at most `max_rows`), `block` as a double too.
 void WriteTraceMat(const std::string& path, const Trace& trace, long max_rows);
 
-// results.mat from a complete results.csv, one column at a time (the file read once per
-// column): a column whose every non-empty field is a number becomes an N x 1 double (an empty
+// results.mat from a complete results.csv, one variable at a time (the file read once for
+// all its columns while they fit 256 MB, in passes of fewer columns beyond): a column whose every non-empty field is a number becomes an N x 1 double (an empty
 // field NaN), any other an N x 1 cell of strings; each variable named MatlabName(header),
 // and `columns`, a cell of the header's names as written, in order.
 void WriteResultsMat(const std::string& results_csv, const std::string& path,

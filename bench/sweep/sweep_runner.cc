@@ -208,10 +208,10 @@ std::string WriteResultsMatBeside(const std::string& results_csv, Durability dur
 }
 
 // The plots of a complete, unsharded sweep, and results.mat.
-void DrawPlots(const Sweep& sweep, const fs::path& dir, Durability durability, SweepRunSummary* summary) {
+void DrawPlots(const Sweep& sweep, const fs::path& dir, const SweepRunOptions& options, SweepRunSummary* summary) {
   try {
     summary->plots = WriteSweepPlots(dir.string(), SweepLayout::Of(sweep), summary->results);
-    summary->plots.push_back(WriteResultsMatBeside(summary->results, durability));
+    if (options.write_mat) summary->plots.push_back(WriteResultsMatBeside(summary->results, options.durability));
   } catch (const std::exception&) {
     // gnuplot gets the terminal's SIGINT too: report the interruption, not its failure.
     ThrowIfInterrupted(summary->results + " is complete; run the same command again to draw the plots");
@@ -273,7 +273,7 @@ SweepRunSummary RunSweep(const Sweep& sweep, const std::vector<Override>& sets,
   summary.ok = summary.points - summary.errors;
   ThrowIfInterrupted("all " + std::to_string(summary.points) + " points done, " + summary.results +
                      " is complete; run the same command again to draw the plots");
-  if (options.shard_count == 1) DrawPlots(sweep, dir, options.durability, &summary);
+  if (options.shard_count == 1) DrawPlots(sweep, dir, options, &summary);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }

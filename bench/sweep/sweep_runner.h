@@ -51,6 +51,10 @@ struct SweepRunOptions {
   // manifest.json and results.csv synced to the disk (kSynced) or not (--no-sync:
   // common/atomic_file.h's Durability; the plots are synced either way).
   Durability durability = Durability::kSynced;
+  // results.mat beside a complete results.csv (the CLI always). make bench's sweep cases
+  // leave it out to time what every earlier version wrote (bench-compare's like for like)
+  // and time it in a row of its own (BM_Case3_ExactWithMat).
+  bool write_mat = true;
 };
 
 struct SweepRunSummary {
