@@ -40,6 +40,18 @@ namespace {
 using namespace shapebench;
 using namespace shapebench::bench;
 
+// The benchmark's iterations of one untraced run: the last run's result, *wall_s its time.
+RunResult TimedRuns(benchmark::State& state, const Scenario& scenario, double* wall_s) {
+  RunResult last;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    last = RunScenario(scenario, RunOptions{false});
+    *wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::ClobberMemory();
+  }
+  return last;
+}
+
 struct CorpusProgram {
   const char* file;     // under tests/data/gcode/
   const char* dialect;  // the corpus test's DialectOf: its controller's
@@ -70,14 +82,8 @@ void BM_CorpusProgram(benchmark::State& state) {
     state.SkipWithError((std::string("refused: ") + error.what()).c_str());
     return;
   }
-  RunResult last;
   double wall_s = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    last = RunScenario(scenario, RunOptions{false});
-    wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    benchmark::ClobberMemory();
-  }
+  const RunResult last = TimedRuns(state, scenario, &wall_s);
   if (last.metrics.stroke_alarm == 1.0) {
     state.SkipWithError("stroke alarm: the run ended before the program did");
     return;
@@ -130,14 +136,8 @@ void BM_ProgramRepeated(benchmark::State& state) {
                                          {{"program_file", file.string()},
                                           {"program_dialect", "linuxcnc"},
                                           {"machine.stroke", "{x: [-1000, 1000], y: [-1000, 1000], z: [-400, 400]}"}});
-  RunResult last;
   double wall_s = 0.0;
-  for (auto _ : state) {
-    const auto start = std::chrono::steady_clock::now();
-    last = RunScenario(scenario, RunOptions{false});
-    wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    benchmark::ClobberMemory();
-  }
+  const RunResult last = TimedRuns(state, scenario, &wall_s);
   std::filesystem::remove(file);
   state.counters["repetitions"] = repetitions;
   state.counters["sim_s"] = last.simulated_s;

@@ -17,12 +17,14 @@
 #include "bench/run/command_samples.h"
 #include "bench/run/run_scenario.h"
 #include "controller/controller.h"
+#include "tests/support/long_double_mode.h"
 #include "tests/support/sdof_fixture.h"
 
 namespace shapebench::bench::single_mode_oracle_test {
 namespace {
 
-using Real = long double;
+using testing::LongDoubleMode;
+using Real = LongDoubleMode::Real;
 
 struct OracleMetrics {
   double peak_m = 0.0;
@@ -30,55 +32,6 @@ struct OracleMetrics {
   double residual_peak_m = 0.0;  // the largest |deflection| after the motion's last tick end
   double cruise_m = NAN;         // the largest amplitude at the cruise probes
   double contour_m = 0.0;        // the largest distance of the tool off the line, sampled
-};
-
-// One mode (gain 1) under the acceleration held over each tick, deflection q:
-// q'' + 2 zeta w q' + w^2 q = -a.
-class Mode {
- public:
-  explicit Mode(const model::ModalMode& mode) {
-    const Real pi = 3.141592653589793238462643383279502884L;
-    w_ = 2 * pi * static_cast<Real>(mode.frequency_hz);
-    sigma_ = static_cast<Real>(mode.damping_ratio) * w_;
-    wd_ = w_ * std::sqrt(1 - static_cast<Real>(mode.damping_ratio) * mode.damping_ratio);
-  }
-  // The state t after (q0, v0) under a.
-  void Step(Real q0, Real v0, Real a, Real t, Real* q, Real* v) const {
-    const Real q_eq = -a / (w_ * w_);
-    const Real x0 = q0 - q_eq;
-    const Real e = std::exp(-sigma_ * t);
-    const Real c = std::cos(wd_ * t);
-    const Real sn = std::sin(wd_ * t);
-    *q = q_eq + e * (x0 * (c + sigma_ / wd_ * sn) + v0 * sn / wd_);
-    *v = e * (v0 * (c - sigma_ / wd_ * sn) - x0 * w_ * w_ / wd_ * sn);
-  }
-  // The largest |q| inside [0, h] where q' changes sign: bisection on q' (not the
-  // kernel's atan2 formula); 0 without a sign change.
-  Real Inside(Real q0, Real v0, Real a, Real h) const {
-    Real q1 = 0;
-    Real v1 = 0;
-    Step(q0, v0, a, h, &q1, &v1);
-    if (!((v0 < 0) != (v1 < 0) && v0 != 0 && v1 != 0)) return 0;
-    Real lo = 0;
-    Real hi = h;
-    for (int i = 0; i < 100; ++i) {
-      const Real mid = 0.5L * (lo + hi);
-      Real qm = 0;
-      Real vm = 0;
-      Step(q0, v0, a, mid, &qm, &vm);
-      ((vm < 0) == (v0 < 0) ? lo : hi) = mid;
-    }
-    Real qm = 0;
-    Real vm = 0;
-    Step(q0, v0, a, 0.5L * (lo + hi), &qm, &vm);
-    return std::abs(qm);
-  }
-  Real Amplitude(Real q, Real v) const { return std::hypot(q, (v + sigma_ * q) / wd_); }
-  Real w() const { return w_; }
-  Real wd() const { return wd_; }
-
- private:
-  Real w_ = 0, sigma_ = 0, wd_ = 0;
 };
 
 // The run's ticks 1..last_tick (the run's own end: its settling tail's length is the
@@ -89,7 +42,7 @@ OracleMetrics Oracle(const Scenario& s, std::size_t last_tick, int substeps) {
   const CommandSamples samples = SampleCommand(command);
   const int ax = s.move_axis();
   const model::ModalMode& mode = std::get<model::ModalMachineConfig>(s.machine.axes[ax]->form).modes.front();
-  const Mode m(mode);
+  const LongDoubleMode m(mode);
   const Real h = static_cast<Real>(command.period_s);
   const Real length = std::abs(static_cast<Real>(s.move.distance_mm)) / 1000;
   const Real dir = s.move.distance_mm < 0 ? -1 : 1;

@@ -21,6 +21,7 @@
 #include "bench/run/run_scenario.h"
 #include "controller/controller.h"
 #include "tests/support/general_path.h"
+#include "tests/support/long_double_mode.h"
 #include "tests/support/sdof_fixture.h"
 
 namespace shapebench::bench {
@@ -37,23 +38,12 @@ struct OracleRun {
 // transition from the exponential's closed form in long double, the extremum inside a tick
 // where q' changes sign found by bisection on q' (not the kernel's atan2 formula).
 OracleRun Oracle(const Scenario& s) {
-  using Real = long double;
+  using Real = testing::LongDoubleMode::Real;
   const controller::MultiAxisCommand command = GenerateScenarioCommand(s, s.RunProgram());
   const CommandSamples samples = SampleCommand(command);
   const model::ModalMode& mode = std::get<model::ModalMachineConfig>(s.machine.axes[1]->form).modes.front();
-  const Real pi = 3.141592653589793238462643383279502884L;
-  const Real w = 2 * pi * static_cast<Real>(mode.frequency_hz);
-  const Real sigma = static_cast<Real>(mode.damping_ratio) * w;
-  const Real wd = w * std::sqrt(1 - static_cast<Real>(mode.damping_ratio) * mode.damping_ratio);
+  const testing::LongDoubleMode m(mode);
   const Real h = static_cast<Real>(s.controller.period_s);
-  // x(t), x'(t) from (x0, v0): x = q - q_eq.
-  auto state = [&](Real x0, Real v0, Real t, Real* x, Real* v) {
-    const Real e = std::exp(-sigma * t);
-    const Real c = std::cos(wd * t);
-    const Real sn = std::sin(wd * t);
-    *x = e * (x0 * (c + sigma / wd * sn) + v0 * sn / wd);
-    *v = e * (v0 * (c - sigma / wd * sn) - x0 * w * w / wd * sn);
-  };
   OracleRun run;
   Real q = 0;
   Real v = 0;
@@ -62,34 +52,16 @@ OracleRun Oracle(const Scenario& s) {
   const std::size_t window = static_cast<std::size_t>(std::ceil(3.0 / mode.frequency_hz / s.controller.period_s));
   for (std::size_t k = 1; k <= samples.motion_ticks + window; ++k) {
     const Real a = samples.AccelAt(k)(1);
-    const Real q_eq = -a / (w * w);
-    const Real x0 = q - q_eq;
-    const Real v0 = v;
-    Real x1 = 0;
+    Real q1 = 0;
     Real v1 = 0;
-    state(x0, v0, h, &x1, &v1);
-    if ((v0 < 0) != (v1 < 0) && v0 != 0 && v1 != 0) {
-      Real lo = 0;
-      Real hi = h;
-      for (int i = 0; i < 200; ++i) {
-        const Real mid = 0.5L * (lo + hi);
-        Real xm = 0;
-        Real vm = 0;
-        state(x0, v0, mid, &xm, &vm);
-        ((vm < 0) == (v0 < 0) ? lo : hi) = mid;
-      }
-      Real xm = 0;
-      Real vm = 0;
-      state(x0, v0, 0.5L * (lo + hi), &xm, &vm);
-      peak = std::max(peak, std::abs(xm + q_eq));
-    }
-    q = x1 + q_eq;
+    m.Step(q, v, a, h, &q1, &v1);
+    peak = std::max(peak, std::max(std::abs(q1), m.Inside(q, v, a, h)));
+    q = q1;
     v = v1;
-    peak = std::max(peak, std::abs(q));
-    if (k == samples.motion_ticks) run.residual_m = static_cast<double>(std::hypot(q, (v + sigma * q) / wd));
+    if (k == samples.motion_ticks) run.residual_m = static_cast<double>(m.Amplitude(q, v));
   }
   run.peak_m = static_cast<double>(peak);
-  run.static_m = samples.max_accel_m_s2 / static_cast<double>(w * w);
+  run.static_m = samples.max_accel_m_s2 / static_cast<double>(m.w() * m.w());
   return run;
 }
 
