@@ -18,6 +18,9 @@ PACKAGES += libceres-dev
 PACKAGES += coinor-libclp-dev
 # sweep and check on MPI ranks (docs/scaling.md): Open MPI, found by CMake's FindMPI
 PACKAGES += libopenmpi-dev openmpi-bin
+# FMI co-simulation (docs/fmi.md): FMUs are zip archives (libzip) with a modelDescription.xml
+# (pugixml reads it on import; xmllint checks it against the standard's schema)
+PACKAGES += libzip-dev libpugixml-dev
 
 .PHONY: deps configure build demo test clean
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Tests that every include goes downwards in the house: a room may include itself and the
 # rooms listed before it, never one after it (controller/ and model/ never each other).
-#   common < model, controller < bench/config < bench/measured < bench/scenario < bench/run
-#     < bench/output < bench/sensitivity < bench/sweep < bench/compare < bench/cli
+#   common < model, controller < bench/config < bench/measured < bench/fmi < bench/scenario
+#     < bench/run < bench/output < bench/sensitivity < bench/sweep < bench/compare < bench/fmu
+#     < bench/cli
 set -u
 cd "$(dirname "$0")/.."
 allowed() {  # the include prefixes a file in room $1 may use
@@ -13,18 +14,21 @@ allowed() {  # the include prefixes a file in room $1 may use
     controller|controller/shapers) echo "common/ controller/" ;;
     bench/config) echo "$below bench/config/" ;;
     bench/measured) echo "$below bench/config/ bench/measured/" ;;
-    bench/scenario) echo "$below bench/config/ bench/measured/ bench/scenario/" ;;
-    bench/run) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/" ;;
-    bench/output) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/" ;;
-    bench/sensitivity) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/" ;;
-    bench/sweep) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/" ;;
-    bench/compare) echo "$below bench/config/ bench/measured/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/ bench/compare/" ;;
+    bench/fmi) echo "$below bench/config/ bench/measured/ bench/fmi/" ;;
+    bench/scenario) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/" ;;
+    bench/run) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/ bench/run/" ;;
+    bench/output) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/ bench/run/ bench/output/" ;;
+    bench/sensitivity) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/" ;;
+    bench/sweep) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/" ;;
+    bench/compare) echo "$below bench/config/ bench/measured/ bench/fmi/ bench/scenario/ bench/run/ bench/output/ bench/sensitivity/ bench/sweep/ bench/compare/" ;;
+    bench/fmu) echo "$below bench/" ;;
     bench/cli) echo "$below bench/" ;;
   esac
 }
 bad=0
 checked=0
-for room in common model controller controller/shapers bench/config bench/measured bench/scenario bench/run bench/output bench/sensitivity bench/sweep bench/compare bench/cli; do
+for room in common model controller controller/shapers bench/config bench/measured bench/scenario bench/run bench/output bench/sensitivity bench/sweep bench/compare bench/fmi bench/fmu bench/cli; do
+  [ -d "$room" ] || continue
   prefixes=$(allowed "$room")
   for file in $(find "$room" -maxdepth 1 -name '*.h' -o -maxdepth 1 -name '*.cc'); do
     checked=$((checked + 1))
