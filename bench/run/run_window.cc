@@ -10,17 +10,15 @@
 namespace shapebench::bench {
 namespace {
 
-std::vector<char> CruiseTicks(const CommandSamples& s, std::size_t period_ticks,
-                              std::vector<std::size_t>* probes) {
-  std::vector<char> cruise_tick(s.n + 1, 0);
-  // A run of steady ticks at least a period long (SampleCommand's steady_runs).
+// Per cruise stretch (a run of steady ticks at least a lowest-mode period long,
+// SampleCommand's steady_runs), the tick one period into it. (No per-tick flags: a
+// point's cost must not grow with the move, issue 41.)
+std::vector<std::size_t> CruiseProbes(const CommandSamples& s, std::size_t period_ticks) {
+  std::vector<std::size_t> probes;
   for (const auto& [run_start, end] : s.steady_runs) {
-    if (end - run_start >= period_ticks) {
-      std::fill(cruise_tick.begin() + run_start, cruise_tick.begin() + end, 1);
-      probes->push_back(run_start - 1 + period_ticks);
-    }
+    if (end - run_start >= period_ticks) probes.push_back(run_start - 1 + period_ticks);
   }
-  return cruise_tick;
+  return probes;
 }
 
 }  // namespace
@@ -55,7 +53,7 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
   w.max_ticks = static_cast<std::size_t>(std::min(
       static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));
   w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy;
-  w.cruise_tick = CruiseTicks(samples, w.period_ticks, &w.cruise_probe_ticks);
+  w.cruise_probe_ticks = CruiseProbes(samples, w.period_ticks);
   return w;
 }
 

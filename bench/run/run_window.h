@@ -26,13 +26,11 @@ struct RunWindow {
   std::size_t period_ticks = 0;    // one lowest-mode period
   std::size_t max_ticks = 0;       // the tick the run stops at if it never settles
   bool never_settles_late = false;
-  // Cruise: the commanded feed constant and non-zero for at least one lowest-mode period
-  // in a row. Shorter constant stretches are steps of a pattern (method 2's zero step,
-  // T/6), not the cruise whose vibration cruise_residual_ratio reports.
-  std::vector<char> cruise_tick;
-  // Per cruise stretch (a maximal run of cruise ticks s..e), ascending: the tick one
-  // lowest-mode period into it, s - 1 + period_ticks (<= e), whose state
-  // cruise_residual_ratio reads.
+  // Per cruise stretch, ascending: the tick one lowest-mode period into it, s - 1 +
+  // period_ticks (<= e), whose state cruise_residual_ratio reads. Cruise: the commanded
+  // feed constant and non-zero for at least one lowest-mode period in a row (ticks s..e).
+  // Shorter constant stretches are steps of a pattern (method 2's zero step, T/6), not the
+  // cruise whose vibration cruise_residual_ratio reports.
   std::vector<std::size_t> cruise_probe_ticks;
 
   std::size_t window_end() const { return motion_ticks + residual_ticks; }

@@ -45,12 +45,26 @@ bool PlantOnlyKey(const std::string& key) {
   return false;
 }
 
+// PlantOnlyKey of the keys this thread met: a sweep asks about the same few keys every
+// point (the answer builds strings for every list of every machine form).
+bool PlantOnlyKeyCached(const std::string& key) {
+  thread_local std::vector<std::pair<std::string, bool>> known;
+  for (const auto& [name, plant_only] : known) {
+    if (name == key) return plant_only;
+  }
+  const bool plant_only = PlantOnlyKey(key);
+  if (known.size() < 64) known.emplace_back(key, plant_only);
+  return plant_only;
+}
+
 std::string CommandKey(const SweepPoint& point) {
   std::string key;
   for (std::size_t i = 0; i < point.overrides.size(); ++i) {
     const Override& o = point.overrides[i];
     // The --set options (after the point's values) and the swept keys the controller reads.
-    if (i >= point.keys.size() || !PlantOnlyKey(o.key_path)) key += o.key_path + "=" + o.value_yaml + "\n";
+    if (i >= point.keys.size() || !PlantOnlyKeyCached(o.key_path)) {
+      key.append(o.key_path).append(1, '=').append(o.value_yaml).append(1, '\n');
+    }
   }
   return key;
 }
