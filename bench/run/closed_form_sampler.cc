@@ -43,6 +43,7 @@ class ClosedFormSampler final : public Sampler {
     static_m_ = tally_.static_m;
     contour_floor_ = 1e-12 * static_m_;
     next_probe_ = window_.cruise_probe_ticks.begin();
+    change_cursor_ = kernel_.s_.accel_changes.begin();
     const CommandSamples& s = kernel_.s_;
     const double end = s.positions.back()(kernel_.axis_);
     // OffLineBound's rounding term, at its largest over the run's positions (within the
@@ -97,6 +98,8 @@ class ClosedFormSampler final : public Sampler {
   std::size_t inner_from_ = 1;
   std::size_t inner_to_ = 0;
   bool tail_closed_ = false;
+  // QuietStretchEnd's place in the command's accel_changes: the first change after its tick.
+  mutable std::vector<std::size_t>::const_iterator change_cursor_;
 };
 
 template <RunPhase P>
@@ -319,7 +322,13 @@ std::size_t ClosedFormSampler::QuietStretchEnd(std::size_t k) const {
   const CommandSamples& s = kernel_.s_;
   const int ax = kernel_.axis_;
   if (kernel_.start_ != 0.0 || s.monotone[ax] != (kernel_.direction_ > 0.0 ? 1 : -1)) return k;
-  const auto change = std::upper_bound(s.accel_changes.begin(), s.accel_changes.end(), k);
+  // upper_bound(k) by a cursor: the ticks come in order (a binary search a tick cost a
+  // point more than the rest of this test).
+  if (change_cursor_ != s.accel_changes.begin() && *(change_cursor_ - 1) > k) {
+    change_cursor_ = std::upper_bound(s.accel_changes.begin(), s.accel_changes.end(), k);
+  }
+  while (change_cursor_ != s.accel_changes.end() && *change_cursor_ <= k) ++change_cursor_;
+  const auto change = change_cursor_;
   std::size_t stop = change == s.accel_changes.end() ? window_.motion_ticks : std::min(*change, window_.motion_ticks);
   if (next_probe_ != window_.cruise_probe_ticks.end()) stop = std::min(stop, *next_probe_);
   if (stop <= k) return k;
