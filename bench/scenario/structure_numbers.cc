@@ -1,9 +1,11 @@
 #include "bench/scenario/structure_numbers.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <system_error>
 #include <variant>
 
 #include "common/field_list.h"
@@ -110,6 +112,12 @@ std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
 // The number as NodeReader::AsNumber reads it; nullopt where it would refuse it.
 std::optional<double> PlainNumber(const std::string& text) {
   if (!IsNumberText(text)) return std::nullopt;
+  // from_chars first: the same correctly rounded value as strtod, at a fraction of its cost
+  // (a sweep point parses its values here); strtod for what it leaves (a '+', an underflow).
+  const char* first = text.data();
+  const char* last = first + text.size();
+  double parsed = 0.0;
+  if (const auto [end, ec] = std::from_chars(first, last, parsed); ec == std::errc() && end == last) return parsed;
   errno = 0;
   const double value = std::strtod(text.c_str(), nullptr);
   if (errno == ERANGE && std::isinf(value)) return std::nullopt;
