@@ -5,6 +5,8 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <new>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -199,13 +201,22 @@ CrossCheckFamily CrossCheckCvodeFamily(double lo, double hi,
   family.usable = lo <= hi;
   auto check = [&](double value) {
     if (!family.usable) return;
-    const std::optional<FamilyMember> m = member(value);
-    if (!m) {
+    // A member that cannot be built or checked says nothing of the point being run (which
+    // may be valid): no verdict, each member checks itself.
+    CrossCheckResult r;
+    try {
+      const std::optional<FamilyMember> m = member(value);
+      if (!m) {
+        family.usable = false;
+        return;
+      }
+      r = CrossCheckCvode(m->plant, config, period_s, m->substeps, 1.0, velocity_per_accel_s, checked);
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception&) {
       family.usable = false;
       return;
     }
-    const CrossCheckResult r =
-        CrossCheckCvode(m->plant, config, period_s, m->substeps, 1.0, velocity_per_accel_s, checked);
     family.values.push_back(value);
     if (!r.solver_failure.empty() || !std::isfinite(r.deviation)) {
       family.usable = false;  // no verdict: each member checks itself

@@ -30,7 +30,7 @@ bool FamilyCoversRun(const Scenario& scenario, const model::LinearPlant& plant,
   // A member: the point's scenario with the family's number set, built as the run builds
   // its plant and substeps (PlantSampler, RunPlan).
   auto member = [&](double value) -> std::optional<model::FamilyMember> {
-    Scenario copy = scenario;
+    Scenario copy = scenario;  // (a throw here: no verdict, CrossCheckCvodeFamily)
     char text[32];
     std::snprintf(text, sizeof text, "%.17g", value);  // round-trips
     if (!SetStructureNumbers(&copy, {Override{band->key_path, text}})) return std::nullopt;

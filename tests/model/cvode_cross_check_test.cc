@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -124,6 +125,21 @@ TEST(CvodeCrossCheckFamily, FamilyDeviationBoundsEveryMember) {
   }
   EXPECT_LE(worst_ratio, kFamilyMarginSeen);
   EXPECT_LT(kFamilyMarginSeen, kFamilyMargin);
+}
+
+// Tests that a family with a member that cannot be built (its value invalid for the
+// machine: the member throws) gives no verdict instead of failing the point being run.
+TEST(CvodeCrossCheckFamily, AMemberThatThrowsLeavesTheFamilyUnusable) {
+  IntegratorConfig config;
+  const FamilyCase c{"throwing", true, 15.0, 35.0, 0.02, 1e-8, CvodeLmm::kAdams};
+  auto member = [&c](double v) -> std::optional<FamilyMember> {
+    if (v > 30.0) throw std::runtime_error("no such machine");
+    return MemberOf(c, v);
+  };
+  CrossCheckFamily family;
+  EXPECT_NO_THROW(family = CrossCheckCvodeFamily(c.lo, c.hi, member, config, kCrossCheckPeriodS, 0.05));
+  EXPECT_FALSE(family.usable);
+  EXPECT_FALSE(FamilyCovers(family, OneMode(20.0, 0.02, 1.0), kCrossCheckPeriodS, 1.0));
 }
 
 // Tests that a member is covered only where the family's deviation times the margin,
