@@ -122,8 +122,9 @@ void BM_Case1_CommandOnly(benchmark::State& state) {
 // Case 3 (and 4d): the sweep as `shapebench sweep` runs it (results.csv written, no plots).
 void Case3(benchmark::State& state, const std::string& method,
            const std::string& file = "case3_sweep.yaml", Durability durability = Durability::kSynced,
-           bool write_mat = false) {
-  const std::vector<Override> sets = {{"integrator.method", method}};
+           bool write_mat = false, const std::vector<Override>& more = {}) {
+  std::vector<Override> sets = {{"integrator.method", method}};
+  sets.insert(sets.end(), more.begin(), more.end());
   const Sweep sweep = LoadSweep(kSource + "/benchmarks/cases/" + file, sets);
   const std::string dir = (std::filesystem::temp_directory_path() /
                            ("shapebench_bench_sweep_" + std::to_string(getpid())))
@@ -204,6 +205,11 @@ void BM_Case4Damped_Exact(benchmark::State& state) { Case3(state, "exact", "case
 void BM_Case41_Exact5k(benchmark::State& state) { Case3(state, "exact", "case41_sweep_5k.yaml"); }
 void BM_Case41_Exact5kLong(benchmark::State& state) { Case3(state, "exact", "case41_sweep_5k_long.yaml"); }
 void BM_Case4Damped_Cvode(benchmark::State& state) { Case3(state, "cvode", "case4_damped_sweep.yaml"); }
+// Issue 41: the same without CVODE's cross-check, what the check costs a sweep (one
+// family check for the 1000 points: docs/performance.md).
+void BM_Case4Damped_CvodeNoCheck(benchmark::State& state) {
+  Case3(state, "cvode", "case4_damped_sweep.yaml", Durability::kSynced, false, {{"integrator.cross_check", "off"}});
+}
 // `sweep --no-sync`: the same sweeps without their three syncs of the disk (about half a
 // millisecond a sweep here), what the sweep's own work gives from 1 to 2 jobs.
 void BM_Case3_ExactNoSync(benchmark::State& state) {
@@ -724,6 +730,8 @@ BENCHMARK(BM_Case4Damped_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->
 BENCHMARK(BM_Case4Damped_ExactNoSync)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
     ->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_Case4Damped_Cvode)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
+    ->Iterations(1)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(BM_Case4Damped_CvodeNoCheck)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()
     ->Iterations(1)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(BM_CvodeCrossCheck)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CvodeTuning)->Apply(TuningArgs)->Unit(benchmark::kMicrosecond);

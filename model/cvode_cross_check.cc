@@ -5,6 +5,8 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <new>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -95,6 +97,18 @@ std::string CacheKey(const LinearPlant& plant, const IntegratorConfig& config, d
   return key;
 }
 
+// The pulse's length and the plant's memory (CrossCheckResult's), no deviation yet.
+CrossCheckResult PulseScales(const Eigen::VectorXcd& poles, double period_s) {
+  CrossCheckResult result;
+  result.sample_ticks = 4 * HalfPulseTicks(poles, period_s);
+  result.sample_s = static_cast<double>(result.sample_ticks) * period_s;
+  for (Eigen::Index i = 0; i < poles.size(); ++i) {
+    const double decay = -poles(i).real();
+    result.memory_s = std::max(result.memory_s, decay > 0.0 ? 1.0 / decay : HUGE_VAL);
+  }
+  return result;
+}
+
 }  // namespace
 
 CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfig& config,
@@ -123,9 +137,7 @@ CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfi
     return RunSample(integrator.get(), plant.num_inputs(), scale_accel_m_s2, half_ticks);
   };
   const std::vector<double> reference = run(exact);
-  CrossCheckResult result;
-  result.sample_ticks = 4 * half_ticks;
-  result.sample_s = static_cast<double>(result.sample_ticks) * period_s;
+  CrossCheckResult result = PulseScales(poles, period_s);
   std::vector<double> checked;
   try {
     checked = run(cvode);
@@ -140,10 +152,6 @@ CrossCheckResult CrossCheckCvode(const LinearPlant& plant, const IntegratorConfi
     const int row = static_cast<int>(i % width);
     scale[row] = std::max(scale[row], std::abs(reference[i]));
     error[row] = std::max(error[row], std::abs(checked[i] - reference[i]));
-  }
-  for (Eigen::Index i = 0; i < poles.size(); ++i) {
-    const double decay = -poles(i).real();
-    result.memory_s = std::max(result.memory_s, decay > 0.0 ? 1.0 / decay : HUGE_VAL);
   }
   for (int row = 0; row < width; ++row) {
     if (scale[row] > 0.0) {
@@ -183,6 +191,76 @@ CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const Integrato
   if (cache.size() >= kMaxEntries) cache.clear();
   cache.emplace(key, result);
   return result;
+}
+
+CrossCheckFamily CrossCheckCvodeFamily(double lo, double hi,
+                                       const std::function<std::optional<FamilyMember>(double)>& member,
+                                       const IntegratorConfig& config, double period_s,
+                                       double velocity_per_accel_s, CheckedIntegrator checked) {
+  CrossCheckFamily family;
+  family.usable = lo <= hi;
+  auto check = [&](double value) {
+    if (!family.usable) return;
+    // A member that cannot be built or checked says nothing of the point being run (which
+    // may be valid): no verdict, each member checks itself.
+    CrossCheckResult r;
+    try {
+      const std::optional<FamilyMember> m = member(value);
+      if (!m) {
+        family.usable = false;
+        return;
+      }
+      r = CrossCheckCvode(m->plant, config, period_s, m->substeps, 1.0, velocity_per_accel_s, checked);
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception&) {
+      family.usable = false;
+      return;
+    }
+    family.values.push_back(value);
+    if (!r.solver_failure.empty() || !std::isfinite(r.deviation)) {
+      family.usable = false;  // no verdict: each member checks itself
+    } else if (r.deviation >= family.deviation) {
+      family.deviation = r.deviation;
+      family.worst_value = value;
+    }
+  };
+  const double step = (hi - lo) / (kFamilyInterior + 1);
+  for (int i = 0; i <= kFamilyInterior + 1; ++i) check(i == kFamilyInterior + 1 ? hi : lo + step * i);
+  // Beside the largest: half a step either way, inside the band.
+  const double worst = family.worst_value;
+  if (worst - 0.5 * step > lo) check(worst - 0.5 * step);
+  if (worst + 0.5 * step < hi) check(worst + 0.5 * step);
+  return family;
+}
+
+CrossCheckFamily CachedCrossCheckCvodeFamily(const std::string& identity, double lo, double hi,
+                                             const std::function<std::optional<FamilyMember>(double)>& member,
+                                             const IntegratorConfig& config, double period_s,
+                                             double velocity_per_accel_s, CheckedIntegrator checked) {
+  static std::mutex mutex;
+  static std::map<std::string, CrossCheckFamily> cache;
+  constexpr std::size_t kMaxEntries = 256;
+  std::string key = identity;
+  const double band[2] = {lo, hi};
+  key.append(reinterpret_cast<const char*>(band), sizeof band);
+  key += checked == CheckedIntegrator::kNonlinear ? "nonlinear" : "linear";
+  // Computed under the lock: the threads of a sweep need the same family at its start, and
+  // one computation (a dozen checks) is cheaper than one per thread.
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto found = cache.find(key);
+  if (found != cache.end()) return found->second;
+  CrossCheckFamily family = CrossCheckCvodeFamily(lo, hi, member, config, period_s, velocity_per_accel_s, checked);
+  if (cache.size() >= kMaxEntries) cache.clear();
+  cache.emplace(std::move(key), family);
+  return family;
+}
+
+bool FamilyCovers(const CrossCheckFamily& family, const LinearPlant& plant, double period_s, double run_s) {
+  if (!family.usable) return false;
+  CrossCheckResult own = PulseScales(plant.A.eigenvalues(), period_s);
+  own.deviation = kFamilyMargin * family.deviation;
+  return own.Passed(run_s);
 }
 
 std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorConfig& config,

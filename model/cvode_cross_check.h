@@ -9,7 +9,10 @@
 // (AdvancePeriod with the held inputs announced).
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "model/integrator.h"
 #include "model/linear_plant.h"
@@ -66,6 +69,55 @@ CrossCheckResult CachedCrossCheckCvode(const LinearPlant& plant, const Integrato
                                        double period_s, int substeps, double scale_accel_m_s2,
                                        double scale_velocity_m_s,
                                        CheckedIntegrator checked = CheckedIntegrator::kLinear);
+
+// One check for a family of plants that differ only in one number of the structure (a
+// mode's frequency or damping ratio, swept by a sweep over [lo, hi]): the check's error
+// model is scale-free (the pulse follows the slowest pole, the tolerances the static
+// state), so the deviation on the pulse varies little over the family. It is checked at
+// the band's ends, at kFamilyInterior values evenly between, and at the midpoints beside
+// the largest; the family's deviation is the largest of these. A member is covered when
+// that deviation times kFamilyMargin, projected over its own run with its own memory and
+// pulse length (FamilyCovers), is within kCrossCheckLimit; a member that is not covered
+// gets its own check (CachedCrossCheckCvode), which alone refuses. The margin: on the
+// calibration sweeps (tests/model/cvode_cross_check_test.cc, docs/accuracy.md) no member's
+// own deviation exceeded the family's by more than kFamilyMarginSeen (1.35 at the most,
+// BDF at rtol 1e-7; 1.00-1.02 under Adams).
+constexpr int kFamilyInterior = 9;
+constexpr double kFamilyMargin = 2.0;
+constexpr double kFamilyMarginSeen = 1.4;
+
+// A member of the family at value v: its plant and the output substeps its run uses
+// (nullopt: no such member, the family is not usable).
+struct FamilyMember {
+  LinearPlant plant;
+  int substeps = 1;
+};
+
+struct CrossCheckFamily {
+  bool usable = false;     // every member checked ran and gave a finite deviation
+  double deviation = 0.0;  // the largest member's
+  double worst_value = 0.0;
+  std::vector<double> values;  // where it was checked, in order of checking
+};
+
+CrossCheckFamily CrossCheckCvodeFamily(double lo, double hi,
+                                       const std::function<std::optional<FamilyMember>(double)>& member,
+                                       const IntegratorConfig& config, double period_s,
+                                       double velocity_per_accel_s,
+                                       CheckedIntegrator checked = CheckedIntegrator::kLinear);
+
+// The same, remembered under `identity` (everything but the family's number that makes its
+// plants and settings: the caller's). Thread-safe; one computation per identity.
+CrossCheckFamily CachedCrossCheckCvodeFamily(const std::string& identity, double lo, double hi,
+                                             const std::function<std::optional<FamilyMember>(double)>& member,
+                                             const IntegratorConfig& config, double period_s,
+                                             double velocity_per_accel_s,
+                                             CheckedIntegrator checked = CheckedIntegrator::kLinear);
+
+// Whether the family's check covers a run of `run_s` on `plant` (a member): the family's
+// deviation times kFamilyMargin, projected as CrossCheckResult::Predicted with the plant's
+// own memory and pulse length, within kCrossCheckLimit.
+bool FamilyCovers(const CrossCheckFamily& family, const LinearPlant& plant, double period_s, double run_s);
 
 // What a user reads when the check fails: the disagreement, the allowance and the ways out.
 std::string CrossCheckMessage(const CrossCheckResult& result, const IntegratorConfig& config,

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "bench/run/cross_check_family.h"
 #include "bench/run/finish_metrics.h"
 #include "bench/run/run_work.h"
 #include "common/format.h"
@@ -77,9 +78,12 @@ void PlantSampler::SetUpPlant() {
       if (plan_.view.axis >= 0 && caps.period_extremum) {
         exact_extrema_ = integrator_->WatchExtremum(model::kDeflectionRow + plan_.view.axis);
       }
-      // The trace shows the tail: simulated then.
-      if (exact_extrema_ && caps.advance_at_rest && !plan_.record_trace && !window_.never_settles_late &&
-          plant.num_outputs() == model::kNumOutputRows) {
+      // The trace shows the tail: simulated then. CVODE's tail too is found in closed form
+      // from its state at the residual window's end (its peak sampled, not exact): a damped
+      // sweep's points spent about 40% of their steps simulating it (docs/performance.md).
+      const bool cvode = model::ResolveMethod(integrator_config_.method, plant) == model::IntegratorMethod::kCvode;
+      if ((exact_extrema_ ? caps.advance_at_rest : cvode && plan_.view.axis >= 0) && !plan_.record_trace &&
+          !window_.never_settles_late && plant.num_outputs() == model::kNumOutputRows) {
         damped_tail_ = std::make_unique<DampedTail>(plant, plan_.view);
       }
     }
@@ -115,6 +119,12 @@ void PlantSampler::CrossCheckCvode(const model::LinearPlant& plant, double scale
   // The metrics are read up to the end of the residual window.
   const double run_s = static_cast<double>(window_.window_end()) * dt_;
   const double first_rtol = config.rtol;
+  // A sweep's family of plants (cross_check_family.h): one check covers its points with a
+  // margin; a point it does not cover is checked alone below, as every point was before.
+  if (!nonlinear_ && FamilyCoversRun(plan_.scenario, plant, config, dt_,
+                                     samples_.max_speed_m_s / scale_accel, run_s)) {
+    return;
+  }
   model::CrossCheckResult check = model::CachedCrossCheckCvode(
       plant, config, dt_, substeps_, scale_accel, samples_.max_speed_m_s, checked);
   while (!config.rtol_given && !check.Passed(run_s) && check.solver_failure.empty() &&
@@ -303,7 +313,8 @@ bool PlantSampler::SettleTail(std::size_t k) {
   const std::size_t stop = quiet + window_.period_ticks;  // > k: Done(k) was false
   const std::size_t end = std::min(stop, window_.max_ticks);
   if (end < k) return false;
-  integrator_->AdvanceAtRest(static_cast<long>(end - k));
+  // CVODE is not advanced: nothing reads its state after the tail (its stats stop here).
+  if (integrator_->Capabilities().advance_at_rest) integrator_->AdvanceAtRest(static_cast<long>(end - k));
   tally_.last_outside_band = last_outside;
   tally_.quiet_since_tick = quiet;
   tally_.settled = stop <= window_.max_ticks;

@@ -1,12 +1,17 @@
 #include "bench/sweep/sweep_point_run.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
+#include <regex>
 #include <type_traits>
 #include <utility>
 
 #include "bench/config/key_path.h"
+#include "bench/run/cross_check_family.h"
 #include "bench/run/located_run.h"
 #include "bench/scenario/scenario_loader.h"
 #include "bench/scenario/structure_numbers.h"
@@ -14,6 +19,7 @@
 #include "bench/sweep/shared_command.h"
 #include "common/field_list.h"
 #include "common/validation_error.h"
+#include "model/cvode_cross_check.h"
 #include "model/integrator.h"
 
 namespace shapebench::bench {
@@ -153,6 +159,74 @@ void UseSharedCommand(const Sweep& sweep, const SweepPoint& point, const Scenari
   options->samples = &last.command->samples;
 }
 
+// The swept key whose values make a family for CVODE's cross-check (cross_check_family.h):
+// the first one that is a mode's frequency_hz or damping_ratio, alone on its axis, with a
+// band (a range, or a list of plain numbers) of enough values that a dozen checks are
+// worth it, and not set again by --set. SHAPEBENCH_CROSS_CHECK_FAMILY=0: none (every point
+// checks itself, as before).
+struct FamilyKey {
+  std::uint64_t sweep_id = 0;
+  std::size_t index = 0;  // among Sweep::Keys() and a point's overrides
+  CrossCheckFamilyBand band;
+  bool found = false;
+};
+
+bool ListBand(const SweepValues& values, double* lo, double* hi) {
+  for (std::uint64_t i = 0; i < values.size(); ++i) {
+    const std::string text = values.Yaml(i);
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v)) return false;
+    *lo = i == 0 ? v : std::min(*lo, v);
+    *hi = i == 0 ? v : std::max(*hi, v);
+  }
+  return values.size() > 0;
+}
+
+FamilyKey FindFamilyKey(const Sweep& sweep, const SweepPoint& point) {
+  FamilyKey family;
+  family.sweep_id = sweep.id;
+  const char* env = std::getenv("SHAPEBENCH_CROSS_CHECK_FAMILY");
+  if (sweep.id == 0 || (env != nullptr && std::strcmp(env, "0") == 0)) return family;
+  static const std::regex mode_number(R"(machine(\.axes\.[xyz])?\.modes\[\d+\]\.(frequency_hz|damping_ratio))");
+  constexpr std::uint64_t kMinValues = 2 * (model::kFamilyInterior + 4);  // half the checks at most
+  std::size_t index = 0;
+  for (const SweepAxis& axis : sweep.axes) {
+    for (const SweepValues& values : axis.keys) {
+      const std::size_t here = index++;
+      if (family.found || axis.keys.size() != 1 || values.size() < kMinValues ||
+          !std::regex_match(values.key, mode_number) || !IsStructureNumberKey(values.key)) {
+        continue;
+      }
+      double lo = std::min(values.from, values.to);
+      double hi = std::max(values.from, values.to);
+      if (values.kind == SweepValues::Kind::kSampled) continue;
+      if (values.kind == SweepValues::Kind::kList && !ListBand(values, &lo, &hi)) continue;
+      const bool set_again = std::any_of(point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()),
+                                         point.overrides.end(),
+                                         [&](const Override& o) { return o.key_path == values.key; });
+      if (set_again) continue;
+      family.found = true;
+      family.index = here;
+      family.band = {values.key, lo, hi, ""};
+    }
+  }
+  return family;
+}
+
+// The point's family band, or null; the key found once per sweep and thread.
+const CrossCheckFamilyBand* PointFamily(const Sweep& sweep, const SweepPoint& point) {
+  thread_local FamilyKey key;
+  if (key.sweep_id != sweep.id || sweep.id == 0) key = FindFamilyKey(sweep, point);
+  if (!key.found) return nullptr;
+  std::string& identity = key.band.identity;
+  identity = std::to_string(sweep.id) + "\n";
+  for (std::size_t i = 0; i < point.overrides.size(); ++i) {
+    if (i != key.index) identity += point.overrides[i].key_path + "=" + point.overrides[i].value_yaml + "\n";
+  }
+  return &key.band;
+}
+
 }  // namespace
 
 PointOutcome RunPoint(const Sweep& sweep, const std::vector<Override>& sets, std::uint64_t index) {
@@ -168,6 +242,7 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
     try {
       RunOptions options{false};  // no trace needed
       UseSharedCommand(sweep, point, scenario, &options);
+      const CrossCheckFamilyScope family(PointFamily(sweep, point));
       const RunResult result = RunScenario(scenario, options);
       outcome.metrics = result.metrics;
       outcome.error = WarningText(result.warnings);

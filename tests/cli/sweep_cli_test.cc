@@ -413,5 +413,40 @@ TEST(SweepCli, CheckReportsAPointThatFailsToRun) {
       << xml;
 }
 
+// Tests that CVODE's cross-check, priced once per family of a natural-period sweep, still
+// refuses every point that truly fails: at an explicit integrator.rtol of 3e-7 an undamped
+// 15-35 Hz sweep has points that pass and points that fail; results.csv is the same bytes
+// as with every point checked alone (SHAPEBENCH_CROSS_CHECK_FAMILY=0), and the 15 Hz
+// point's error is the message `run` exits 3 with for that point.
+TEST(SweepCli, FamilyCrossCheckStillRefusesAFailingPoint) {
+  ScratchDir dir;
+  const std::string base = std::string(kSourceDir) + "/benchmarks/cases/case1.yaml";
+  const std::string file = dir.File("undamped.yaml");
+  std::ofstream(file) << "base: " << base << "\ngrid:\n  machine.modes[0].frequency_hz: {from: 15, to: 35, steps: 60}\n"
+                      << "plots: []\n";
+  const std::vector<std::string> sets = {"--set", "integrator.method=cvode", "--set", "integrator.rtol=3e-7"};
+  const CliResult family = RunCli(Args({"sweep", file, "--jobs", "2", "--out", dir.File("family")}, sets), kSourceDir);
+  const CliResult alone = RunCli(Args({"sweep", file, "--jobs", "2", "--out", dir.File("alone")}, sets), kSourceDir,
+                                 "SHAPEBENCH_CROSS_CHECK_FAMILY=0 ");
+  EXPECT_EQ(family.exit_code, alone.exit_code) << family.err;
+  EXPECT_EQ(ReadText(dir.File("family") + "/results.csv"), ReadText(dir.File("alone") + "/results.csv"));
+  const std::vector<std::vector<std::string>> rows = ReadCsv(dir.File("family") + "/results.csv");
+  ASSERT_EQ(rows.size(), 61u);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  const std::size_t status = column("status");
+  const std::size_t error = column("error");
+  ASSERT_LT(error, rows[0].size());
+  const auto ok = std::count_if(rows.begin() + 1, rows.end(), [&](const auto& r) { return r[status] == "ok"; });
+  EXPECT_GT(ok, 0);
+  EXPECT_LT(ok, 60);
+  EXPECT_EQ(rows[1][status], "error");
+  const CliResult run = RunCli(Args({"run", base, "--set", "machine.modes[0].frequency_hz=15"}, sets), kSourceDir);
+  EXPECT_EQ(run.exit_code, 3);
+  EXPECT_NE(rows[1][error].find("CROSS_CHECK_FAILED"), std::string::npos) << rows[1][error];
+  EXPECT_EQ(run.err, "error: " + rows[1][error] + "\n");
+}
+
 }  // namespace
 }  // namespace shapebench::bench

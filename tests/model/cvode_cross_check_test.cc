@@ -1,6 +1,10 @@
 #include "model/cvode_cross_check.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -63,6 +67,101 @@ TEST(CvodeCrossCheck, SolverFailureIsNoVerdict) {
   EXPECT_NE(r.solver_failure.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.solver_failure;
   EXPECT_FALSE(r.Passed(1.0));
   EXPECT_NE(CrossCheckMessage(r, config, 1.0).find("accuracy on this plant is unknown"), std::string::npos);
+}
+
+// A family over one mode's frequency (or damping ratio) as a natural-period sweep has it.
+struct FamilyCase {
+  const char* name;
+  bool frequency;  // else the damping ratio is swept
+  double lo, hi;
+  double other;  // the damping ratio (frequency swept) or the frequency
+  double rtol;
+  CvodeLmm lmm;
+};
+
+std::optional<FamilyMember> MemberOf(const FamilyCase& c, double value) {
+  const double hz = c.frequency ? value : c.other;
+  FamilyMember m;
+  m.plant = OneMode(hz, c.frequency ? c.other : value, 1.0);
+  m.substeps = std::clamp(static_cast<int>(std::ceil(kCrossCheckPeriodS * hz * 200.0)), 1, 64);
+  return m;
+}
+
+// Tests that one check of a family stands for its members: on the calibration families
+// (case 4d's band, undamped, BDF, loose and tight rtol, a band of damping ratios) every
+// member's own deviation at 201 values across the band is within kFamilyMarginSeen of the
+// family's (the documented margin kFamilyMargin is above it), so a member the family covers
+// would pass its own check.
+TEST(CvodeCrossCheckFamily, FamilyDeviationBoundsEveryMember) {
+  const FamilyCase cases[] = {
+      {"case 4d", true, 15.0, 35.0, 0.02, 1e-8, CvodeLmm::kAdams},
+      {"undamped", true, 15.0, 35.0, 0.0, 1e-8, CvodeLmm::kAdams},
+      {"loose", true, 15.0, 35.0, 0.02, 1e-6, CvodeLmm::kAdams},
+      {"bdf", true, 15.0, 35.0, 0.02, 1e-7, CvodeLmm::kBdf},
+      {"wide", true, 5.0, 100.0, 0.03, 1e-8, CvodeLmm::kAdams},
+      {"damping", false, 0.0, 0.1, 25.0, 1e-7, CvodeLmm::kAdams},
+  };
+  double worst_ratio = 0.0;
+  for (const FamilyCase& c : cases) {
+    IntegratorConfig config;
+    config.rtol = c.rtol;
+    config.lmm = c.lmm;
+    auto member = [&c](double v) { return MemberOf(c, v); };
+    const CrossCheckFamily family = CrossCheckCvodeFamily(c.lo, c.hi, member, config, kCrossCheckPeriodS, 0.05);
+    ASSERT_TRUE(family.usable) << c.name;
+    EXPECT_EQ(family.values.size(), static_cast<std::size_t>(kFamilyInterior + 2) + 2 -
+                                        (family.worst_value == c.lo || family.worst_value == c.hi ? 1 : 0))
+        << c.name;
+    double ratio = 0.0;
+    for (int i = 0; i <= 200; ++i) {
+      const double v = c.lo + (c.hi - c.lo) * i / 200.0;
+      const FamilyMember m = *MemberOf(c, v);
+      const CrossCheckResult own = CrossCheckCvode(m.plant, config, kCrossCheckPeriodS, m.substeps, 1.0, 0.05);
+      ratio = std::max(ratio, own.deviation / family.deviation);
+    }
+    std::printf("%s: family deviation %.3g at %g, largest member / family %.3f\n", c.name, family.deviation,
+                family.worst_value, ratio);
+    worst_ratio = std::max(worst_ratio, ratio);
+  }
+  EXPECT_LE(worst_ratio, kFamilyMarginSeen);
+  EXPECT_LT(kFamilyMarginSeen, kFamilyMargin);
+}
+
+// Tests that a family with a member that cannot be built (its value invalid for the
+// machine: the member throws) gives no verdict instead of failing the point being run.
+TEST(CvodeCrossCheckFamily, AMemberThatThrowsLeavesTheFamilyUnusable) {
+  IntegratorConfig config;
+  const FamilyCase c{"throwing", true, 15.0, 35.0, 0.02, 1e-8, CvodeLmm::kAdams};
+  auto member = [&c](double v) -> std::optional<FamilyMember> {
+    if (v > 30.0) throw std::runtime_error("no such machine");
+    return MemberOf(c, v);
+  };
+  CrossCheckFamily family;
+  EXPECT_NO_THROW(family = CrossCheckCvodeFamily(c.lo, c.hi, member, config, kCrossCheckPeriodS, 0.05));
+  EXPECT_FALSE(family.usable);
+  EXPECT_FALSE(FamilyCovers(family, OneMode(20.0, 0.02, 1.0), kCrossCheckPeriodS, 1.0));
+}
+
+// Tests that a member is covered only where the family's deviation times the margin,
+// projected over its own run, passes: an undamped member's projection grows with its
+// frequency (its pulse is shorter), so the top of a band can fall out of cover while the
+// bottom stays in.
+TEST(CvodeCrossCheckFamily, CoverFollowsTheMembersOwnProjection) {
+  CrossCheckFamily family;
+  family.usable = true;
+  family.deviation = 1e-6;
+  const LinearPlant slow = OneMode(15.0, 0.0, 1.0);
+  const LinearPlant fast = OneMode(35.0, 0.0, 1.0);
+  // Pulses of 132 ticks at 15 Hz and 56 at 35 Hz (4 half periods rounded to 1 ms ticks);
+  // a run of 1.2 s projects 9.1 and 21.4 pulses: 1e-6 passes both, this one only 15 Hz's.
+  const double run_s = 1.2;
+  EXPECT_TRUE(FamilyCovers(family, slow, kCrossCheckPeriodS, run_s));
+  EXPECT_TRUE(FamilyCovers(family, fast, kCrossCheckPeriodS, run_s));
+  family.deviation = kCrossCheckLimit / kFamilyMargin * (0.1 / run_s);
+  EXPECT_FALSE(FamilyCovers(family, fast, kCrossCheckPeriodS, run_s));
+  EXPECT_TRUE(FamilyCovers(family, slow, kCrossCheckPeriodS, run_s));
+  family.usable = false;
+  EXPECT_FALSE(FamilyCovers(family, slow, kCrossCheckPeriodS, run_s));
 }
 
 }  // namespace

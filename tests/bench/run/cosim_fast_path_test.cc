@@ -26,7 +26,12 @@ void ExpectSameMetrics(const Scenario& scenario, const std::string& what) {
   EXPECT_GT(fast.metrics.peak_ratio, 0.5) << what;
   ExpectSameBits(traced.metrics, fast.metrics, what);
   EXPECT_EQ(traced.simulated_s, fast.simulated_s) << what;
-  EXPECT_EQ(traced.stats.steps, fast.stats.steps) << what;
+  if (scenario.integrator.method == model::IntegratorMethod::kCvode && fast.tail_in_closed_form) {
+    // CVODE stops at the residual window's end when the tail is found in closed form.
+    EXPECT_LT(fast.stats.steps, traced.stats.steps) << what;
+  } else {
+    EXPECT_EQ(traced.stats.steps, fast.stats.steps) << what;
+  }
 }
 
 // Tests the patent's SDOF move (one axis: the single-axis samples) with each integrator,

@@ -42,6 +42,27 @@ TEST_P(DampedTailTest, SettlingEqualsTheSimulatedTail) {
   }
 }
 
+// Tests that a CVODE run finds its settling tail in closed form too, from CVODE's state at
+// the residual window's end: every metric the simulated tail's (settling_time_s within one
+// sample), the same run length, and fewer CVODE steps (the tail is not integrated).
+TEST(DampedTailCvode, ClosedFormTailKeepsTheMetrics) {
+  for (const char* hz : {"15", "21.3", "27.5", "31.9", "35"}) {  // off the design: a tail
+    const Scenario s = LoadScenario(std::string(SHAPEBENCH_SOURCE_DIR) + "/benchmarks/cases/case1_damped.yaml",
+                                    {{"machine.modes[0].frequency_hz", hz}, {"integrator.method", "cvode"}});
+    const RunResult simulated = RunScenario(s, RunOptions{true});
+    const RunResult closed = RunScenario(s, RunOptions{false});
+    EXPECT_FALSE(simulated.tail_in_closed_form);
+    EXPECT_TRUE(closed.tail_in_closed_form) << hz;
+    EXPECT_NEAR(closed.metrics.settling_time_s, simulated.metrics.settling_time_s, 0.001 / closed.substeps) << hz;
+    EXPECT_EQ(closed.simulated_s, simulated.simulated_s) << hz;
+    EXPECT_EQ(closed.metrics.peak_ratio, simulated.metrics.peak_ratio) << hz;
+    EXPECT_EQ(closed.metrics.residual_ratio, simulated.metrics.residual_ratio) << hz;
+    EXPECT_EQ(closed.metrics.residual_peak_ratio, simulated.metrics.residual_peak_ratio) << hz;
+    EXPECT_EQ(closed.metrics.max_contour_error_m, simulated.metrics.max_contour_error_m) << hz;
+    EXPECT_LT(closed.stats.steps, simulated.stats.steps) << hz;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Frequencies, DampedTailTest,
                          ::testing::Values(15.0, 18.4, 21.0, 23.3, 25.0, 26.7, 29.0, 31.9, 35.0));
 
