@@ -432,8 +432,9 @@ ModalModel FitModes(const BandData& band, int derivative_order, const Identifica
   while (options.min_error_rise_percent > 0.0 && !model.poles.empty()) {
     const std::size_t r = LeastContribution(x, band.frfs, derivative_order, model, &rise);
     if (!(rise < options.min_error_rise_percent)) break;
-    const IdentifiedMode& mode = result->modes[r];
-    result->rejected.push_back({mode.frequency_hz, mode.damping_ratio, mode.stable_orders, mode.prominence, rise});
+    const Complex lambda = model.poles[r] * band.omega.back();  // an added mode has only its pole yet
+    result->rejected.push_back({std::abs(lambda) / kTwoPi, -lambda.real() / std::abs(lambda),
+                                result->modes[r].stable_orders, result->modes[r].prominence, rise});
     result->modes.erase(result->modes.begin() + static_cast<std::ptrdiff_t>(r));
     model.poles.erase(model.poles.begin() + static_cast<std::ptrdiff_t>(r));
     FitLinear(x, band.frfs, derivative_order, &model);

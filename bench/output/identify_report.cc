@@ -52,7 +52,9 @@ std::string KeptWhy(const model::IdentifiedMode& mode) {
 
 std::string RejectedWhy(const model::RejectedMode& mode) {
   if (mode.error_rise_percent > 0.0) {
-    return "stable at " + std::to_string(mode.stable_orders) + " orders, but removing it raises the fit error by " +
+    return (mode.stable_orders > 0 ? "stable at " + std::to_string(mode.stable_orders) + " orders"
+                                   : std::string("added as missed by the diagram")) +
+           ", but removing it raises the fit error by " +
            FormatNumber(mode.error_rise_percent, 3) + " points only (under " +
            FormatNumber(model::IdentificationOptions{}.min_error_rise_percent, 3) + ")";
   }
