@@ -12,12 +12,17 @@
 #include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
+#include "model/modal_local_damping.h"
 #include "model/modal_refinement.h"
 
 namespace shapebench::model {
 namespace {
 
 using Complex = std::complex<double>;
+
+// A narrow peak's damping from its neighbourhood is kept while the whole band's squared
+// error grows by at most this fraction (model/modal_local_damping.h; 0.3 % on pyuff's beam).
+constexpr double kLocalDampingErrorGrowth = 0.02;
 
 // The FRFs restricted to the band, scaled to unit RMS (the poles do not depend on the
 // scale; the normal equations stay well scaled whatever the unit).
@@ -146,14 +151,18 @@ DiagramPole ToDiagramPole(int order, Complex lambda) {
   return pole;
 }
 
-// Each order's physical poles, marked against the previous order's.
-std::vector<DiagramPole> BuildDiagram(const BandData& band, const IdentificationOptions& options,
-                                      double band_lo_hz, double band_hi_hz, int max_order) {
-  const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi
-  const LagSums sums = ComputeLagSums(band, ts, 2 * max_order);
-  std::vector<DiagramPole> diagram;
-  std::vector<DiagramPole> previous;
-  for (int order = 1; order <= max_order; ++order) {
+// The stabilisation diagram of orders 1..built: each order's physical poles, marked
+// against the previous order's.
+struct Diagram {
+  int built = 0;
+  std::vector<DiagramPole> poles;
+  std::vector<DiagramPole> last;  // order `built`'s
+};
+
+// Extends `diagram` to `to_order` (the lag sums hold lags up to 2 to_order at least).
+void ExtendDiagram(const LagSums& sums, double ts, const IdentificationOptions& options, double band_lo_hz,
+                   double band_hi_hz, int to_order, Diagram* diagram) {
+  for (int order = diagram->built + 1; order <= to_order; ++order) {
     std::vector<DiagramPole> current;
     for (const Complex& lambda : LscfPoles(sums, 2 * order, ts)) {
       if (!(lambda.imag() > 0.0)) continue;  // one of each pair; real poles are not modes
@@ -161,7 +170,7 @@ std::vector<DiagramPole> BuildDiagram(const BandData& band, const Identification
       if (!(pole.damping_ratio > 0.0 && pole.damping_ratio < options.max_damping_ratio)) continue;
       if (pole.frequency_hz < band_lo_hz || pole.frequency_hz > band_hi_hz) continue;
       const DiagramPole* nearest = nullptr;
-      for (const DiagramPole& before : previous) {
+      for (const DiagramPole& before : diagram->last) {
         if (!nearest || std::abs(before.frequency_hz - pole.frequency_hz) <
                             std::abs(nearest->frequency_hz - pole.frequency_hz)) {
           nearest = &before;
@@ -175,10 +184,10 @@ std::vector<DiagramPole> BuildDiagram(const BandData& band, const Identification
       }
       current.push_back(pole);
     }
-    diagram.insert(diagram.end(), current.begin(), current.end());
-    previous = std::move(current);
+    diagram->poles.insert(diagram->poles.end(), current.begin(), current.end());
+    diagram->last = std::move(current);
+    diagram->built = order;
   }
-  return diagram;
 }
 
 double Median(std::vector<double> values) {
@@ -252,6 +261,54 @@ std::vector<IdentifiedMode> PickModes(const std::vector<DiagramPole>& diagram, c
     begin = end;
   }
   return modes;
+}
+
+// The modes picked from the diagram's orders 1..order.
+std::vector<IdentifiedMode> ModesUpTo(const Diagram& diagram, const IdentificationOptions& options, int order) {
+  std::vector<DiagramPole> poles;
+  for (const DiagramPole& pole : diagram.poles) {
+    if (pole.order <= order) poles.push_back(pole);
+  }
+  return PickModes(poles, options, order);
+}
+
+// As many modes (at least one), each frequency within `tolerance` of the other's.
+bool SameModes(const std::vector<IdentifiedMode>& a, const std::vector<IdentifiedMode>& b, double tolerance) {
+  if (a.empty() || a.size() != b.size()) return false;
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    if (std::abs(a[r].frequency_hz - b[r].frequency_hz) > tolerance * b[r].frequency_hz) return false;
+  }
+  return true;
+}
+
+// IdentificationOptions::auto_order: the diagram is extended by doubling the order from
+// kFirstAutoOrder (at most `cap`, and while the work stays within max_work) until the
+// modes picked up to one order are those picked up to the next; returns that next order.
+int ChooseOrder(const LagSums& sums, double ts, const IdentificationOptions& options, double band_lo_hz,
+                double band_hi_hz, int cap, int lines, int frfs, Diagram* diagram, ModalIdentification* result) {
+  int order = std::min(kFirstAutoOrder, cap);
+  ExtendDiagram(sums, ts, options, band_lo_hz, band_hi_hz, order, diagram);
+  std::vector<IdentifiedMode> modes = ModesUpTo(*diagram, options, order);
+  result->orders_compared = {order};
+  result->order_stop = "cap";
+  while (order < cap) {
+    const int next = std::min(2 * order, cap);
+    if (IdentificationWork(lines, frfs, next) > options.max_work) {
+      result->order_stop = "work";
+      break;
+    }
+    ExtendDiagram(sums, ts, options, band_lo_hz, band_hi_hz, next, diagram);
+    std::vector<IdentifiedMode> next_modes = ModesUpTo(*diagram, options, next);
+    result->orders_compared.push_back(next);
+    const bool settled = SameModes(modes, next_modes, options.frequency_tolerance);
+    order = next;
+    modes = std::move(next_modes);
+    if (settled) {
+      result->order_stop = "settled";
+      break;
+    }
+  }
+  return order;
 }
 
 Complex Pole(const IdentifiedMode& mode) {
@@ -367,6 +424,21 @@ ModalModel FitModes(const BandData& band, int derivative_order, const Identifica
   }
   AddMissed(band, derivative_order, options, x, &model, result);
   SortByFrequency(&model, &result->modes);
+  const std::vector<bool> local = LocalDampingOfNarrowPeaks(x, band.frfs, derivative_order, options.max_damping_ratio,
+                                                            kLocalDampingErrorGrowth, &model);
+  for (std::size_t r = 0; r < local.size(); ++r) result->modes[r].local_damping = local[r];
+  // Modes that explain too little of the data (IdentificationOptions::min_error_rise_percent).
+  double rise = 0.0;
+  while (options.min_error_rise_percent > 0.0 && !model.poles.empty()) {
+    const std::size_t r = LeastContribution(x, band.frfs, derivative_order, model, &rise);
+    if (!(rise < options.min_error_rise_percent)) break;
+    const Complex lambda = model.poles[r] * band.omega.back();  // an added mode has only its pole yet
+    result->rejected.push_back({std::abs(lambda) / kTwoPi, -lambda.real() / std::abs(lambda),
+                                result->modes[r].stable_orders, result->modes[r].prominence, rise});
+    result->modes.erase(result->modes.begin() + static_cast<std::ptrdiff_t>(r));
+    model.poles.erase(model.poles.begin() + static_cast<std::ptrdiff_t>(r));
+    FitLinear(x, band.frfs, derivative_order, &model);
+  }
   return model;
 }
 
@@ -429,6 +501,7 @@ void IdentificationOptions::validate() const {
     throw ValidationError("min_stable_fraction", "must be in [0, 1]");
   }
   if (!(max_work >= 1.0)) throw ValidationError("max_work", "must be >= 1");
+  if (!(min_error_rise_percent >= 0.0)) throw ValidationError("min_error_rise_percent", "must be >= 0");
   if (!(min_prominence >= 0.0 && min_prominence < 1.0)) throw ValidationError("min_prominence", "must be in [0, 1)");
   if (!(min_error_drop > 0.0 && min_error_drop < 1.0)) throw ValidationError("min_error_drop", "must be in (0, 1)");
 }
@@ -492,11 +565,19 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
   const BandData band = SelectBand(frequency_hz, frfs, options, &result.frequency_hz);
   // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
   const int lines = static_cast<int>(band.omega.size());
-  result.max_order = std::max(1, std::min(options.max_order, (lines - 2) / 4));
-  RequireWithinWork(lines, static_cast<int>(frfs.size()), result.max_order, options);
+  const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
+  const int count = static_cast<int>(frfs.size());
+  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options);
   const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
   const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
-  result.diagram = BuildDiagram(band, options, band_lo, band_hi, result.max_order);
+  const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi
+  const LagSums sums = ComputeLagSums(band, ts, 2 * cap);
+  Diagram diagram;
+  result.max_order = options.auto_order
+                         ? ChooseOrder(sums, ts, options, band_lo, band_hi, cap, lines, count, &diagram, &result)
+                         : cap;
+  ExtendDiagram(sums, ts, options, band_lo, band_hi, result.max_order, &diagram);
+  result.diagram = std::move(diagram.poles);
   result.modes = PickModes(result.diagram, options, result.max_order);
   std::vector<double> x;
   for (double w : band.omega) x.push_back(w / band.omega.back());

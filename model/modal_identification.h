@@ -28,6 +28,9 @@ std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, i
 // the shipped measurement's fit; ten copies of it at order 200 need 1.05e11, above it).
 constexpr double kDefaultIdentificationWork = 1e11;
 
+// The first order auto_order tries.
+constexpr int kFirstAutoOrder = 8;
+
 struct IdentificationOptions {
   // The band the poles are searched in and the modal constants fitted over, in Hz; lines
   // at 0 Hz are left out (the lower residual is singular there).
@@ -37,6 +40,16 @@ struct IdentificationOptions {
   // orders 1..max_order are fitted. Capped by the lines in the band (an order needs more
   // lines than coefficients).
   int max_order = 30;
+  // Choose the order, max_order being its cap: the diagram is built to kFirstAutoOrder,
+  // then to twice that and so on, until the modes picked up to one order are those picked
+  // up to the next (as many, at least one, each frequency within frequency_tolerance);
+  // that next order is used (ModalIdentification::orders_compared, order_stop).
+  bool auto_order = false;
+  // After the fit, a mode whose removal (the rest refitted by LSFD) raises the band's fit
+  // error by less than this many points (1 % of the data's norm: issue 34's measure of an
+  // extra mode) is dropped, the least first, and the rest refitted
+  // (RejectedMode::error_rise_percent); 0 turns it off.
+  double min_error_rise_percent = 1.0;
   // A pole is stable when the previous order has one within these relative distances.
   double frequency_tolerance = 0.01;
   double damping_tolerance = 0.05;
@@ -95,6 +108,9 @@ struct IdentifiedMode {
   // 0 for a mode of the diagram; for one the diagram missed (model/modal_refinement.h,
   // AddMissedPoles), the fraction of the squared error its addition removed.
   double error_drop = 0.0;
+  // Its peak is narrower than a line: its damping was fitted on its own neighbourhood
+  // (model/modal_local_damping.h).
+  bool local_damping = false;
 };
 
 // A cluster of stable poles that PickModes found and the data did not show: its pole from
@@ -104,6 +120,9 @@ struct RejectedMode {
   double damping_ratio = 0.0;
   int stable_orders = 0;
   double prominence = 0.0;
+  // > 0: dropped by min_error_rise_percent, its removal raising the fit error by this many
+  // points; 0: dropped for its prominence.
+  double error_rise_percent = 0.0;
 };
 
 struct FrfFit {
@@ -116,6 +135,11 @@ struct FrfFit {
 struct ModalIdentification {
   std::vector<double> frequency_hz;  // the band's lines used
   int max_order = 0;                 // the highest order fitted (after the cap)
+  // auto_order: the orders whose picked modes were compared, ascending, and why it
+  // stopped: "settled" (the last two agree), "cap" (max_order or the lines reached),
+  // "work" (the next would exceed max_work).
+  std::vector<int> orders_compared;
+  std::string order_stop;
   std::vector<DiagramPole> diagram;
   std::vector<IdentifiedMode> modes;  // ascending frequency
   std::vector<RejectedMode> rejected;  // in the order they were dropped

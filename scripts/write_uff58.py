@@ -11,6 +11,12 @@ shipped measurements (docs/measured-data.md):
       tests/data/uff/pyuff_beam_accelerance.uff: the measured accelerances pyuff ships as
       text (data/meas_point_N.txt, one complex number a line, 0 to 1000 Hz every 1 Hz),
       written as pyuff's showcase writes them: response node 1 +x, reference node N +x.
+
+  scripts/write_uff58.py one OUT.uff VALUES.txt "ID LINE"
+      tests/data/uff/real/pyfrf_hammer_h1_accelerance.uff: one accelerance (one complex
+      number a line, 0 Hz up every 1 Hz; nan for a line not measured) as one record,
+      response and reference node 1 +x, its first ID line given
+      (tests/data/uff/real/README.md says how the values were made).
 """
 import sys
 
@@ -59,8 +65,16 @@ def from_text(out, paths):
             file.write(record(4, 1, 1, n, 1, 0.0, 1.0, values, "pyuff data/meas_point_%d.txt" % n))
 
 
+def one(out, path, id1):
+    values = np.genfromtxt(path, dtype=complex)
+    with open(out, "w") as file:
+        file.write(record(4, 1, 1, 1, 1, 0.0, 1.0, values, id1))
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "synthetic":
         synthetic(sys.argv[2])
+    elif sys.argv[1] == "one":
+        one(sys.argv[2], sys.argv[3], sys.argv[4])
     else:
         from_text(sys.argv[2], sys.argv[3:])

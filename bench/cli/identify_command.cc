@@ -24,16 +24,35 @@ namespace {
 struct IdentifyArgs {
   std::string file;
   std::string axis;   // "", "x", "y", "z"
-  std::string band;   // "", "MIN:MAX" in Hz
-  int max_order = 30;
+  std::string band;   // "", "MIN:MAX" in Hz, "auto"
+  std::string max_order = "30";  // 1..200 or "auto"
   std::string max_work;  // "": the default
   bool json = false;
   double max_fit_error_percent = kDefaultMaxFitErrorPercent;
   std::string out_dir;  // "": identify_out/STEM
 };
 
-// --band MIN:MAX in Hz.
+// --max-order N (1 to 200) or auto (the order chosen up to 200: FrfSelection::auto_order).
+void ParseMaxOrder(const std::string& text, FrfSelection* selection) {
+  if (text == "auto") {
+    selection->auto_order = true;
+    selection->max_order = 200;
+    return;
+  }
+  double order = 0.0;
+  if (!ParseDecimal(text, &order) || order != std::floor(order) || !(order >= 1.0 && order <= 200.0)) {
+    throw std::runtime_error("--max-order: expected an integer from 1 to 200 or auto, got '" +
+                             TerminalSafe(text, false) + "'");
+  }
+  selection->max_order = static_cast<int>(order);
+}
+
+// --band MIN:MAX in Hz, or auto (FrfSelection::auto_band).
 void ParseBand(const std::string& text, FrfSelection* selection) {
+  if (text == "auto") {
+    selection->auto_band = true;
+    return;
+  }
   const std::size_t colon = text.find(':');
   bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
   if (ok) {
@@ -55,7 +74,7 @@ int IdentifyCommand(const IdentifyArgs& args) {
   FrfSelection selection;
   if (!args.axis.empty()) selection.axis = static_cast<int>(std::string("xyz").find(args.axis));
   if (!args.band.empty()) ParseBand(args.band, &selection);
-  selection.max_order = args.max_order;
+  ParseMaxOrder(args.max_order, &selection);
   if (!args.max_work.empty() &&
       (!ParseDecimal(args.max_work, &selection.max_work) || !(selection.max_work >= 1.0) ||
        !std::isfinite(selection.max_work))) {
@@ -107,11 +126,15 @@ Command AddIdentifyCommand(CLI::App* app) {
   identify->add_option("--axis", args->axis, "only the records whose response is along this axis")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->type_name("x|y|z");
-  identify->add_option("--band", args->band, "the band in Hz the modes are identified in (default: all lines)")
-      ->type_name("MIN:MAX");
-  identify->add_option("--max-order", args->max_order, "highest model order in pole pairs (default 30)")
-      ->check(CLI::Range(1, 200))
-      ->type_name("N");
+  identify
+      ->add_option("--band", args->band,
+                   "the band in Hz the modes are identified in (default: all lines); auto: around the records' peaks")
+      ->type_name("MIN:MAX|auto");
+  identify
+      ->add_option("--max-order", args->max_order,
+                   "highest model order in pole pairs, 1 to 200 (default 30); auto: doubled from 8 until the "
+                   "picked modes repeat")
+      ->type_name("N|auto");
   identify
       ->add_option("--max-work", args->max_work,
                    "the most work the fit may take, in multiply-adds estimated before it starts (default 1e11); "

@@ -5,6 +5,7 @@
 #include "common/format.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
+#include "model/modal_band.h"
 
 namespace shapebench::bench {
 namespace {
@@ -110,15 +111,12 @@ std::string DirectionName(int direction) {
   return "scalar";
 }
 
-IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& selection) {
+IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& given) {
   IdentifiedFrfs result;
   result.file = ReadUff58(path);
-  result.records = SelectRecords(result.file, selection.axis);
+  result.records = SelectRecords(result.file, given.axis);
   CheckAlike(result.file, result.records);
   const Uff58Record& first = result.file.records[result.records.front()];
-  CheckFrfBand(result.file, first, selection);
-  result.warnings = result.file.warnings;
-  CheckNonFinite(result.file, result.records, selection, &result.warnings);
   result.response = first.response;
   result.excitation = first.excitation;
   result.frequency_hz = first.frequency_hz;
@@ -128,10 +126,26 @@ IdentifiedFrfs IdentifyFrfFile(const std::string& path, const FrfSelection& sele
     for (auto& value : frf) value *= record.DirectionSign();
     result.frfs.push_back(std::move(frf));
   }
+  FrfSelection selection = given;
+  if (selection.auto_band) {
+    try {
+      result.auto_band = model::ChooseBand(result.frequency_hz, result.frfs);
+    } catch (const ValidationError& error) {
+      throw ConfigError(path, first.record12_line, 1, "record 12", error.message());
+    }
+    selection.min_frequency_hz = result.auto_band->min_frequency_hz;
+    selection.max_frequency_hz = result.auto_band->max_frequency_hz;
+    selection.band_source = "--band auto (" + FormatNumber(selection.min_frequency_hz, 6) + ":" +
+                            FormatNumber(selection.max_frequency_hz, 6) + ")";
+  }
+  CheckFrfBand(result.file, first, selection);
+  result.warnings = result.file.warnings;
+  CheckNonFinite(result.file, result.records, selection, &result.warnings);
   model::IdentificationOptions options;
   options.min_frequency_hz = selection.min_frequency_hz;
   options.max_frequency_hz = selection.max_frequency_hz;
   options.max_order = selection.max_order;
+  options.auto_order = selection.auto_order;
   options.max_work = selection.max_work;
   options.max_work_key = selection.max_work_key;
   try {

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/measured/uff58_reader.h"
+#include "model/modal_band.h"
 #include "model/modal_identification.h"
 
 namespace shapebench::bench {
@@ -23,6 +25,10 @@ struct FrfSelection {
   double min_frequency_hz = 0.0;
   double max_frequency_hz = std::numeric_limits<double>::infinity();
   int max_order = 30;  // pole pairs (model::IdentificationOptions::max_order)
+  // --band auto: the band chosen from the records' peaks (model/modal_band.h), the band
+  // fields ignored; --max-order auto: model::IdentificationOptions::auto_order, max_order its cap.
+  bool auto_band = false;
+  bool auto_order = false;
   // model::IdentificationOptions::max_work, and the option or key that sets it (messages).
   double max_work = model::kDefaultIdentificationWork;
   std::string max_work_key = "--max-work";
@@ -38,6 +44,7 @@ struct IdentifiedFrfs {
   std::vector<double> frequency_hz;                      // the records' common grid
   std::vector<std::vector<std::complex<double>>> frfs;  // per record, signs of the directions applied
   model::ModalIdentification identification;
+  std::optional<model::AutoBand> auto_band;  // FrfSelection::auto_band's choice
   // "FILE:LINE:COL: record N: ..." the reader's (a writer's quirk read anyway) and values
   // that are not finite outside the band, ignored.
   std::vector<std::string> warnings;

@@ -38,20 +38,62 @@ namespace {
 
 // Why a mode is reported, and why a cluster of stable poles is not (the JSON and the table).
 std::string KeptWhy(const model::IdentifiedMode& mode) {
+  const std::string local =
+      mode.local_damping ? "; its peak is narrower than a line: damping fitted on its own neighbourhood" : "";
   if (mode.error_drop > 0.0) {
     return "missed by the diagram, added: it lowers the squared fit error by " +
            FormatNumber(100.0 * mode.error_drop, 3) + " % and its term peaks at " + FormatNumber(mode.prominence, 3) +
-           " x the data's RMS in its band";
+           " x the data's RMS in its band" + local;
   }
   return "stable at " + std::to_string(mode.stable_orders) + " orders; its term peaks at " +
          FormatNumber(mode.prominence, 3) + " x the data's RMS in its band (at least " +
-         FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")";
+         FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")" + local;
 }
 
 std::string RejectedWhy(const model::RejectedMode& mode) {
+  if (mode.error_rise_percent > 0.0) {
+    return (mode.stable_orders > 0 ? "stable at " + std::to_string(mode.stable_orders) + " orders"
+                                   : std::string("added as missed by the diagram")) +
+           ", but removing it raises the fit error by " +
+           FormatNumber(mode.error_rise_percent, 3) + " points only (under " +
+           FormatNumber(model::IdentificationOptions{}.min_error_rise_percent, 3) + ")";
+  }
   return "stable at " + std::to_string(mode.stable_orders) + " orders, but not shown by the data: its term peaks at " +
          FormatNumber(mode.prominence, 3) + " x the data's RMS in its band (under " +
          FormatNumber(model::IdentificationOptions{}.min_prominence, 3) + ")";
+}
+
+// How --max-order auto chose the order, in words.
+std::string OrderRule(const model::ModalIdentification& id) {
+  std::string orders;
+  for (int order : id.orders_compared) orders += (orders.empty() ? "" : ", ") + std::to_string(order);
+  const std::string tried = "orders " + orders + " compared (doubled from " +
+                            std::to_string(model::kFirstAutoOrder) + "): ";
+  if (id.order_stop == "settled") {
+    return tried + "the modes picked up to " + std::to_string(id.orders_compared[id.orders_compared.size() - 2]) +
+           " are those up to " + std::to_string(id.max_order) + " (as many, each frequency within 1 %)";
+  }
+  return tried + "the modes did not settle before " +
+         (id.order_stop == "work" ? "the next order's work passed --max-work" : std::string("the cap")) +
+         "; the highest order built is used";
+}
+
+// --band auto and --max-order auto: what they chose and why ({} when neither was asked).
+nlohmann::ordered_json AutoJson(const IdentifiedFrfs& frfs) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  if (frfs.auto_band) {
+    json["band_hz"] = {frfs.auto_band->min_frequency_hz, frfs.auto_band->max_frequency_hz};
+    json["peaks_hz"] = frfs.auto_band->peaks_hz;
+    json["band_rule"] = frfs.auto_band->rule;
+  }
+  const model::ModalIdentification& id = frfs.identification;
+  if (!id.orders_compared.empty()) {
+    json["order"] = id.max_order;
+    json["orders_compared"] = id.orders_compared;
+    json["order_settled"] = id.order_stop == "settled";
+    json["order_rule"] = OrderRule(id);
+  }
+  return json;
 }
 
 }  // namespace
@@ -63,6 +105,8 @@ void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
       << frfs.file.records[frfs.records.front()].units << ", " << FormatNumber(id.frequency_hz.front(), 6) << " to "
       << FormatNumber(id.frequency_hz.back(), 6) << " Hz (" << id.frequency_hz.size() << " lines), orders 1 to "
       << id.max_order << "\n";
+  if (frfs.auto_band) out << "band auto: " << TerminalSafe(frfs.auto_band->rule, false) << "\n";
+  if (!id.orders_compared.empty()) out << "order auto: " << OrderRule(id) << "\n";
   out << "record  line  response  reference  fit_error_percent\n";
   for (std::size_t k = 0; k < frfs.records.size(); ++k) {
     const Uff58Record& record = frfs.file.records[frfs.records[k]];
@@ -136,6 +180,7 @@ nlohmann::ordered_json IdentifyJson(const IdentifiedFrfs& frfs) {
   json["warnings"] = frfs.warnings;
   json["modal_constant_unit"] = ConstantUnit(frfs);
   json["fit_error_percent"] = id.fit_error_percent;
+  if (const nlohmann::ordered_json automatic = AutoJson(frfs); !automatic.empty()) json["auto"] = automatic;
   return json;
 }
 

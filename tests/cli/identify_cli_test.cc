@@ -137,6 +137,47 @@ TEST(IdentifyCli, NonFiniteOutsideTheBandIsIgnored) {
                 "record 12", "value inf at 90 Hz is not a finite number and lies in the band [5, 95] Hz (--band 5:95)");
 }
 
+// Tests that --band auto --max-order auto on the synthetic column (22 Hz 2 %, 40 Hz 3 %,
+// 41.2 Hz 1.5 %; a NaN at 0 Hz, ignored with a warning) spans the peaks it names with an
+// octave's margin, settles its order, says both in the table and the JSON, and finds the
+// three modes within 0.5 % in frequency and 10 % in damping; and that --max-order takes
+// only an integer from 1 to 200 or auto (exit 2).
+TEST(IdentifyCli, AutoBandAndOrder) {
+  ScratchDir dir;
+  std::string text = testing::Uff58Ascii(SyntheticAccelerance(0.0, 1));
+  const std::size_t value = text.find("\n", text.find("NONE                 NONE")) + 1;  // record 12, 0 Hz
+  text.replace(value + 20, 20, "                 nan");
+  const std::string file = dir.Write("a.uff", text);
+  const CliResult table =
+      RunCli({"identify", file, "--band", "auto", "--max-order", "auto", "--out", "o1"}, dir.path().string());
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.err.find("(nan at 0 Hz) outside the band [11, "), std::string::npos) << table.err;
+  EXPECT_NE(table.out.find("band auto: from half the lowest to 1.5 x the highest of "), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("order auto: orders 8, 16"), std::string::npos) << table.out;
+  const CliResult json = RunCli({"identify", file, "--band", "auto", "--max-order", "auto", "--json", "--out", "o2"},
+                                dir.path().string());
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json parsed = nlohmann::json::parse(json.out);
+  const nlohmann::json& automatic = parsed["auto"];
+  ASSERT_GE(automatic["peaks_hz"].size(), 2u) << automatic.dump();
+  EXPECT_NEAR(automatic["peaks_hz"].front().get<double>(), 22.0, 0.125);
+  EXPECT_DOUBLE_EQ(automatic["band_hz"][0].get<double>(), 0.5 * automatic["peaks_hz"].front().get<double>());
+  EXPECT_DOUBLE_EQ(automatic["band_hz"][1].get<double>(), 1.5 * automatic["peaks_hz"].back().get<double>());
+  EXPECT_TRUE(automatic["order_settled"].get<bool>());
+  EXPECT_EQ(automatic["order"], parsed["max_order"]);
+  ASSERT_EQ(parsed["modes"].size(), 3u) << parsed["modes"].dump(1);
+  for (std::size_t r = 0; r < 3; ++r) {
+    const double f = SyntheticModes()[r].frequency_hz, zeta = SyntheticModes()[r].damping_ratio;
+    EXPECT_NEAR(parsed["modes"][r]["frequency_hz"].get<double>(), f, 0.005 * f);
+    EXPECT_NEAR(parsed["modes"][r]["damping_ratio"].get<double>(), zeta, 0.1 * zeta);
+  }
+  const CliResult bad = RunCli({"identify", file, "--max-order", "2.5"}, dir.path().string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--max-order: expected an integer from 1 to 200 or auto, got '2.5'"), std::string::npos)
+      << bad.err;
+  EXPECT_EQ(RunCli({"identify", file, "--max-order", "201"}, dir.path().string()).exit_code, 2);
+}
+
 // Tests that a fit error above --max-fit-error (default 20 %; here an FRF of noise alone,
 // which no mode explains) still writes the output, warns naming the error and the limit
 // and exits 3, and that a limit above the error exits 0; and that the JSON says why each

@@ -31,6 +31,7 @@ const cd kJ(0.0, 1.0);
 
 std::string Source(const std::string& path) { return std::string(SHAPEBENCH_SOURCE_DIR) + "/" + path; }
 std::string BeamFile() { return Source("tests/data/uff/pyuff_beam_accelerance.uff"); }
+std::string HammerFile() { return Source("tests/data/uff/real/pyfrf_hammer_h1_accelerance.uff"); }
 nlohmann::json Peer(const std::string& name) {
   return nlohmann::json::parse(testing::ReadText(Source("tests/data/uff/real/" + name)));
 }
@@ -133,9 +134,9 @@ double RefitErrorPercent(const Uff58File& data, double lo, double hi, const nloh
 }
 
 // Runs identify (on the peer's band when `band`), exit 0, and returns its JSON.
-nlohmann::json Identify(const nlohmann::json& peer, bool band) {
+nlohmann::json Identify(const nlohmann::json& peer, bool band, const std::string& file = BeamFile()) {
   ScratchDir dir;
-  std::vector<std::string> args = {"identify", BeamFile(), "--json", "--out", "out"};
+  std::vector<std::string> args = {"identify", file, "--json", "--out", "out"};
   if (band) {
     args.push_back("--band");
     args.push_back(std::to_string(peer["band_hz"][0].get<int>()) + ":" + std::to_string(peer["band_hz"][1].get<int>()));
@@ -146,9 +147,11 @@ nlohmann::json Identify(const nlohmann::json& peer, bool band) {
 }
 
 // Every peer mode has a mode of identify within 0.5 % in frequency (and, unless the peer's
-// frequency is in `damping_exempt_hz`, 25 % in damping), and identify has no other mode.
-void ExpectPeerModes(const nlohmann::json& peer, const nlohmann::json& own, const std::vector<double>& damping_exempt_hz = {}) {
-  ASSERT_EQ(own["modes"].size(), peer["modes"].size()) << own.dump(1);
+// frequency is in `damping_exempt_hz`, 25 % in damping), and (unless `others`) identify has
+// no other mode.
+void ExpectPeerModes(const nlohmann::json& peer, const nlohmann::json& own, const std::vector<double>& damping_exempt_hz = {},
+                     bool others = false) {
+  if (!others) ASSERT_EQ(own["modes"].size(), peer["modes"].size()) << own.dump(1);
   for (const auto& mode : peer["modes"]) {
     const double f = mode["frequency_hz"].get<double>(), zeta = mode["damping_ratio"].get<double>();
     const auto nearest = std::min_element(own["modes"].begin(), own["modes"].end(), [f](const auto& a, const auto& b) {
@@ -167,8 +170,8 @@ void ExpectPeerModes(const nlohmann::json& peer, const nlohmann::json& own, cons
 // fit error on its lines, shapebench's its JSON's; shapebench's is no worse than the peer's + 2 points;
 // each mode of shapebench explains at least 1 % of the data's norm (removing it and
 // refitting the rest raises the fit error by 1 point or more).
-void ExpectFits(const nlohmann::json& peer, const nlohmann::json& own) {
-  const Uff58File data = ReadUff58(BeamFile());
+void ExpectFits(const nlohmann::json& peer, const nlohmann::json& own, const std::string& file = BeamFile()) {
+  const Uff58File data = ReadUff58(file);
   const double lo = peer["band_hz"][0].get<double>(), hi = peer["band_hz"][1].get<double>();
   // The peer fitted the lines below `hi` (its fixture's fit_error_formula); compared on
   // identify's lines, which take `hi` too.
@@ -201,15 +204,58 @@ TEST(IdentifyPeer, BeamMiddleBand) {
   ExpectFits(peer, own);
 }
 
-// Tests that identify on 30-990 Hz finds the peer's six modes in frequency and damping, no
-// other, and fits no worse than the peer + 2 points. The 51.5 Hz mode's damping is left out:
-// identify gives 0.000282 against the peer's 0.000543 on this band (0.000513 against 0.000566
-// on 30-200 Hz, checked above), a known disagreement (issue 34).
+// Tests that identify on 30-990 Hz finds the peer's six modes in frequency and damping
+// (the 51.5 Hz mode's too: its peak is narrower than a line, its damping now fitted on its
+// neighbourhood; it was 0.000282 against the peer's 0.000543), no other, and fits no worse
+// than the peer + 2 points.
 TEST(IdentifyPeer, BeamWholeBand) {
   const nlohmann::json peer = Peer("sdypy_ema_beam_30_990_hz.json");
   const nlohmann::json own = Identify(peer, true);
-  ExpectPeerModes(peer, own, {51.5});
+  ExpectPeerModes(peer, own);
   ExpectFits(peer, own);
+  for (const auto& mode : own["modes"]) {
+    EXPECT_NE(mode["kept"].get<std::string>().find("narrower than a line"), std::string::npos) << mode.dump();
+  }
+}
+
+// Tests why the whole band alone cannot fix the 51.5 Hz damping: with the peer's six poles
+// and the test's own LSFD, its fit error at 0.000282 and at the peer's 0.000543 differ by
+// under 0.01 points, while on the mode's neighbourhood (30-97 Hz) the peer's fits better
+// by more than half a point.
+TEST(IdentifyPeer, BeamLowModeDampingIsSeenOnlyByItsNeighbourhood) {
+  const Uff58File data = ReadUff58(BeamFile());
+  nlohmann::json modes = Peer("sdypy_ema_beam_30_990_hz.json")["modes"];
+  const auto error_at = [&](double zeta, double lo, double hi) {
+    modes[0]["damping_ratio"] = zeta;
+    nlohmann::json inside = nlohmann::json::array();
+    for (const auto& mode : modes) {
+      if (mode["frequency_hz"].get<double>() >= lo && mode["frequency_hz"].get<double>() <= hi) inside.push_back(mode);
+    }
+    return RefitErrorPercent(data, lo, hi, inside, inside.size());
+  };
+  EXPECT_LT(std::abs(error_at(0.000282, 30.0, 990.0) - error_at(0.000543, 30.0, 990.0)), 0.01);
+  EXPECT_GT(error_at(0.000282, 30.0, 97.0) - error_at(0.000543, 30.0, 97.0), 0.5);
+}
+
+// Tests that with neither band nor order given (--band auto --max-order auto) identify
+// spans the beam's six peaks (from half the lowest to the file's last line), settles its
+// order, and finds the peer's six modes (30-990 Hz fixture) within 0.5 % in frequency and
+// 25 % in damping, no other, with a fit error over the peer's lines no worse than its + 2 points.
+TEST(IdentifyPeer, BeamAutoBandAndOrder) {
+  const nlohmann::json peer = Peer("sdypy_ema_beam_30_990_hz.json");
+  ScratchDir dir;
+  const CliResult result = RunCli(
+      {"identify", BeamFile(), "--band", "auto", "--max-order", "auto", "--json", "--out", "out"}, dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json own = nlohmann::json::parse(result.out);
+  ASSERT_EQ(own["auto"]["peaks_hz"].size(), 6u) << own["auto"].dump();
+  EXPECT_NEAR(own["auto"]["band_hz"][0].get<double>(), 26.0, 0.5);
+  EXPECT_EQ(own["auto"]["band_hz"][1].get<double>(), 1000.0);
+  EXPECT_TRUE(own["auto"]["order_settled"].get<bool>());
+  ExpectPeerModes(peer, own);
+  const Uff58File data = ReadUff58(BeamFile());
+  EXPECT_LE(FitErrorPercent(data, 30.0, 989.0, OwnSynthesis(own)),
+            FitErrorPercent(data, 30.0, 989.0, PeerSynthesis(peer)) + 2.0);
 }
 
 // Tests that the default run on the whole file (no band) finds the modes of the six largest
@@ -222,6 +268,24 @@ TEST(IdentifyPeer, BeamWholeFileDefault) {
     const double f = peer["modes"][r]["frequency_hz"].get<double>();
     EXPECT_NEAR(own["modes"][r]["frequency_hz"].get<double>(), f, 0.005 * f);
   }
+}
+
+// Tests that on the second project's real FRF (pyFRF's hammer test, H1 of five hits, 1 Hz
+// lines) identify on 500-3000 Hz finds the peer's four modes (810.5, 851.6, 900.1, 2640.1
+// Hz) within 0.5 % in frequency and 25 % in damping, that each of its modes, the peer's and
+// any other, explains at least 1 % of the data's norm (removing it and refitting the rest
+// raises the fit error by 1 point or more: issue 34's measure of an extra mode), and that
+// it fits no worse than the peer + 2 points.
+TEST(IdentifyPeer, HammerBand500To3000) {
+  const nlohmann::json peer = Peer("sdypy_ema_pyfrf_hammer_500_3000_hz.json");
+  const nlohmann::json own = Identify(peer, true, HammerFile());
+  ExpectPeerModes(peer, own, {}, true);
+  ExpectFits(peer, own, HammerFile());
+  // The 2629 Hz pole the diagram missed explains 0.54 points only: dropped, and said why.
+  ASSERT_EQ(own["rejected"].size(), 1u) << own["rejected"].dump(1);
+  EXPECT_NEAR(own["rejected"][0]["frequency_hz"].get<double>(), 2629.0, 1.0);
+  EXPECT_NE(own["rejected"][0]["why"].get<std::string>().find("removing it raises the fit error by 0.5"),
+            std::string::npos);
 }
 
 }  // namespace

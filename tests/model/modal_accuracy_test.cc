@@ -184,7 +184,9 @@ TEST(ModalAccuracy, CloseModesKeepTheirDamping) {
 
 // Tests that a mode the data does not show (a 60 Hz mode whose constant is 1000 x smaller
 // than its neighbours') is dropped and listed as rejected with its prominence, while the
-// three that show stay, each with its prominence above the limit.
+// three that show stay, each with its prominence above the limit; and that without the
+// prominence check it is still dropped, as explaining under 1 % of the data's norm
+// (min_error_rise_percent), with the rise it would bring.
 TEST(ModalAccuracy, HiddenModeIsDropped) {
   Case c;
   c.modes = {{22.0, 0.02, 1.0 / 80.0}, {40.0, 0.03, 1.0 / 120.0}, {41.2, 0.015, -1.0 / 150.0}, {60.0, 0.01, 1e-5}};
@@ -198,6 +200,13 @@ TEST(ModalAccuracy, HiddenModeIsDropped) {
   EXPECT_LT(id.rejected[0].prominence, IdentificationOptions{}.min_prominence);
   IdentificationOptions keep;
   keep.min_prominence = 0.0;
+  const ModalIdentification by_rise = IdentifyModes(f, {Measure(c, f, 1)}, 2, keep);
+  ASSERT_EQ(by_rise.modes.size(), 3u);
+  ASSERT_EQ(by_rise.rejected.size(), 1u);
+  EXPECT_NEAR(by_rise.rejected[0].frequency_hz, 60.0, 0.1);
+  EXPECT_GT(by_rise.rejected[0].error_rise_percent, 0.0);
+  EXPECT_LT(by_rise.rejected[0].error_rise_percent, 1.0);
+  keep.min_error_rise_percent = 0.0;
   EXPECT_EQ(IdentifyModes(f, {Measure(c, f, 1)}, 2, keep).modes.size(), 4u);
 }
 
