@@ -51,7 +51,8 @@ FmuPlant::FmuPlant(const FmuMachine& machine, double period_s, int substeps, dou
   if (!refs.empty()) {
     std::vector<double> values(refs.size());
     instance_->GetReal(refs, values.data());
-    for (std::size_t i = 0; i < refs.size(); ++i) static_gain_(axes[i], axes[i]) = values[i];
+    // The static gain is the deflection per held m/s^2: -compliance (the tool lags).
+    for (std::size_t i = 0; i < refs.size(); ++i) static_gain_(axes[i], axes[i]) = -values[i];
     has_static_ = true;
   }
   ReadOutputs();  // the outputs at t = 0

@@ -39,8 +39,9 @@ class FmuPlant final : public model::PlantIntegrator {
   bool WatchExtremum(int row) override;
   double PeriodExtremum() const override { return period_peak_; }
 
-  // Deflection per held m/s^2 along each axis (the static_compliance outputs, read once
-  // after initialisation), on the diagonal; false when the FMU maps none.
+  // Deflection per held m/s^2 along each axis, -(the static_compliance outputs, read once
+  // after initialisation), on the diagonal (model::MachinePlant::static_gain's sign);
+  // false when the FMU maps none.
   bool StaticGain(Eigen::Matrix3d* gain) const;
   // The residual_amplitude output of `axis` (-1: the sum over the mapped axes) now; NaN when
   // not mapped.

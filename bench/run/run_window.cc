@@ -54,7 +54,9 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
   }
   w.max_ticks = static_cast<std::size_t>(std::min(
       static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));
-  w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy;
+  // A plant FMU's damping is unknown (its machine here has no modes): its tail is simulated.
+  w.never_settles_late =
+      scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy && !scenario.fmu;
   w.cruise_tick = CruiseTicks(samples, w.period_ticks, &w.cruise_probe_ticks);
   return w;
 }

@@ -1,0 +1,34 @@
+// `machine: {fmu: FILE.fmu, inputs: {AXIS: VAR}, outputs: {ROLE: {AXIS: VAR}},
+// fmu_parameters: {NAME: VALUE}}`: a plant FMU as the machine (docs/fmi.md#importing-a-plant-fmu).
+// The FMU is unpacked and its modelDescription read here, at load time, so that a missing
+// file, a bad FMU or a variable it does not have is located at its key (exit 2).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/config/node_reader.h"
+#include "bench/fmi/fmu_machine.h"
+#include "model/multi_axis_machine.h"
+
+namespace shapebench::bench {
+
+// The keys of the FMU form, and the roles under `outputs:`.
+const std::vector<std::string>& FmuMachineKeys();
+const std::vector<std::string>& FmuOutputRoles();
+
+// Whether `machine` (a mapping) is the FMU form.
+bool IsFmuMachine(const NodeReader& machine);
+
+// Reads it. *config becomes what the run core sees of such a machine: no structural model,
+// every axis rigid (the FMU is the structure), driven along the first axis with an input
+// (y when it has one). Without `inputs:` (`outputs:`) the variables are found by the names
+// shapebench's own machine FMUs use (FmuDefaultName).
+std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config);
+
+// The variable name shapebench's machine FMU gives `role` ("base_acceleration" or one of
+// FmuOutputRoles()) of axis 0, 1, 2: e.g. base_acceleration_y_m_s2, deflection_y_m.
+std::string FmuDefaultName(const std::string& role, int axis);
+
+}  // namespace shapebench::bench
