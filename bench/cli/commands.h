@@ -27,5 +27,6 @@ Command AddCompareCommand(CLI::App* app);
 Command AddIdentifyCommand(CLI::App* app);
 Command AddRecommendCommand(CLI::App* app);
 Command AddDesignCommand(CLI::App* app);
+Command AddFmuCommand(CLI::App* app);
 
 }  // namespace shapebench::bench::cli

@@ -26,7 +26,7 @@ using shapebench::kExitOk;
 constexpr Command (*kCommands[])(CLI::App*) = {
     AddRunCommand,         AddCheckCommand, AddModesCommand, AddPatternCommand,  AddBodeCommand,
     AddSensitivityCommand, AddSweepCommand, AddMergeCommand, AddCompareCommand,  AddIdentifyCommand,
-    AddRecommendCommand,   AddDesignCommand,
+    AddRecommendCommand,   AddDesignCommand, AddFmuCommand,
 };
 
 }  // namespace
