@@ -35,10 +35,16 @@ struct FmuMachine {
   FmuAxisSignals tool_error;
   // Documented outputs the metrics use when present (absent: those metrics are n/a, or
   // taken from the communication points only):
-  FmuAxisSignals step_peak;           // max |deflection| over the last step (m): in-step peaks
+  FmuAxisSignals deflection_peak;           // max |deflection| over the last step (m): in-step peaks
   FmuAxisSignals static_compliance;   // deflection per held m/s^2 (s^2): static_displacement_m
   FmuAxisSignals residual_amplitude;  // the free vibration's amplitude about rest (m)
   std::vector<std::pair<FmuSignal, double>> parameters;  // fmu_parameters, in the file's order
+  // shapebench's own machine FMU (bench/fmu: resources/scenario.yaml, outputs state[i]): the
+  // scenario got the FMU's own machine model, so the run's window, substeps and static
+  // reference are the native run's, and the residual vibration is read from these states
+  // as the native run reads its plant's (PlantState()).
+  bool model_known = false;
+  std::vector<unsigned> states;
 };
 
 }  // namespace shapebench::bench

@@ -8,7 +8,7 @@
 namespace shapebench::bench {
 namespace {
 
-constexpr int kStepPeakRow = model::kNumOutputRows;  // rows_ 6..8: the step peaks per axis
+constexpr int kPeakRow = model::kNumOutputRows;  // rows_ 6..8: the step peaks per axis
 
 std::vector<std::pair<unsigned, double>> Parameters(const FmuMachine& machine) {
   std::vector<std::pair<unsigned, double>> parameters;
@@ -35,7 +35,7 @@ FmuPlant::FmuPlant(const FmuMachine& machine, double period_s, int substeps, dou
     };
     add_output(machine.deflection[axis], model::kDeflectionRow + axis);
     add_output(machine.tool_error[axis], model::kToolErrorRow + axis);
-    add_output(machine.step_peak[axis], kStepPeakRow + axis);
+    add_output(machine.deflection_peak[axis], kPeakRow + axis);
   }
   inputs_.assign(input_refs_.size(), 0.0);
   read_.assign(output_refs_.size(), 0.0);
@@ -51,8 +51,7 @@ FmuPlant::FmuPlant(const FmuMachine& machine, double period_s, int substeps, dou
   if (!refs.empty()) {
     std::vector<double> values(refs.size());
     instance_->GetReal(refs, values.data());
-    // The static gain is the deflection per held m/s^2: -compliance (the tool lags).
-    for (std::size_t i = 0; i < refs.size(); ++i) static_gain_(axes[i], axes[i]) = -values[i];
+    for (std::size_t i = 0; i < refs.size(); ++i) static_gain_(axes[i], axes[i]) = values[i];
     has_static_ = true;
   }
   ReadOutputs();  // the outputs at t = 0
@@ -107,15 +106,21 @@ void FmuPlant::AdvancePeriod(const double* drive_accel, long /*same_input_period
 
 model::IntegratorCapabilities FmuPlant::Capabilities() const {
   model::IntegratorCapabilities caps;
-  for (const auto& peak : machine_.step_peak) caps.period_extremum = caps.period_extremum || peak.has_value();
+  for (const auto& peak : machine_.deflection_peak) caps.period_extremum = caps.period_extremum || peak.has_value();
   return caps;
 }
 
 bool FmuPlant::WatchExtremum(int row) {
   const int axis = row - model::kDeflectionRow;
-  if (axis < 0 || axis >= 3 || !machine_.step_peak[axis]) return false;
-  watched_ = kStepPeakRow + axis;
+  if (axis < 0 || axis >= 3 || !machine_.deflection_peak[axis]) return false;
+  watched_ = kPeakRow + axis;
   return true;
+}
+
+Eigen::VectorXd FmuPlant::PlantState() const {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(machine_.states.size()));
+  if (!machine_.states.empty()) instance_->GetReal(machine_.states, x.data());
+  return x;
 }
 
 bool FmuPlant::StaticGain(Eigen::Matrix3d* gain) const {

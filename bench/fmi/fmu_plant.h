@@ -4,7 +4,7 @@
 // inputs (the held base acceleration per mapped axis), fmiDoStep to the next communication
 // point, read the outputs into the six rows of model::MachinePlant (deflection x, y, z,
 // tool error x, y, z; an unmapped axis reads 0, an unmapped tool error its deflection).
-// A mapped step_peak output is offered as the period's extremum (period_extremum), so the
+// A mapped deflection_peak output is offered as the period's extremum (period_extremum), so the
 // in-step peaks the FMU saw survive; nothing else is offered.
 #pragma once
 
@@ -29,7 +29,8 @@ class FmuPlant final : public model::PlantIntegrator {
   void SetInput(const Eigen::VectorXd& drive_accel) override;
   void Step() override;
   Eigen::VectorXd Output() const override;
-  Eigen::VectorXd PlantState() const override { return {}; }  // opaque: the FMU's own
+  // The state[i] outputs of shapebench's own machine FMU (FmuMachine::states); else empty.
+  Eigen::VectorXd PlantState() const override;
   double Time() const override;
   int num_inputs() const override { return 3; }
   int num_outputs() const override;
@@ -39,9 +40,9 @@ class FmuPlant final : public model::PlantIntegrator {
   bool WatchExtremum(int row) override;
   double PeriodExtremum() const override { return period_peak_; }
 
-  // Deflection per held m/s^2 along each axis, -(the static_compliance outputs, read once
-  // after initialisation), on the diagonal (model::MachinePlant::static_gain's sign);
-  // false when the FMU maps none.
+  // Deflection per held m/s^2 along each axis (the static_compliance outputs, read once
+  // after initialisation; negative where the tool lags), on the diagonal; false when the
+  // FMU maps none.
   bool StaticGain(Eigen::Matrix3d* gain) const;
   // The residual_amplitude output of `axis` (-1: the sum over the mapped axes) now; NaN when
   // not mapped.

@@ -25,13 +25,18 @@ void PlantSampler::SetUpFmu() {
     result_.warnings.push_back("static_displacement_m, the ratios and settling_time_s are n/a: the FMU " + file +
                                " maps no static_compliance output (docs/fmi.md)");
   }
-  bool residual = false;
+  // shapebench's own machine FMU: its states read as the native run reads its plant's.
+  if (machine.model_known && nonlinear_ == false && machine_.plant.num_states() > 0 &&
+      static_cast<std::size_t>(machine_.plant.num_states()) == machine.states.size()) {
+    residual_vibration_ = std::make_unique<ResidualVibration>(machine_.plant, plan_.view);
+  }
+  bool residual = residual_vibration_ != nullptr;
   for (const auto& r : machine.residual_amplitude) residual = residual || r.has_value();
   if (!residual) {
     result_.warnings.push_back("residual_amplitude_m and cruise_residual_ratio are n/a: the FMU " + file +
                                " maps no residual_amplitude output (docs/fmi.md); residual_peak_m stands");
   }
-  // The in-step peaks of the view's axis from its step_peak output; else only the
+  // The in-step peaks of the view's axis from its deflection_peak output; else only the
   // communication points (and substeps) are seen.
   if (plan_.view.axis >= 0 && fmu->Capabilities().period_extremum) {
     exact_extrema_ = fmu->WatchExtremum(model::kDeflectionRow + plan_.view.axis);

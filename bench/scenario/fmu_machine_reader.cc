@@ -1,8 +1,11 @@
 #include "bench/scenario/fmu_machine_reader.h"
 
+#include <cstdio>
+#include <filesystem>
 #include <utility>
 
 #include "bench/config/input_path.h"
+#include "bench/scenario/scenario_loader.h"
 #include "common/closest_name.h"
 
 namespace shapebench::bench {
@@ -11,23 +14,21 @@ namespace {
 constexpr const char* kInputRole = "base_acceleration";
 const char* const kAxisNames[] = {"x", "y", "z"};
 
-// Each role: where it goes in FmuMachine, the unit of its default name, the causalities it
-// may have.
+// Each role: where it goes in FmuMachine, the causalities it may have.
 struct Role {
   const char* name;
   FmuAxisSignals FmuMachine::*signals;
-  const char* unit;
   std::vector<std::string> causalities;
 };
 
 const std::vector<Role>& Roles() {
   static const std::vector<Role> kRoles = {
-      {kInputRole, &FmuMachine::base_acceleration, "m_s2", {"input"}},
-      {"deflection", &FmuMachine::deflection, "m", {"output"}},
-      {"tool_error", &FmuMachine::tool_error, "m", {"output"}},
-      {"step_peak", &FmuMachine::step_peak, "m", {"output"}},
-      {"static_compliance", &FmuMachine::static_compliance, "s2", {"output", "calculatedParameter", "parameter"}},
-      {"residual_amplitude", &FmuMachine::residual_amplitude, "m", {"output"}},
+      {kInputRole, &FmuMachine::base_acceleration, {"input"}},
+      {"deflection", &FmuMachine::deflection, {"output"}},
+      {"tool_error", &FmuMachine::tool_error, {"output"}},
+      {"deflection_peak", &FmuMachine::deflection_peak, {"output"}},
+      {"static_compliance", &FmuMachine::static_compliance, {"output", "calculatedParameter", "parameter"}},
+      {"residual_amplitude", &FmuMachine::residual_amplitude, {"output"}},
   };
   return kRoles;
 }
@@ -138,6 +139,36 @@ void RigidMachine(const FmuMachine& fmu, const NodeReader& machine, model::Multi
   config->driven_axis = driven;
 }
 
+// shapebench's own machine FMU: the scenario it was made from (resources/scenario.yaml),
+// with the fmu_parameters that are its key paths applied as --set would, gives the machine;
+// the plant's states are the outputs state[0], state[1], ... Else false (a foreign FMU).
+bool ReadPackedModel(const NodeReader& at, FmuMachine* fmu, model::MultiAxisMachineConfig* config) {
+  const std::string packed = fmu->fmu->resources_dir() + "/scenario.yaml";
+  const ModelDescription& md = fmu->fmu->description();
+  if (!std::filesystem::exists(packed) || md.Find("deflection_peak_" + std::string(kAxisNames[config->driven_axis])) ==
+                                               nullptr) {
+    return false;
+  }
+  std::vector<Override> overrides;
+  for (const auto& [signal, value] : fmu->parameters) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    if (signal.name.rfind("machine.", 0) == 0) overrides.push_back({signal.name, text});
+  }
+  try {
+    *config = LoadScenario(packed, overrides, LoadOptions{false, std::nullopt}).machine;
+  } catch (const std::exception& error) {
+    throw at.Error("the scenario packed in the FMU " + fmu->fmu->fmu_path() + " does not load: " + error.what());
+  }
+  for (int i = 0;; ++i) {
+    const FmuVariable* state = md.Find("state[" + std::to_string(i) + "]");
+    if (state == nullptr || !state->IsDouble() || state->causality != "output") break;
+    fmu->states.push_back(state->value_reference);
+  }
+  fmu->model_known = true;
+  return true;
+}
+
 }  // namespace
 
 const std::vector<std::string>& FmuMachineKeys() {
@@ -146,7 +177,7 @@ const std::vector<std::string>& FmuMachineKeys() {
 }
 
 const std::vector<std::string>& FmuOutputRoles() {
-  static const std::vector<std::string> kRoles = {"deflection", "tool_error", "step_peak", "static_compliance",
+  static const std::vector<std::string> kRoles = {"deflection", "tool_error", "deflection_peak", "static_compliance",
                                                   "residual_amplitude"};
   return kRoles;
 }
@@ -154,7 +185,8 @@ const std::vector<std::string>& FmuOutputRoles() {
 bool IsFmuMachine(const NodeReader& machine) { return machine.IsMap() && machine.Has("fmu"); }
 
 std::string FmuDefaultName(const std::string& role, int axis) {
-  return role + "_" + kAxisNames[axis] + "_" + RoleNamed(role).unit;
+  // As shapebench's machine FMUs name them (bench/fmu/fmu_layout.cc).
+  return (role == kInputRole ? std::string("base_accel") : role) + "_" + kAxisNames[axis];
 }
 
 std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config) {
@@ -181,6 +213,7 @@ std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, mode
   }
   if (auto parameters = machine.Child("fmu_parameters")) ReadParameters(*parameters, md, file, fmu.get());
   RigidMachine(*fmu, machine, config);
+  if (!machine.Has("inputs") && !machine.Has("outputs")) ReadPackedModel(file_node, fmu.get(), config);
   return fmu;
 }
 

@@ -28,7 +28,7 @@ bool IsFmuMachine(const NodeReader& machine);
 std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config);
 
 // The variable name shapebench's machine FMU gives `role` ("base_acceleration" or one of
-// FmuOutputRoles()) of axis 0, 1, 2: e.g. base_acceleration_y_m_s2, deflection_y_m.
+// FmuOutputRoles()) of axis 0, 1, 2: e.g. base_accel_y, deflection_y.
 std::string FmuDefaultName(const std::string& role, int axis);
 
 }  // namespace shapebench::bench

@@ -30,7 +30,7 @@ TEST(FmuImportCli, RunsThePlantFmu) {
   EXPECT_NEAR(metrics["static_displacement_m"].get<double>(), 2.0 / 24674.011002723397, 1e-15);
   EXPECT_GT(metrics["peak_ratio"].get<double>(), 1.5);
   const std::string bare = dir.Write(
-      "bare.yaml", TestPlantScenario("{fmu: " + TestPlantFmu(2) + ", outputs: {deflection: {y: deflection_y_m}}}"));
+      "bare.yaml", TestPlantScenario("{fmu: " + TestPlantFmu(2) + ", outputs: {deflection: {y: deflection_y}}}"));
   const CliResult table = RunCli({"run", bare}, dir.path().string());
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("\nstatic_displacement_m           n/a\n"), std::string::npos) << table.out;
@@ -43,11 +43,11 @@ TEST(FmuImportCli, RunsThePlantFmu) {
 TEST(FmuImportCli, BadKeyExitsTwoAndFmuErrorExitsThree) {
   ScratchDir dir;
   const std::string bad = dir.Write(
-      "bad.yaml", TestPlantScenario("{fmu: " + TestPlantFmu(2) + ", outputs: {deflection: {y: deflexion_y_m}}}"));
+      "bad.yaml", TestPlantScenario("{fmu: " + TestPlantFmu(2) + ", outputs: {deflection: {y: deflexion_y}}}"));
   const CliResult r = RunCli({"run", bad}, dir.path().string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("error: " + bad + ":1:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("machine.outputs.deflection.y: the FMU " + TestPlantFmu(2) + " has no variable 'deflexion_y_m'"),
+  EXPECT_NE(r.err.find("machine.outputs.deflection.y: the FMU " + TestPlantFmu(2) + " has no variable 'deflexion_y'"),
             std::string::npos)
       << r.err;
   const std::string good = dir.Write("fmu.yaml", TestPlantScenario("{fmu: " + TestPlantFmu(2) + "}"));

@@ -4,7 +4,7 @@
 // stepped exactly under the held input (the underdamped oscillator's closed form), so that
 // the import master can be tested without shapebench's own export. Outputs besides the
 // deflection: the largest |x| over the last step (its stationary points in closed form),
-// the static compliance m/k and the free vibration's amplitude about rest. fail_at_s >= 0
+// the static compliance -m/k (deflection per held m/s^2) and the free vibration's amplitude about rest. fail_at_s >= 0
 // makes a step reaching that time return Error; a non-positive mass or stiffness, or a
 // damping ratio >= 1, makes initialisation return Error (with a logged message).
 #include <cmath>
@@ -52,7 +52,7 @@ struct Plant {
       Log(3, "the damping ratio must be < 1 (an underdamped oscillator)");
       return 3;
     }
-    value[kCompliance] = m / k;
+    value[kCompliance] = -m / k;  // deflection per held m/s^2: the mass lags
     Update();
     return 0;
   }

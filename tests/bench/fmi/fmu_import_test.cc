@@ -12,6 +12,7 @@
 #include "bench/fmi/fmu_archive.h"
 #include "bench/fmi/fmu_plant.h"
 #include "model/integrator.h"
+#include "model/multi_axis_machine.h"
 #include "tests/support/bench_test_support.h"
 #include "tests/support/test_fmu.h"
 
@@ -59,10 +60,10 @@ FmuMachine TestPlantMachine(int version, std::vector<std::pair<std::string, doub
   const auto signal = [&md](const std::string& name) {
     return FmuSignal{name, md.Find(name)->value_reference};
   };
-  machine.base_acceleration[1] = signal("base_acceleration_y_m_s2");
-  machine.deflection[1] = signal("deflection_y_m");
-  machine.step_peak[1] = signal("step_peak_y_m");
-  machine.static_compliance[1] = signal("static_compliance_y_s2");
+  machine.base_acceleration[1] = signal("base_accel_y");
+  machine.deflection[1] = signal("deflection_y");
+  machine.deflection_peak[1] = signal("deflection_peak_y");
+  machine.static_compliance[1] = signal("static_compliance_y");
   for (const auto& [name, value] : parameters) machine.parameters.emplace_back(signal(name), value);
   return machine;
 }
@@ -91,7 +92,7 @@ TEST(FmuArchive, ReadsModelDescriptionOfBothVersions) {
     EXPECT_EQ(k->unit, "N/m");
     ASSERT_TRUE(k->start.has_value());
     EXPECT_EQ(*k->start, 24674.011002723397);
-    const FmuVariable* input = md.Find("base_acceleration_y_m_s2");
+    const FmuVariable* input = md.Find("base_accel_y");
     ASSERT_NE(input, nullptr);
     EXPECT_EQ(input->causality, "input");
     EXPECT_EQ(input->variability, "continuous");
@@ -99,7 +100,7 @@ TEST(FmuArchive, ReadsModelDescriptionOfBothVersions) {
     const FmuVariable* count = md.Find("mode_count");
     ASSERT_NE(count, nullptr);
     EXPECT_FALSE(count->IsDouble());
-    EXPECT_EQ(md.DoubleNames("input"), "base_acceleration_y_m_s2");
+    EXPECT_EQ(md.DoubleNames("input"), "base_accel_y");
   }
 }
 
