@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "bench/config/input_path.h"
-#include "bench/scenario/scenario_loader.h"
 #include "common/closest_name.h"
 
 namespace shapebench::bench {
@@ -142,7 +141,8 @@ void RigidMachine(const FmuMachine& fmu, const NodeReader& machine, model::Multi
 // shapebench's own machine FMU: the scenario it was made from (resources/scenario.yaml),
 // with the fmu_parameters that are its key paths applied as --set would, gives the machine;
 // the plant's states are the outputs state[0], state[1], ... Else false (a foreign FMU).
-bool ReadPackedModel(const NodeReader& at, FmuMachine* fmu, model::MultiAxisMachineConfig* config) {
+bool ReadPackedModel(const NodeReader& at, const PackedMachineLoader& load_packed, FmuMachine* fmu,
+                     model::MultiAxisMachineConfig* config) {
   const std::string packed = fmu->fmu->resources_dir() + "/scenario.yaml";
   const ModelDescription& md = fmu->fmu->description();
   if (!std::filesystem::exists(packed) || md.Find("deflection_peak_" + std::string(kAxisNames[config->driven_axis])) ==
@@ -156,7 +156,7 @@ bool ReadPackedModel(const NodeReader& at, FmuMachine* fmu, model::MultiAxisMach
     if (signal.name.rfind("machine.", 0) == 0) overrides.push_back({signal.name, text});
   }
   try {
-    *config = LoadScenario(packed, overrides, LoadOptions{false, std::nullopt}).machine;
+    *config = load_packed(packed, overrides);
   } catch (const std::exception& error) {
     throw at.Error("the scenario packed in the FMU " + fmu->fmu->fmu_path() + " does not load: " + error.what());
   }
@@ -189,7 +189,8 @@ std::string FmuDefaultName(const std::string& role, int axis) {
   return (role == kInputRole ? std::string("base_accel") : role) + "_" + kAxisNames[axis];
 }
 
-std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config) {
+std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config,
+                                                 const PackedMachineLoader& load_packed) {
   machine.ExpectMap(FmuMachineKeys());
   const NodeReader file_node = *machine.Child("fmu");
   const std::string file = ResolvedInputPath(file_node);
@@ -213,7 +214,7 @@ std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, mode
   }
   if (auto parameters = machine.Child("fmu_parameters")) ReadParameters(*parameters, md, file, fmu.get());
   RigidMachine(*fmu, machine, config);
-  if (!machine.Has("inputs") && !machine.Has("outputs")) ReadPackedModel(file_node, fmu.get(), config);
+  if (!machine.Has("inputs") && !machine.Has("outputs")) ReadPackedModel(file_node, load_packed, fmu.get(), config);
   return fmu;
 }
 

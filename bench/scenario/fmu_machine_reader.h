@@ -4,11 +4,13 @@
 // file, a bad FMU or a variable it does not have is located at its key (exit 2).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bench/config/node_reader.h"
+#include "bench/config/override.h"
 #include "bench/fmi/fmu_machine.h"
 #include "model/multi_axis_machine.h"
 
@@ -25,7 +27,13 @@ bool IsFmuMachine(const NodeReader& machine);
 // every axis rigid (the FMU is the structure), driven along the first axis with an input
 // (y when it has one). Without `inputs:` (`outputs:`) the variables are found by the names
 // shapebench's own machine FMUs use (FmuDefaultName).
-std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config);
+// shapebench's own machine FMU (resources/scenario.yaml) gets that scenario's machine
+// instead, from `load_packed` (the scenario loader's; passed in so that the loader and this
+// reader do not include each other).
+using PackedMachineLoader =
+    std::function<model::MultiAxisMachineConfig(const std::string& path, const std::vector<Override>& overrides)>;
+std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config,
+                                                 const PackedMachineLoader& load_packed);
 
 // The variable name shapebench's machine FMU gives `role` ("base_acceleration" or one of
 // FmuOutputRoles()) of axis 0, 1, 2: e.g. base_accel_y, deflection_y.

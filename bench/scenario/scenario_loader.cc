@@ -383,7 +383,10 @@ void CheckMovedAxesModelled(const NodeReader& machine, const Scenario& scenario)
 void ReadMachineAndDrive(const NodeReader& top, Scenario* scenario) {
   if (auto machine = top.Child("machine")) {
     if (IsFmuMachine(*machine)) {
-      scenario->fmu = ReadFmuMachine(*machine, &scenario->machine);
+      const auto load_packed = [](const std::string& path, const std::vector<Override>& overrides) {
+        return LoadScenario(path, overrides, LoadOptions{false, std::nullopt}).machine;
+      };
+      scenario->fmu = ReadFmuMachine(*machine, &scenario->machine, load_packed);
     } else {
       scenario->machine = ReadMachineAxesEntry(*machine);
     }
