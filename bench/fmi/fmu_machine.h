@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench/fmi/fmu_archive.h"
+#include "model/drive.h"
 
 namespace shapebench::bench {
 
@@ -45,6 +46,9 @@ struct FmuMachine {
   // as the native run reads its plant's (PlantState()).
   bool model_known = false;
   std::vector<unsigned> states;
+  // Its drive (a servo's loops run inside the FMU, on the commanded acceleration): the run
+  // takes it in place of the scenario's kinematic one.
+  std::optional<model::DriveConfig> drive;
 };
 
 }  // namespace shapebench::bench

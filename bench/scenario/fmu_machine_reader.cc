@@ -156,7 +156,9 @@ bool ReadPackedModel(const NodeReader& at, const PackedMachineLoader& load_packe
     if (signal.name.rfind("machine.", 0) == 0) overrides.push_back({signal.name, text});
   }
   try {
-    *config = load_packed(packed, overrides);
+    const Scenario scenario = load_packed(packed, overrides);
+    *config = scenario.machine;
+    fmu->drive = scenario.drive;
   } catch (const std::exception& error) {
     throw at.Error("the scenario packed in the FMU " + fmu->fmu->fmu_path() + " does not load: " + error.what());
   }

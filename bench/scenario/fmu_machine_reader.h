@@ -12,6 +12,7 @@
 #include "bench/config/node_reader.h"
 #include "bench/config/override.h"
 #include "bench/fmi/fmu_machine.h"
+#include "bench/scenario/scenario.h"
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
@@ -27,11 +28,10 @@ bool IsFmuMachine(const NodeReader& machine);
 // every axis rigid (the FMU is the structure), driven along the first axis with an input
 // (y when it has one). Without `inputs:` (`outputs:`) the variables are found by the names
 // shapebench's own machine FMUs use (FmuDefaultName).
-// shapebench's own machine FMU (resources/scenario.yaml) gets that scenario's machine
-// instead, from `load_packed` (the scenario loader's; passed in so that the loader and this
-// reader do not include each other).
-using PackedMachineLoader =
-    std::function<model::MultiAxisMachineConfig(const std::string& path, const std::vector<Override>& overrides)>;
+// shapebench's own machine FMU (resources/scenario.yaml) gets that scenario's machine (and
+// records its drive) instead, from `load_packed` (the scenario loader's; passed in so that
+// the loader and this reader do not include each other).
+using PackedMachineLoader = std::function<Scenario(const std::string& path, const std::vector<Override>& overrides)>;
 std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config,
                                                  const PackedMachineLoader& load_packed);
 

@@ -384,7 +384,7 @@ void ReadMachineAndDrive(const NodeReader& top, Scenario* scenario) {
   if (auto machine = top.Child("machine")) {
     if (IsFmuMachine(*machine)) {
       const auto load_packed = [](const std::string& path, const std::vector<Override>& overrides) {
-        return LoadScenario(path, overrides, LoadOptions{false, std::nullopt}).machine;
+        return LoadScenario(path, overrides, LoadOptions{false, std::nullopt});
       };
       scenario->fmu = ReadFmuMachine(*machine, &scenario->machine, load_packed);
     } else {
@@ -398,6 +398,7 @@ void ReadMachineAndDrive(const NodeReader& top, Scenario* scenario) {
     throw top.Child("drive")->Error("a plant FMU (machine.fmu) runs under the kinematic drive only: its input is "
                                     "the held base acceleration; put the servo inside the FMU");
   }
+  if (scenario->fmu && scenario->fmu->drive) scenario->drive = *scenario->fmu->drive;  // shapebench's FMU's own
 }
 
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,

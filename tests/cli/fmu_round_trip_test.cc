@@ -29,17 +29,23 @@ double RoundTripScale(const std::string& name, double value, double static_m) {
 
 // Runs `scenario` natively (exact) and with its machine exported at `version` and imported;
 // compares the metrics and every row of trace.csv.
-void ExpectRoundTrip(const std::string& scenario, int version, const ScratchDir& dir) {
-  const std::string tag = std::to_string(version) + "_" + std::to_string(std::hash<std::string>()(scenario) % 1000);
+void ExpectRoundTrip(const std::string& scenario, int version, const ScratchDir& dir,
+                     const std::vector<std::string>& sets = {}) {
+  const std::string tag = std::to_string(version) + "_" + std::to_string(std::hash<std::string>()(scenario) % 1000) +
+                          (sets.empty() ? "" : "_set");
   const std::string fmu = dir.File("machine" + tag + ".fmu");
-  const CliResult exported = RunCli(
-      {"fmu", scenario, "--part", "machine", "--fmi-version", std::to_string(version), "--out", fmu}, kSourceDir);
+  std::vector<std::string> export_args = {"fmu", scenario, "--part", "machine", "--fmi-version",
+                                          std::to_string(version), "--out", fmu};
+  export_args.insert(export_args.end(), sets.begin(), sets.end());
+  const CliResult exported = RunCli(export_args, kSourceDir);
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
-  const CliResult native =
-      RunCli({"run", scenario, "--json", "--set", "integrator.method=exact", "--out", dir.File("native" + tag)},
-             kSourceDir);
+  std::vector<std::string> native_args = {"run", scenario, "--json", "--set", "integrator.method=exact", "--out",
+                                          dir.File("native" + tag)};
+  native_args.insert(native_args.end(), sets.begin(), sets.end());
+  const CliResult native = RunCli(native_args, kSourceDir);
   ASSERT_EQ(native.exit_code, 0) << native.err;
-  const CliResult imported = RunCli({"run", scenario, "--json", "--set", "machine={fmu: " + fmu + "}", "--out",
+  const CliResult imported = RunCli({"run", scenario, "--json", "--set", "machine={fmu: " + fmu + "}",
+                                     "--set", "drive.type=kinematic", "--out",
                                      dir.File("imported" + tag)},
                                     kSourceDir);
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
@@ -80,6 +86,14 @@ void ExpectRoundTrip(const std::string& scenario, int version, const ScratchDir&
 TEST(FmuRoundTrip, DemoThroughTheExportedMachine) {
   ScratchDir dir;
   for (int version : {2, 3}) ExpectRoundTrip("configs/demo.yaml", version, dir);
+}
+
+// Tests that the demo under the servo drive (its defaults: Kp 30 1/s, a 200 Hz velocity loop)
+// round-trips too: the exported machine carries the servo inside, and the import runs with
+// the FMU's drive as its own (the states the residual reads are the servo plant's).
+TEST(FmuRoundTrip, ServoDemoCarriesItsServoInside) {
+  ScratchDir dir;
+  for (int version : {2, 3}) ExpectRoundTrip("configs/demo.yaml", version, dir, {"--set", "drive.type=servo"});
 }
 
 // Tests that a circle program (a line to (30, 20) mm, then a full circle of 10 mm radius
