@@ -78,7 +78,7 @@ TEST(FmuRun, WithoutDocumentedOutputsTheirMetricsAreNotAvailable) {
   EXPECT_TRUE(std::isnan(got.settling_time_s));
   EXPECT_TRUE(std::isnan(got.residual_amplitude_m));
   EXPECT_GT(got.peak_deflection_x_m, 0.0);
-  EXPECT_EQ(got.peak_deflection_y, 0.0);
+  EXPECT_EQ(got.peak_deflection_y_m, 0.0);
   ASSERT_EQ(result.warnings.size(), 2u);
   EXPECT_NE(result.warnings[0].find("maps no static_compliance output"), std::string::npos) << result.warnings[0];
   EXPECT_NE(result.warnings[1].find("maps no residual_amplitude output"), std::string::npos) << result.warnings[1];
