@@ -31,8 +31,8 @@ std::vector<int> StatesRead(const Eigen::MatrixXd& c, int row, const Eigen::Matr
 
 }  // namespace
 
-ExactStepper::ExactStepper(const model::LinearPlant& plant)
-    : plant_(plant), n_(plant.num_states()), m_(plant.num_inputs()) {
+ExactStepper::ExactStepper(const model::LinearPlant& plant, double period_s, int substeps)
+    : plant_(plant), n_(plant.num_states()), m_(plant.num_inputs()), period_s_(period_s), substeps_(substeps) {
   if (n_ > 0) {
     a_z_ = plant.AugmentedA();
     b_z_ = plant.AugmentedB();
@@ -71,7 +71,12 @@ ExactStepper::Grid& ExactStepper::GridFor(double h) {
       }
       watcher = model::TickExtremum::Make(a, b, c, h);
     }
+    grid.sampled = grid.sampled || (k > 0 && !watcher);
     grid.extremum.push_back(std::move(watcher));
+  }
+  if (grid.sampled) {
+    grid.inner = std::max(1, static_cast<int>(std::ceil(substeps_ * h / period_s_ - 1e-9)));
+    grid.inner_discretization = model::DiscretizeExactly(plant_, h / grid.inner);
   }
   if (grids_.size() == 4) grids_.pop_back();  // a master varies its step rarely
   grids_.insert(grids_.begin(), std::move(grid));
@@ -99,8 +104,23 @@ void ExactStepper::Step(const double* accel, double h) {
     }
     peak_[row] = peak;
   }
+  if (grid.sampled) SampleInside(grid, accel);
   z_.swap(z_next_);
   y_.swap(y_next_);
+}
+
+// The rows without an exact search, at the inner samples of the step (its end excluded:
+// the step's own end is exact).
+void ExactStepper::SampleInside(const Grid& grid, const double* accel) {
+  const Eigen::Map<const Eigen::VectorXd> a(accel, m_);
+  Eigen::VectorXd z = z_;
+  for (int j = 1; j < grid.inner; ++j) {
+    z = (grid.inner_discretization->phi * z + grid.inner_discretization->gamma * a).eval();
+    for (std::size_t row = 0; row < peak_.size(); ++row) {
+      if (grid.extremum[row] || kept_[row].empty()) continue;
+      peak_[row] = std::max(peak_[row], std::abs(plant_.C.row(static_cast<Eigen::Index>(row)).dot(z.head(n_))));
+    }
+  }
 }
 
 }  // namespace shapebench::bench::fmu

@@ -10,6 +10,7 @@
 #include "bench/fmu/slave.h"
 #include "bench/run/command_samples.h"
 #include "bench/run/run_scenario.h"
+#include "bench/run/run_window.h"
 #include "common/format.h"
 #include "model/multi_axis_machine.h"
 #include "model/nonlinear_integrator.h"
@@ -27,7 +28,11 @@ class MachineSlave final : public Slave {
         outputs_(static_cast<std::size_t>(std::max(machine_.plant.num_outputs(), model::kNumOutputRows)), 0.0),
         peaks_(outputs_.size(), 0.0) {
     if (machine_.nonlinear.empty()) {
-      exact_ = std::make_unique<ExactStepper>(machine_.plant);
+      const double period_s = scenario.controller.period_s;
+      const int substeps = scenario.integrator.output_substeps > 0
+                               ? scenario.integrator.output_substeps
+                               : AutoSubsteps(model::AnalyzeMachine(scenario.machine), period_s);
+      exact_ = std::make_unique<ExactStepper>(machine_.plant, period_s, substeps);
       return;
     }
     // CVODE's tolerances scale with the run's largest acceleration and speed: the scenario's.
