@@ -19,8 +19,9 @@ namespace shapebench::bench {
 class FmuInstance {
  public:
   // dlopen and dlsym: a missing function throws FmuError (a bad FMU, exit 2). Then
-  // instantiate, set `parameters` (value reference, value) and the inputs' start values,
-  // and initialise for a run from t = 0 to `stop_time_s` (SolverError on a failed status).
+  // instantiate, set `parameters` (value reference, value) before initialisation, and
+  // initialise for a run from t = 0 to `stop_time_s` (SolverError on a failed status; the
+  // inputs keep their start values until the first step sets them).
   FmuInstance(std::shared_ptr<const UnpackedFmu> fmu, const std::vector<std::pair<unsigned, double>>& parameters,
               double stop_time_s);
   ~FmuInstance();
