@@ -1,5 +1,6 @@
 // shapebench as the FMI master of a plant FMU through the built CLI: run, the exit codes
 // of a bad key (2) and of an FMU error status (3), fmu_parameters in --set and in a sweep.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,23 @@ TEST(FmuImportCli, RunsThePlantFmu) {
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_NE(table.out.find("\nstatic_displacement_m           n/a\n"), std::string::npos) << table.out;
   EXPECT_NE(table.err.find("maps no static_compliance output"), std::string::npos) << table.err;
+}
+
+// Tests that machine.fmu is a path key: relative to the file that names it, and, given by
+// --set, to the current directory (the scenario in sub/, the CLI run from its parent).
+TEST(FmuImportCli, FmuPathsFollowThePathRule) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / "sub");
+  std::filesystem::copy_file(TestPlantFmu(2), dir.File("sub/plant.fmu"));
+  const std::string path = dir.Write("sub/fmu.yaml", TestPlantScenario("{fmu: plant.fmu}"));
+  const CliResult from_file = RunCli({"run", path, "--json"}, dir.path().string());
+  EXPECT_EQ(from_file.exit_code, 0) << from_file.err;
+  const CliResult from_set =
+      RunCli({"run", "sub/fmu.yaml", "--json", "--set", "machine.fmu=sub/plant.fmu"}, dir.path().string());
+  EXPECT_EQ(from_set.exit_code, 0) << from_set.err;
+  const CliResult wrong = RunCli({"run", "sub/fmu.yaml", "--set", "machine.fmu=plant.fmu"}, dir.path().string());
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("--set:1:1: machine.fmu: plant.fmu: cannot be opened"), std::string::npos) << wrong.err;
 }
 
 // Tests that a variable the FMU does not have exits 2 with the file, line, column and key
