@@ -18,7 +18,7 @@ bool IsPathKey(const std::string& key_path) {
   if (key_path == "machine") return true;
   const std::size_t dot = key_path.rfind('.');
   const std::string last = dot == std::string::npos ? key_path : key_path.substr(dot + 1);
-  return last == "program_file" || last == "modal_file" || last == "frf_file";
+  return last == "program_file" || last == "modal_file" || last == "frf_file" || last == "fmu";
 }
 
 }  // namespace shapebench::bench

@@ -1,5 +1,5 @@
 // The one rule for relative paths in the input (machine:, program_file:, modal_file:,
-// frf_file:, a sweep's path values): a path written in a file is relative to that file's
+// frf_file:, machine.fmu:, a sweep's path values): a path written in a file is relative to that file's
 // folder; a path given on the command line (a --set value) to the current directory.
 #pragma once
 

@@ -118,6 +118,10 @@ Metrics FinishMetrics(const RunPlan& plan, const MetricTally& t) {
   m.stroke_overshoot_m = t.overshoot_m;
   m.stroke_alarm = plan.command.stroke_alarm ? 1.0 : 0.0;
   m.peak_command_acceleration_m_s2 = plan.samples.max_accel_m_s2;
+  if (t.static_unknown) {
+    m.static_displacement_m = m.static_displacement_x_m = m.static_displacement_y_m = m.static_displacement_z_m = NAN;
+    m.settling_time_s = NAN;
+  }
   SetPatternMetrics(plan.scenario.controller.pattern, &m);
   RefuseInfiniteMetrics(m);
   return m;

@@ -58,6 +58,9 @@ struct MetricTally {
   double static_m = 0.0;
   Eigen::Vector3d static_vector = Eigen::Vector3d::Zero();
   double band = 0.0;  // RunWindow::kSettlingBand x static_m
+  // No static solve (a plant FMU without static_compliance outputs): static_displacement_m,
+  // its ratios and settling_time_s are n/a.
+  bool static_unknown = false;
 
   double peak = 0.0;
   double contour_sq = 0.0;

@@ -49,9 +49,13 @@ PlantSampler::PlantSampler(const RunPlan& plan, SamplerKind fastest, RunResult* 
     if (e.is_arc()) arcs_.push_back({&e, 0.0, 0});
     if (e.is_arc() && nonlinear_) glitches_.emplace_back(e);
   }
-  SetStaticReference(plan, machine_.static_gain, &tally_);
   result_.substeps = substeps_;
-  SetUpPlant();
+  if (plan.scenario.fmu) {
+    SetUpFmu();
+  } else {
+    SetStaticReference(plan, machine_.static_gain, &tally_);
+    SetUpPlant();
+  }
   SetUpSampling(fastest);
   result_.sampler = kind_;
   if (!window_.cruise_probe_ticks.empty()) next_probe_tick_ = window_.cruise_probe_ticks.front();
@@ -153,7 +157,7 @@ void PlantSampler::SetUpSampling(SamplerKind fastest) {
     StartTrace();
     return;
   }
-  if (fastest == SamplerKind::kGeneral) return;
+  if (fastest == SamplerKind::kGeneral || fmu_ != nullptr) return;
   SetUpSingleAxis();
   if (single_.axis < 0 || rows_ != model::kNumOutputRows) return;
   kind_ = SamplerKind::kSingleAxis;
@@ -326,6 +330,7 @@ bool PlantSampler::SettleTail(std::size_t k) {
 // The free vibration at motion end (the acceleration 0 from here on: equilibrium 0), per
 // pole into the result, their sum into residual_amplitude_m.
 void PlantSampler::ProbeMotionEnd() {
+  if (fmu_ != nullptr) tally_.residual_m = FmuResidual();
   if (!residual_vibration_) return;
   result_.residual_modes = residual_vibration_->Amplitudes(integrator_->PlantState(), Eigen::Vector3d::Zero());
   tally_.residual_m = ResidualVibration::Total(result_.residual_modes);
@@ -344,6 +349,7 @@ void PlantSampler::ProbeCruise(std::size_t k) {
   const double amplitude =
       residual_vibration_ ? ResidualVibration::Total(residual_vibration_->Amplitudes(
                                 integrator_->PlantState(), samples_.velocity[k]))
+      : fmu_ != nullptr   ? FmuResidual()
       : nonlinear_        ? NAN
                           : 0.0;
   // The largest; a failed split (NaN) stays.

@@ -27,6 +27,8 @@
 
 namespace shapebench::bench {
 
+class FmuPlant;  // bench/fmi/fmu_plant.h
+
 class PlantSampler final : public Sampler {
  public:
   // The fastest strategy at or below `fastest` that qualifies (result->sampler tells).
@@ -42,6 +44,8 @@ class PlantSampler final : public Sampler {
 
  private:
   void SetUpPlant();
+  void SetUpFmu();  // fmu_sampling.cc: a plant FMU (scenario.fmu) in place of the model
+  double FmuResidual() const;  // its residual_amplitude output in the view now (NaN: none)
   void CrossCheckCvode(const model::LinearPlant& plant, double scale_accel);
   void SetUpSampling(SamplerKind fastest);
   void SetUpSingleAxis();
@@ -85,7 +89,8 @@ class PlantSampler final : public Sampler {
   // The free vibration of the plant's state (residual_ratio, cruise_residual_ratio), read at
   // motion end and at the cruise probes (RunWindow::cruise_probe_ticks), never per tick.
   std::unique_ptr<ResidualVibration> residual_vibration_;
-  std::unique_ptr<DampedTail> damped_tail_;  // a linear plant on the exact path, no trace
+  std::unique_ptr<DampedTail> damped_tail_;
+  FmuPlant* fmu_ = nullptr;  // integrator_ when it is a plant FMU: its residual outputs  // a linear plant on the exact path, no trace
   std::size_t next_probe_ = 0;  // index into cruise_probe_ticks
   std::size_t next_probe_tick_ = std::numeric_limits<std::size_t>::max();
   int rows_ = 0;

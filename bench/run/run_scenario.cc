@@ -24,7 +24,8 @@ namespace {
 // records. *result receives what the sampler reports beside the tally (which sampler,
 // residual modes, stats, substeps, warnings, the trace).
 std::unique_ptr<Sampler> MakeSampler(const RunPlan& plan, SamplerKind fastest, RunResult* result) {
-  if (fastest == SamplerKind::kClosedForm && plan.single_mode.mode != nullptr) {
+  // A plant FMU is stepped (plant_sampler.h), even where its own model has a closed form.
+  if (fastest == SamplerKind::kClosedForm && plan.single_mode.mode != nullptr && !plan.scenario.fmu) {
     return MakeClosedFormSampler(plan, result);
   }
   return std::make_unique<PlantSampler>(plan, fastest, result);
@@ -79,7 +80,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   CheckEstimatedWork(plan, 0);  // its samples alone; the exact path adds its extremum grid
   // The sampler, its ticks, the metrics.
   if (!(options.record_trace || options.attribute_sources) || options.fastest_sampler != SamplerKind::kClosedForm ||
-      plan.single_mode.mode == nullptr) {
+      plan.single_mode.mode == nullptr || scenario.fmu) {
     const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
     result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
     result.metrics = FinishMetrics(plan, tally);

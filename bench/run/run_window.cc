@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "bench/fmi/fmu_machine.h"
 #include "bench/scenario/run_memory.h"
 #include "common/validation_error.h"
 
@@ -52,7 +53,9 @@ RunWindow PlanRunWindow(const Scenario& scenario, const CommandSamples& samples,
   }
   w.max_ticks = static_cast<std::size_t>(std::min(
       static_cast<double>(w.motion_ticks + RunWindow::kMaxTailPeriods * w.period_ticks), limit_ticks));
-  w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy;
+  // A foreign plant FMU's damping is unknown (its machine here has no modes): its tail is simulated.
+  w.never_settles_late = scenario.drive.type == model::DriveType::kKinematic && dynamics.conserves_energy &&
+                         (!scenario.fmu || scenario.fmu->model_known);
   w.cruise_probe_ticks = CruiseProbes(samples, w.period_ticks);
   return w;
 }

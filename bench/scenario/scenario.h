@@ -1,6 +1,7 @@
 // A scenario: everything one run needs (docs/scenario-reference.md), already validated.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
+
+struct FmuMachine;  // bench/fmi/fmu_machine.h
 
 // A band check's range: the metric's worst value over `key` in [from, to]
 // (bench/sweep/band_check.h), e.g. band: {key: "machine.modes[0].frequency_hz", from: 24, to: 26}.
@@ -87,6 +90,9 @@ struct RunLimits {
 
 struct Scenario {
   model::MultiAxisMachineConfig machine;
+  // `machine: {fmu: ...}` (bench/scenario/fmu_machine_reader.h): the plant FMU the run steps;
+  // `machine` is then rigid throughout (the FMU is the structure). Null for every other form.
+  std::shared_ptr<const FmuMachine> fmu;
   model::DriveConfig drive;
   controller::ControllerConfig controller;
   // `move:` (the one-block shorthand) runs unless a program is given.

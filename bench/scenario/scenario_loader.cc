@@ -17,6 +17,7 @@
 #include "bench/config/input_path.h"
 #include "bench/config/key_path.h"
 #include "bench/config/rule_location.h"
+#include "bench/scenario/fmu_machine_reader.h"
 #include "bench/scenario/machine_reader.h"
 #include "bench/scenario/pattern_defaults.h"
 #include "bench/scenario/metrics.h"
@@ -378,6 +379,28 @@ void CheckMovedAxesModelled(const NodeReader& machine, const Scenario& scenario)
   }
 }
 
+// `machine:` (any form, a plant FMU too) and `drive:`.
+void ReadMachineAndDrive(const NodeReader& top, Scenario* scenario) {
+  if (auto machine = top.Child("machine")) {
+    if (IsFmuMachine(*machine)) {
+      const auto load_packed = [](const std::string& path, const std::vector<Override>& overrides) {
+        return LoadScenario(path, overrides, LoadOptions{false, std::nullopt});
+      };
+      scenario->fmu = ReadFmuMachine(*machine, &scenario->machine, load_packed);
+    } else {
+      scenario->machine = ReadMachineAxesEntry(*machine);
+    }
+  }
+  if (auto drive = top.Child("drive")) scenario->drive = ReadDrive(*drive);
+  if (scenario->fmu && scenario->drive.type != model::DriveType::kKinematic) {
+    // The servo's loop would close across the FMU boundary with a one-step delay
+    // (docs/fmi.md#importing-a-plant-fmu): not built.
+    throw top.Child("drive")->Error("a plant FMU (machine.fmu) runs under the kinematic drive only: its input is "
+                                    "the held base acceleration; put the servo inside the FMU");
+  }
+  if (scenario->fmu && scenario->fmu->drive) scenario->drive = *scenario->fmu->drive;  // shapebench's FMU's own
+}
+
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
                       const LoadOptions& options) {
   NodeReader top(document, document.root(), "");
@@ -387,8 +410,7 @@ Scenario ReadScenario(const ConfigDocument& document, const std::string& path,
   scenario.source_file = path;
   scenario.name = fs::path(path).stem().string();
   top.Read("name", &scenario.name);
-  if (auto machine = top.Child("machine")) scenario.machine = ReadMachineAxesEntry(*machine);
-  if (auto drive = top.Child("drive")) scenario.drive = ReadDrive(*drive);
+  ReadMachineAndDrive(top, &scenario);
   if (auto controller = top.Child("controller")) scenario.controller = ReadController(*controller);
   // Before the program: a G-code file is read under them.
   if (auto limits = top.Child("limits")) scenario.limits = ReadLimits(*limits);
@@ -458,6 +480,10 @@ YAML::Node BuildScenarioTree(const std::string& path, const std::vector<Override
 }
 
 model::MultiAxisMachineConfig ReadMachineAxesEntry(const NodeReader& machine) {
+  if (IsFmuMachine(machine)) {
+    throw machine.Child("fmu")->Error("a plant FMU is a black box: this reads the machine's own model (modes, "
+                                      "bodies, axes); run, check and sweep drive an FMU");
+  }
   if (!machine.IsMap()) {
     throw machine.Error(
         "expected a mapping (modes:, bodies: or axes:) or the path of a machine file");
