@@ -89,7 +89,12 @@ void ForEachDirection(const controller::PathGeometry& path, F f) {
       continue;
     }
     const int steps = std::max(4, static_cast<int>(std::ceil(std::abs(e.sweep_rad) * 180.0 / kPi)));
-    for (int j = 0; j <= steps; ++j) f(e.TangentAtFraction(static_cast<double>(j) / steps));
+    for (int j = 0; j <= steps; ++j) {
+      // An arc's end tangent along an axis carries ~1e-17 on the other (cos 90 deg): 0.
+      Eigen::Vector3d d = e.TangentAtFraction(static_cast<double>(j) / steps);
+      for (int b = 0; b < 3; ++b) d(b) = std::abs(d(b)) < 1e-12 ? 0.0 : d(b);
+      f(d);
+    }
   }
 }
 
