@@ -15,6 +15,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Segment {
   double length_m = 0.0;
   double feed_m_s = 0.0;
+  bool hold = false;  // a corner blend: run at one speed, entry = exit
 };
 
 // Distance covered by one acc/dec phase from speed u to speed w (shaped as AccelPhase):
@@ -42,11 +43,14 @@ double LargestWithin(double lo, double hi, double target, F f) {
 IdealProfile PlanMotion(const std::vector<Segment>& segments, std::vector<double> junction,
                         const PlannerSettings& s) {
   const std::size_t n = segments.size();
-  // Backward: each entry speed must allow slowing to the exit within the segment.
+  // Backward: each entry speed must allow slowing to the exit within the segment (a
+  // blend: equal the exit, the look-ahead that slows the blends ahead of later corners).
   for (std::size_t i = n; i-- > 0;) {
     const double w = junction[i + 1];
     const double cap = junction[i];
-    if (cap > w && PhaseDistance(cap, w, s) > segments[i].length_m) {
+    if (segments[i].hold) {
+      junction[i] = std::min(cap, w);
+    } else if (cap > w && PhaseDistance(cap, w, s) > segments[i].length_m) {
       junction[i] = LargestWithin(w, cap, segments[i].length_m,
                                   [&](double u) { return PhaseDistance(u, w, s); });
     }
@@ -55,7 +59,9 @@ IdealProfile PlanMotion(const std::vector<Segment>& segments, std::vector<double
   for (std::size_t i = 0; i < n; ++i) {
     const double u = junction[i];
     const double cap = junction[i + 1];
-    if (cap > u && PhaseDistance(u, cap, s) > segments[i].length_m) {
+    if (segments[i].hold) {
+      junction[i + 1] = std::min(cap, u);
+    } else if (cap > u && PhaseDistance(u, cap, s) > segments[i].length_m) {
       junction[i + 1] = LargestWithin(u, cap, segments[i].length_m,
                                       [&](double w) { return PhaseDistance(u, w, s); });
     }
@@ -65,6 +71,10 @@ IdealProfile PlanMotion(const std::vector<Segment>& segments, std::vector<double
     const double u = junction[i];
     const double w = junction[i + 1];
     const double length = segments[i].length_m;
+    if (segments[i].hold && u > 0.0) {
+      profile.AppendCruise(length / u);  // u = w: the passes made them equal
+      continue;
+    }
     auto covered = [&](double peak) { return PhaseDistance(u, peak, s) + PhaseDistance(peak, w, s); };
     const double peak = LargestWithin(std::max(u, w), segments[i].feed_m_s, length, covered);
     const double cruise_s = peak > 0.0 ? std::max(0.0, (length - covered(peak)) / peak) : 0.0;
@@ -201,16 +211,17 @@ class MotionAppender {
  public:
   MotionAppender(const PlannerSettings& settings, SpeedPlan* plan) : settings_(settings), plan_(plan) {}
 
-  // Appends a stretch of `length` at `feed` whose start is limited to `limit`.
-  void Add(double length, double feed, double limit) {
+  // Appends a stretch of `length` at `feed` whose start is limited to `limit`; `hold`: a
+  // blend, run at one speed (never merged with its neighbours).
+  void Add(double length, double feed, double limit, bool hold = false) {
     if (segments_.empty()) {
-      segments_.push_back({length, feed});
+      segments_.push_back({length, feed, hold});
       junction_.assign(1, 0.0);
-    } else if (limit >= feed && segments_.back().feed_m_s == feed) {
+    } else if (hold == segments_.back().hold && limit >= feed && segments_.back().feed_m_s == feed) {
       segments_.back().length_m += length;  // no limit: one stretch
     } else {
       junction_.push_back(std::min({limit, segments_.back().feed_m_s, feed}));
-      segments_.push_back({length, feed});
+      segments_.push_back({length, feed, hold});
     }
   }
 
@@ -234,12 +245,50 @@ class MotionAppender {
   double travelled_m_ = 0.0;
 };
 
+// A blend's speed cap: the lower feed of the two blocks it joins, and v^2 / r within the
+// acc/dec's acceleration.
+double BlendFeed(const PathElement& blend, const SpeedPlan& plan, const PlannerSettings& s) {
+  return std::min({plan.block_feed_m_s[blend.block], plan.block_feed_m_s[blend.block + 1],
+                   std::sqrt(s.accel_m_s2 * blend.start_radius_m)});
+}
+
+// The end of a line next to a blend that runs at the blend's speed: what one period covers
+// at its cap plus a period's acceleration, (v + a T) T (at most half the line). The ticks
+// spread a speed change over the period it ends in, so a change ending at the arc would
+// put tangential acceleration (at more than the blend's speed) on it; with the guard the
+// arc carries its centripetal acceleration alone.
+double BlendGuard(const PathElement* blend, const PathElement& line, const SpeedPlan& plan, const PlannerSettings& s) {
+  if (blend == nullptr || !blend->blend || line.blend) return 0.0;
+  const double guard = (BlendFeed(*blend, plan, s) + s.accel_m_s2 * s.period_s) * s.period_s;
+  return std::min(guard, 0.5 * line.length_m);
+}
+
+// Appends one element: a blend as one hold, a line next to blends with its guards, the
+// element across the stroke end's crossing in two.
+void AddElement(const PathElement& element, const PathElement* before, const PathElement* after, double feed,
+                double limit, const SpeedPlan& plan, const PlannerSettings& s, MotionAppender* motion) {
+  const double head = BlendGuard(before, element, plan, s);
+  const double tail = BlendGuard(after, element, plan, s);
+  if (head == 0.0 && tail == 0.0) {
+    motion->Add(element.length_m, feed, limit, element.blend);
+    return;
+  }
+  if (head > 0.0) motion->Add(head, BlendFeed(*before, plan, s), limit, true);
+  motion->Add(element.length_m - head - tail, feed, head > 0.0 ? kInf : limit);
+  if (tail > 0.0) motion->Add(tail, BlendFeed(*after, plan, s), kInf, true);
+}
+
 }  // namespace
 
 SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
                         const PlannerSettings& settings) {
+  return PlanPathSpeed(program, path, path, settings);
+}
+
+SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& programmed, const PathGeometry& path,
+                        const PlannerSettings& settings) {
   SpeedPlan plan;
-  PlanBlockFeeds(program, path, settings, &plan);
+  PlanBlockFeeds(program, programmed, settings, &plan);
   plan.stroke_crossing_s_m = FindStrokeCrossing(path, settings.stroke_limits);
   const bool slow_down = plan.stroke_crossing_s_m && settings.stroke_end.enabled;
   const double crossing_s = plan.stroke_crossing_s_m.value_or(0.0);
@@ -249,7 +298,9 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
   plan.speed_m_s.push_back(0.0);
   MotionAppender motion(settings, &plan);
   const PathElement* previous = nullptr;
-  for (const PathElement& element : path.elements()) {
+  const std::vector<PathElement>& elements = path.elements();
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    const PathElement& element = elements[i];
     if (element.kind == MotionKind::kDwell) {
       motion.Finish();
       // A dwell of any length holds at least until the next tick.
@@ -259,7 +310,7 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
       continue;
     }
     if (element.length_m == 0.0) continue;
-    double feed = plan.block_feed_m_s[element.block];
+    double feed = element.blend ? BlendFeed(element, plan, settings) : plan.block_feed_m_s[element.block];
     if (slow_down && element.start_s_m >= crossing_s) feed = std::min(feed, crossing_limit);
     double limit = kInf;
     if (previous != nullptr) {
@@ -271,7 +322,8 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
       motion.Add(crossing_s - element.start_s_m, feed, limit);
       motion.Add(element.end_s_m() - crossing_s, std::min(feed, crossing_limit), crossing_limit);
     } else {
-      motion.Add(element.length_m, feed, limit);
+      AddElement(element, previous, i + 1 < elements.size() ? &elements[i + 1] : nullptr, feed, limit, plan,
+                 settings, &motion);
     }
     previous = &element;
   }

@@ -57,6 +57,11 @@ struct SpeedPlan {
 
 SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& path,
                         const PlannerSettings& settings);
+// The same on `path`, a blended path (controller/corner_blend.h): the blocks' feeds from
+// `programmed`, the speeds along `path`; a blend runs at one speed, the lower feed of its
+// two blocks and sqrt(a r) at most, its entry and exit junctions equal.
+SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& programmed, const PathGeometry& path,
+                        const PlannerSettings& settings);
 
 // The junction speed limit between two directions (unit tangents) under the corner rule:
 // infinite when they agree (within 1e-9), else allowance / max_axis |t2 - t1|.

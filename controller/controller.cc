@@ -10,6 +10,7 @@
 #include "common/key_rule_error.h"
 #include "common/validation_error.h"
 #include "controller/block_planner.h"
+#include "controller/corner_blend.h"
 #include "controller/interpolator.h"
 #include "controller/linear_acc_dec.h"
 #include "controller/path_geometry.h"
@@ -346,6 +347,20 @@ std::string StrokeAlarmWarning(const StrokeAlarmSite& site) {
   return text + ": the rest of the program was not run";
 }
 
+// A blended run's positions as the programmed path's arc length (corner_blend.h), and the
+// programmed block there: the contour error's window, the trace and the attribution read
+// the programmed path.
+void ToProgrammedPath(const PathGeometry& programmed, const PathGeometry& blended, InterpolatedPulses* pulses) {
+  std::size_t hint = 0, programmed_hint = 0;
+  for (std::size_t k = 0; k < pulses->path_position_m.size(); ++k) {
+    const double s = SourcePosition(blended, pulses->path_position_m[k], &hint);
+    pulses->path_position_m[k] = s;
+    if (programmed.elements().empty()) continue;
+    programmed_hint = programmed.ElementAt(s, programmed_hint);
+    pulses->block[k] = programmed.elements()[programmed_hint].block;
+  }
+}
+
 }  // namespace
 
 std::string StrokeAlarmSite::Text() const {
@@ -363,7 +378,10 @@ std::string StrokeAlarmSite::Text() const {
 MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, const Program& program,
                                         const CommandLimits& limits) {
   const double dt = controller.period_s;
-  const PathGeometry path(program);
+  const PathGeometry programmed(program);
+  const std::optional<PathGeometry> blended =
+      BlendCorners(program, programmed, 16.0 * controller.accel_m_s2() * dt * dt);
+  const PathGeometry& path = blended ? *blended : programmed;
   PlannerSettings settings;
   settings.period_s = dt;
   settings.accel_m_s2 = controller.accel_m_s2();
@@ -375,7 +393,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.short_block = controller.short_block;
   settings.stroke_end = controller.stroke_end;
   settings.stroke_limits = controller.stroke_limits;
-  SpeedPlan plan = PlanPathSpeed(program, path, settings);
+  SpeedPlan plan = PlanPathSpeed(program, programmed, path, settings);
   if (plan.speed_m_s.size() > limits.max_ticks) {
     throw ValidationError(limits.key, "the command takes " + std::to_string(plan.speed_m_s.size() - 1) +
                                           " periods, more than " + limits.key + " allows (" +
@@ -384,6 +402,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   InterpolatedPulses pulses = Interpolate(path, plan, dt);
   StrokeAlarmSite alarm_site;
   if (plan.stroke_alarm) alarm_site = FindStrokeAlarmSite(program, path, pulses, plan, controller.stroke_limits, dt);
+  if (blended) ToProgrammedPath(programmed, *blended, &pulses);
 
   const PulseFilter filter = PostInterpFilter(controller);
   std::vector<Eigen::Vector3d> out;

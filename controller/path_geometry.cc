@@ -70,6 +70,10 @@ Eigen::Vector3d PathElement::PointAtFraction(double u) const {
   if (u >= 1.0) return end_m;
   if (u <= 0.0) return start_m;
   if (!is_arc()) return start_m + (end_m - start_m) * u;
+  if (blend) {
+    const double angle = u * sweep_rad;
+    return center_m + start_radius_m * (std::cos(angle) * u_dir + std::sin(angle) * v_dir);
+  }
   const double angle = start_angle_rad + u * sweep_rad;
   const double radius = start_radius_m + u * (end_radius_m - start_radius_m);
   Eigen::Vector3d p;
@@ -82,6 +86,7 @@ Eigen::Vector3d PathElement::PointAtFraction(double u) const {
 Eigen::Vector3d PathElement::TangentAtFraction(double u) const {
   if (length_m == 0.0) return Eigen::Vector3d::Zero();
   if (!is_arc()) return direction;
+  if (blend) return -std::sin(u * sweep_rad) * u_dir + std::cos(u * sweep_rad) * v_dir;
   const double angle = start_angle_rad + u * sweep_rad;
   const double radius = start_radius_m + u * (end_radius_m - start_radius_m);
   const double dr = end_radius_m - start_radius_m;
@@ -100,7 +105,9 @@ Eigen::Vector3d PathElement::NearestPoint(const Eigen::Vector3d& p) const {
   }
   // The nearest point of a plane arc lies at p's own angle when that angle is on the arc,
   // else at an end; for a helix this is the usual close estimate.
-  const double angle = std::atan2(p(axis1) - center_m(axis1), p(axis0) - center_m(axis0));
+  const Eigen::Vector3d from_centre = p - center_m;
+  const double angle = blend ? std::atan2(from_centre.dot(v_dir), from_centre.dot(u_dir))
+                             : std::atan2(from_centre(axis1), from_centre(axis0));
   const double from_start = sweep_rad > 0.0 ? Wrap(angle - start_angle_rad) : Wrap(start_angle_rad - angle);
   Eigen::Vector3d best = (p - start_m).norm() <= (p - end_m).norm() ? start_m : end_m;
   if (from_start <= std::abs(sweep_rad)) {
@@ -111,25 +118,38 @@ Eigen::Vector3d PathElement::NearestPoint(const Eigen::Vector3d& p) const {
 }
 
 PathGeometry::PathGeometry(const Program& program) : start_m_(program.start_m) {
-  double s = 0.0;
   for (std::size_t i = 0; i < program.blocks.size(); ++i) {
     PathElement e = MakeElement(program.blocks[i], static_cast<int>(i));
-    e.start_s_m = s;
-    s += e.length_m;
-    Eigen::Vector3d lo = e.start_m.cwiseMin(e.end_m);
-    Eigen::Vector3d hi = e.start_m.cwiseMax(e.end_m);
-    if (e.is_arc()) {
-      const double r = std::max(e.start_radius_m, e.end_radius_m);
-      for (int axis : {e.axis0, e.axis1}) {
-        lo(axis) = e.center_m(axis) - r;
-        hi(axis) = e.center_m(axis) + r;
-      }
-    }
-    box_min_.push_back(lo);
-    box_max_.push_back(hi);
-    elements_.push_back(e);
+    e.source_start_s_m = length_m_;
+    e.source_length_m = e.length_m;
+    Append(e);
   }
-  length_m_ = s;
+}
+
+PathGeometry::PathGeometry(const Eigen::Vector3d& start_m, std::vector<PathElement> elements) : start_m_(start_m) {
+  for (PathElement& e : elements) Append(std::move(e));
+}
+
+void PathGeometry::Append(PathElement e) {
+  e.start_s_m = length_m_;
+  length_m_ += e.length_m;
+  Eigen::Vector3d lo = e.start_m.cwiseMin(e.end_m);
+  Eigen::Vector3d hi = e.start_m.cwiseMax(e.end_m);
+  if (e.blend) {
+    // A blend lies in the triangle of its ends and the corner it rounds.
+    const Eigen::Vector3d corner = e.start_m + e.v_dir * (e.start_radius_m * std::tan(0.5 * e.sweep_rad));
+    lo = lo.cwiseMin(corner);
+    hi = hi.cwiseMax(corner);
+  } else if (e.is_arc()) {
+    const double r = std::max(e.start_radius_m, e.end_radius_m);
+    for (int axis : {e.axis0, e.axis1}) {
+      lo(axis) = e.center_m(axis) - r;
+      hi(axis) = e.center_m(axis) + r;
+    }
+  }
+  box_min_.push_back(lo);
+  box_max_.push_back(hi);
+  elements_.push_back(std::move(e));
 }
 
 std::size_t PathGeometry::ElementAt(double s_m, std::size_t hint) const {

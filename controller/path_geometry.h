@@ -33,6 +33,17 @@ struct PathElement {
   double end_radius_m = 0.0;
   double rise_m = 0.0;
   double dwell_s = 0.0;
+  // A corner blend (controller/corner_blend.h): a circular arc (kArcCcw, start angle 0,
+  // sweep the turn) in the plane of the two lines it joins, whatever their axes: u_dir
+  // from the centre to the start, v_dir the start's tangent. The planner runs it at one
+  // speed.
+  bool blend = false;
+  Eigen::Vector3d u_dir = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v_dir = Eigen::Vector3d::Zero();
+  // Where the element lies on the programmed path (its arc length there): the element
+  // itself unless the path was blended (a blend covers the two trimmed line ends).
+  double source_start_s_m = 0.0;
+  double source_length_m = 0.0;
 
   bool is_arc() const { return kind == MotionKind::kArcCw || kind == MotionKind::kArcCcw; }
   double end_s_m() const { return start_s_m + length_m; }
@@ -49,6 +60,8 @@ struct PathElement {
 class PathGeometry {
  public:
   explicit PathGeometry(const Program& program);
+  // A path of given elements (a blended one): their start_s_m are set here, in order.
+  PathGeometry(const Eigen::Vector3d& start_m, std::vector<PathElement> elements);
 
   const std::vector<PathElement>& elements() const { return elements_; }
   double length_m() const { return length_m_; }
@@ -72,6 +85,7 @@ class PathGeometry {
   Eigen::Vector3d start_m_;
   std::vector<PathElement> elements_;
   double length_m_ = 0.0;
+  void Append(PathElement e);
   // Axis-aligned bounds of each element, to skip far ones in DistanceTo.
   std::vector<Eigen::Vector3d> box_min_, box_max_;
 };

@@ -46,6 +46,13 @@ struct ProgramBlock {
   // controller.feed_mm_min). Rapid blocks run at controller.rapid_feed_mm_min instead.
   double feed_m_s = NAN;
   double dwell_s = 0.0;  // G4
+  // LinuxCNC's G64 in effect at the block's end (controller/corner_blend.h): >= 0 the
+  // corner it ends in may be rounded by a tangent arc whose midpoint lies within this
+  // distance of the corner (G64 P, m; infinity for G64 without P: the best speed, no
+  // tolerance); < 0 (G61, G61.1, every mode of fanuc and grbl): no blending, the corner
+  // rule. merge_tolerance_m: G64 Q, collinear lines within it run as one (0: none).
+  double blend_tolerance_m = -1.0;
+  double merge_tolerance_m = 0.0;
   // Where the block came from, for messages: the G-code line (1-based) or the index of
   // the `program:` entry (0-based).
   int source_line = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "common/format.h"
@@ -241,8 +242,9 @@ void ProgramBuilder::ReferenceReturn(const BlockWords& words, const ProgramBlock
   AddRapid(here, target);
 }
 
-// G61/G61.1/G64: the corner rule holds in every mode; G64's blending (the next step) is
-// not modelled yet, so G64 says so once.
+// G61/G61.1/G64: linuxcnc's G64 blends the corners within P (controller/corner_blend.h,
+// Q merges collinear lines); fanuc's G64 (cutting mode) runs as every mode does here, by
+// the corner rule without in-position check, and says so once.
 void ProgramBuilder::NotePathMode(const BlockWords& words, int line) {
   const int w = words.path_mode_word();
   const bool blending = w >= 0 && words.code(w) == 640;
@@ -264,12 +266,19 @@ void ProgramBuilder::NotePathMode(const BlockWords& words, int line) {
                                                   "': G64's tolerance must be >= 0");
     }
   }
-  if (!blending || blending_warned_) return;
+  if (w >= 0 && words.dialect() == Dialect::kLinuxcnc) {
+    const bool has_p = words.at('P') >= 0;
+    blend_tolerance_m_ = !blending ? -1.0
+                         : has_p   ? words.value(words.at('P')) * unit_m_
+                                   : std::numeric_limits<double>::infinity();
+    merge_tolerance_m_ = blending && words.at('Q') >= 0 ? words.value(words.at('Q')) * unit_m_ : 0.0;
+  }
+  if (!blending || !IsFanuc(words) || blending_warned_) return;
   blending_warned_ = true;
   program_.warnings.push_back(
-      "G64 (line " + std::to_string(line) + ", continuous path mode) runs as exact stop (G61): "
-      "blending within a tolerance is not modelled yet; corners follow the controller's corner "
-      "rule (corner_velocity_change_mm_min)");
+      "G64 (line " + std::to_string(line) + ", cutting mode) runs as G61 does here: corners "
+      "follow the controller's corner rule (corner_velocity_change_mm_min), without "
+      "in-position check; blending within a tolerance is linuxcnc's G64 P");
 }
 
 void ProgramBuilder::Apply(const Block& block) {
@@ -288,6 +297,8 @@ void ProgramBuilder::Apply(const Block& block) {
   move.plane = plane_;
   move.feed_m_s = feed_m_s_;
   move.source_line = block.source_line;
+  move.blend_tolerance_m = blend_tolerance_m_;
+  move.merge_tolerance_m = merge_tolerance_m_;
   const int nonmodal = words.nonmodal_word();
   if (nonmodal >= 0 && words.code(nonmodal) == 40) {
     program_.blocks.push_back(DwellBlock(words, move));

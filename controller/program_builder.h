@@ -21,8 +21,9 @@
 //                 two rapid moves; the axes with a word return (linuxcnc, grbl: all axes
 //                 when there is none; fanuc: none).
 //   G61 G61.1 G64 path mode (modal; grbl: G61 only; fanuc: G61, G64; linuxcnc: all, G64
-//                 with P and Q). Corners follow the bench's corner rule in every mode; G64
-//                 (blending) is read as exact stop with one warning per program.
+//                 with P and Q). linuxcnc's G64 blends corners within P and merges
+//                 collinear lines within Q (controller/corner_blend.h); every other mode
+//                 follows the bench's corner rule (fanuc's G64 with one warning).
 //   G90 G91       absolute (power-up) / incremental X Y Z (modal).
 //   G90.1 G91.1   absolute / incremental (power-up) I J K (linuxcnc; grbl: G91.1).
 //   F             feed, mm/min (in/min under G20), > 0 (modal; NaN until the first F).
@@ -96,6 +97,8 @@ class ProgramBuilder {
   double unit_m_ = 1e-3;
   bool absolute_centre_ = false;
   bool blending_warned_ = false;
+  double blend_tolerance_m_ = -1.0;  // linuxcnc's G64 P (ProgramBlock::blend_tolerance_m)
+  double merge_tolerance_m_ = 0.0;   // and Q
 };
 
 

@@ -56,7 +56,10 @@ void PrintRunTable(std::ostream& out, const RunResult& result) {
   for (const MetricInfo& info : MetricTable()) width = std::max(width, info.name.size());
   // Where in the program the largest values come from (metric_sources.h).
   for (const auto& [name, source] : SourceEntries(result.sources)) {
-    if (source->present) out << std::left << std::setw(static_cast<int>(width) + 2) << name << SourceText(*source) << "\n";
+    if (!source->present) continue;
+    // The longest name (peak_command_acceleration_source) fills the column: one space after it.
+    out << std::left << std::setw(static_cast<int>(width) + 2) << name << (name.size() >= width + 2 ? " " : "")
+        << SourceText(*source) << "\n";
   }
   if (std::isfinite(result.integrator_rtol_used)) {
     out << std::left << std::setw(static_cast<int>(width) + 2) << "integrator_rtol_used"
@@ -98,7 +101,8 @@ nlohmann::ordered_json StrokeAlarmJson(const controller::StrokeAlarmSite& site) 
 std::vector<std::pair<std::string, const MetricSource*>> SourceEntries(const MetricSources& sources) {
   return {{"peak_deflection_source", &sources.peak_deflection},
           {"max_contour_error_source", &sources.max_contour_error},
-          {"cruise_residual_source", &sources.cruise_residual}};
+          {"cruise_residual_source", &sources.cruise_residual},
+          {"peak_command_acceleration_source", &sources.peak_command_acceleration}};
 }
 
 nlohmann::ordered_json SourceJson(const MetricSource& source) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/math_constants.h"
 #include "controller/shaper_registry.h"
 #include "model/integrator.h"
 
@@ -63,9 +64,75 @@ double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static
   return static_m;
 }
 
+namespace {
+
+// A single straight move (a `move:`, a one-line program): the command's own acceleration
+// is the acc/dec's, and the reference stays as it always was.
+bool SingleStraightMove(const controller::PathGeometry& path) {
+  int moving = 0;
+  for (const controller::PathElement& e : path.elements()) {
+    if (e.length_m == 0.0) continue;
+    if (e.is_arc()) return false;
+    ++moving;
+  }
+  return moving <= 1;
+}
+
+// The directions the program moves in: each line's, and each arc's tangent at its ends
+// and every degree of its sweep between.
+template <typename F>
+void ForEachDirection(const controller::PathGeometry& path, F f) {
+  for (const controller::PathElement& e : path.elements()) {
+    if (e.length_m == 0.0) continue;
+    if (!e.is_arc()) {
+      f(e.direction);
+      continue;
+    }
+    const int steps = std::max(4, static_cast<int>(std::ceil(std::abs(e.sweep_rad) * 180.0 / kPi)));
+    for (int j = 0; j <= steps; ++j) {
+      // An arc's end tangent along an axis carries ~1e-17 on the other (cos 90 deg): 0.
+      Eigen::Vector3d d = e.TangentAtFraction(static_cast<double>(j) / steps);
+      for (int b = 0; b < 3; ++b) d(b) = std::abs(d(b)) < 1e-12 ? 0.0 : d(b);
+      f(d);
+    }
+  }
+}
+
+}  // namespace
+
+double ProgramStaticDisplacement(const controller::PathGeometry& path, double accel_m_s2,
+                                 const Eigen::Matrix3d& static_gain, const OutputView& view,
+                                 Eigen::Vector3d* vector) {
+  double static_m = 0.0;
+  Eigen::Vector3d along = Eigen::Vector3d::Zero();
+  ForEachDirection(path, [&](const Eigen::Vector3d& d) {
+    const double here = std::abs(view.Of(static_gain * (accel_m_s2 * d)));
+    if (here > static_m) {
+      static_m = here;
+      along = d;
+    }
+  });
+  *vector = Eigen::Vector3d::Zero();
+  if (static_m == 0.0) return static_m;
+  // The sign convention of StaticDisplacement: the acceleration in the positive sense of
+  // the axis it mostly lies along.
+  Eigen::Index dominant = 0;
+  along.cwiseAbs().maxCoeff(&dominant);
+  const Eigen::Vector3d a = accel_m_s2 * (along(dominant) < 0.0 ? Eigen::Vector3d(-along) : along);
+  const Eigen::Vector3d deflection = -(static_gain * a);
+  for (int b = 0; b < 3; ++b) (*vector)(b) = deflection(b) == 0.0 ? 0.0 : deflection(b);  // no -0
+  return static_m;
+}
+
 void SetStaticReference(const RunPlan& plan, const Eigen::Matrix3d& static_gain, MetricTally* tally) {
   Eigen::Vector3d vector;
-  const double static_m = StaticDisplacement(plan.samples, static_gain, plan.view, &vector);
+  // Programs: the acc/dec's acceleration, not whatever one period of the command held (a
+  // corner's one-period velocity step made the ratios read 0.17-0.37, issue 36).
+  const double static_m =
+      SingleStraightMove(plan.path)
+          ? StaticDisplacement(plan.samples, static_gain, plan.view, &vector)
+          : ProgramStaticDisplacement(plan.path, plan.scenario.controller.accel_m_s2(), static_gain, plan.view,
+                                      &vector);
   tally->SetStatic(static_m, vector, RunWindow::kSettlingBand);
   tally->quiet_since_tick = plan.window.motion_ticks;
 }

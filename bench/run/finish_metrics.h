@@ -20,7 +20,16 @@ namespace shapebench::bench {
 double StaticDisplacement(const CommandSamples& s, const Eigen::Matrix3d& static_gain, const OutputView& view,
                           Eigen::Vector3d* vector);
 
-// The tally's static reference from the plan's samples and view and the model's static gain.
+// A program's static displacement: the largest deflection, in the view, under the acc/dec's
+// acceleration `accel_m_s2` along a direction the program moves in (each line's, each
+// arc's tangent every degree), and into *vector that deflection as StaticDisplacement's.
+double ProgramStaticDisplacement(const controller::PathGeometry& path, double accel_m_s2,
+                                 const Eigen::Matrix3d& static_gain, const OutputView& view,
+                                 Eigen::Vector3d* vector);
+
+// The tally's static reference from the model's static gain, in the plan's view: a single
+// straight move's from its commanded samples (StaticDisplacement), a program's from the
+// acc/dec's acceleration along its directions (ProgramStaticDisplacement).
 void SetStaticReference(const RunPlan& plan, const Eigen::Matrix3d& static_gain, MetricTally* tally);
 
 // What the pattern was designed for: its lowest design frequency and that mode's damping

@@ -62,9 +62,19 @@ MetricSources AttributeSources(const controller::MultiAxisCommand& command, cons
   // A change is one above the rounding of the velocity differences: 1e-9 of the largest
   // commanded acceleration.
   double largest_m_s2 = 0.0;
-  for (std::size_t k = 1; k <= command.num_ticks(); ++k) largest_m_s2 = std::max(largest_m_s2, command.accel_m_s2(k).norm());
+  std::size_t largest_tick = 0;
+  for (std::size_t k = 1; k <= command.num_ticks(); ++k) {
+    const double here = command.accel_m_s2(k).norm();
+    if (here > largest_m_s2) {
+      largest_m_s2 = here;
+      largest_tick = k;
+    }
+  }
   const double threshold = 1e-9 * largest_m_s2;
   MetricSources sources;
+  if (largest_tick > 0) {
+    sources.peak_command_acceleration = Attribute(command, program, largest_tick, lookback_s, threshold);
+  }
   sources.peak_deflection = Attribute(command, program, peak_tick, lookback_s, threshold);
   sources.max_contour_error = Attribute(command, program, contour_tick, lookback_s, threshold);
   if (has_cruise) sources.cruise_residual = Attribute(command, program, cruise_tick, lookback_s, threshold);

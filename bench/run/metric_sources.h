@@ -33,6 +33,9 @@ struct MetricSources {
   MetricSource peak_deflection;
   MetricSource max_contour_error;
   MetricSource cruise_residual;  // present only where the run had cruise probes
+  // The first tick holding peak_command_acceleration_m_s2 (present wherever the command
+  // accelerates): on a blended path, the blend or the line where the acc/dec peaks.
+  MetricSource peak_command_acceleration;
 };
 
 // The sites of the ticks `peak_tick`, `contour_tick` and `cruise_tick` (cruise: when

@@ -13,7 +13,9 @@ using M = Metrics;
 constexpr MetricInfo kMetricRows[] = {
       {"static_displacement_m", "m", Better::kLower,
        "the deflection under the run's largest commanded acceleration held constant (a static "
-       "solve of the model): the reference of every ratio (the ratios are n/a when it is 0: a "
+       "solve of the model; a program: the acc/dec's configured acceleration along the direction "
+       "of the program that deflects most, [concepts](concepts.md#static-displacement-peak-and-"
+       "residual-the-metrics)): the reference of every ratio (the ratios are n/a when it is 0: a "
        "model whose static deflections cancel in the output view)",
        &M::static_displacement_m},
       {"peak_deflection_m", "m", Better::kLower,
@@ -88,7 +90,8 @@ constexpr MetricInfo kMetricRows[] = {
        &M::stroke_alarm},
       {"peak_command_acceleration_m_s2", "m/s^2", Better::kLower,
        "the largest norm of the commanded acceleration vector over the run (the acceleration "
-       "held over an interpolation period, the axes' components together)",
+       "held over an interpolation period, the axes' components together); where it happened: "
+       "`peak_command_acceleration_source` ([attribution](views.md#attribution))",
        &M::peak_command_acceleration_m_s2},
       {"pattern_frequency_hz", "Hz", Better::kLower,
        "the natural frequency the pattern was designed for (the lowest of several; given, or the "

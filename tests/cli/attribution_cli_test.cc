@@ -107,7 +107,8 @@ TEST(AttributionCli, SingleMoveReportsBlockZeroAndNoFile) {
   EXPECT_EQ(peak["cause"]["block"], 0);
   EXPECT_LE(peak["cause"]["time_s"].get<double>(), peak["time_s"].get<double>());
   EXPECT_LE(peak["time_s"].get<double>(), metrics["motion_time_s"].get<double>());
-  for (const char* key : {"peak_deflection_source", "max_contour_error_source", "cruise_residual_source"}) {
+  for (const char* key : {"peak_deflection_source", "max_contour_error_source", "cruise_residual_source",
+                          "peak_command_acceleration_source"}) {
     const nlohmann::json& source = metrics[key];
     ASSERT_TRUE(source.is_object()) << key;
     EXPECT_TRUE(source["file"].is_null()) << key;

@@ -46,7 +46,7 @@ TEST(Cli, RunJsonIsOneObject) {
   const nlohmann::json json = nlohmann::json::parse(r.out);  // throws on trailing text
   ASSERT_TRUE(json.is_object());
   for (const auto& [name, value] : Metrics{}.Named()) EXPECT_TRUE(json.contains(name)) << name;
-  EXPECT_EQ(json.size(), Metrics{}.Named().size() + 5);  // + residual_modes, integrator_rtol_used, 3 *_source
+  EXPECT_EQ(json.size(), Metrics{}.Named().size() + 6);  // + residual_modes, integrator_rtol_used, 4 *_source
   EXPECT_TRUE(json.contains("integrator_rtol_used"));
   const nlohmann::json& modes = json.at("residual_modes");
   ASSERT_EQ(modes.size(), 1u);  // one 25 Hz mode
@@ -74,7 +74,7 @@ TEST(Cli, RunOutWritesFiles) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const auto metrics = nlohmann::json::parse(ReadText(out + "/metrics.json"));
-  EXPECT_EQ(metrics.size(), Metrics{}.Named().size() + 5);  // and residual_modes, integrator_rtol_used, 3 *_source
+  EXPECT_EQ(metrics.size(), Metrics{}.Named().size() + 6);  // and residual_modes, integrator_rtol_used, 4 *_source
   EXPECT_TRUE(metrics.at("residual_modes").is_array());
   const std::string csv = ReadText(out + "/trace.csv");
   EXPECT_EQ(csv.rfind("t_s,command_position_m,command_velocity_m_s,command_accel_m_s2,deflection_m,", 0), 0u);

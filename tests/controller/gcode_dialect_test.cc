@@ -98,16 +98,16 @@ TEST(GcodeDialectTest, ArcEndTolerancePerDialect) {
   EXPECT_EQ(Parse(off_2um, set).blocks.size(), 1u);
 }
 
-// Tests G61/G61.1/G64 where each dialect has them, G64 P/Q in linuxcnc only, and the one
-// warning that G64 runs as exact stop.
+// Tests G61/G61.1/G64 where each dialect has them, G64 P/Q in linuxcnc only (blending,
+// no warning), and the one warning that fanuc's G64 runs by the corner rule.
 TEST(GcodeDialectTest, PathModes) {
   const Program fanuc = Parse("G64 G1 X1 F100\nG61 X2\nG64 X3\n", In(Dialect::kFanuc));
   ASSERT_EQ(fanuc.warnings.size(), 1u);
-  EXPECT_NE(fanuc.warnings[0].find("G64 (line 1, continuous path mode) runs as exact stop"),
+  EXPECT_NE(fanuc.warnings[0].find("G64 (line 1, cutting mode) runs as G61 does here"),
             std::string::npos);
   EXPECT_EQ(fanuc.blocks.size(), 3u);
   const Program linuxcnc = Parse("G64 P0.01 Q0.005\nG61.1 G1 X1 F100\n", In(Dialect::kLinuxcnc));
-  EXPECT_EQ(linuxcnc.warnings.size(), 1u);
+  EXPECT_TRUE(linuxcnc.warnings.empty());
   EXPECT_TRUE(Parse("G61 G1 X1 F100\n", In(Dialect::kGrbl)).warnings.empty());
   ExpectError("G64 P0.01\n", In(Dialect::kFanuc), 1, 5, "'P0.01' with G64 (blending tolerance) "
               "is linuxcnc's");

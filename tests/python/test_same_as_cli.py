@@ -45,7 +45,8 @@ def test_run_metrics_equal_cli_json_bit_for_bit(path):
     # fired, stroke_alarm_source, and the attribution (in Result.json()).
     names = [name for name in expected
              if name not in ("residual_modes", "integrator_rtol_used", "stroke_alarm_source",
-                             "peak_deflection_source", "max_contour_error_source", "cruise_residual_source")]
+                             "peak_deflection_source", "max_contour_error_source", "cruise_residual_source",
+                             "peak_command_acceleration_source")]
     assert list(metrics) == names
     for name in names:
         value = expected[name]
