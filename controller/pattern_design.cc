@@ -64,7 +64,7 @@ std::vector<DesignSample> BandSamples(const DesignBand& band, double duration_s,
 }
 
 // c_k = e^{-zeta w (D - t_k)} e^{i w_d t_k}: S = sum a_k c_k, V = |S| (sum a_k = 1).
-std::vector<std::complex<double>> Phasors(const DesignSample& s, int n, double h) {
+std::vector<std::complex<double>> DesignPhasors(const DesignSample& s, int n, double h) {
   const double wd = s.w * std::sqrt(1.0 - s.zeta * s.zeta);
   const double d = n * h;
   std::vector<std::complex<double>> c(n + 1);
@@ -88,7 +88,7 @@ void AddDerivativeRows(const DesignSpec& spec, int n, DenseLp* lp) {
   for (const DesignBand& band : spec.bands) {
     const DesignSample centre{kPi * (band.frequency_lo_hz + band.frequency_hi_hz),
                               0.5 * (band.damping_lo + band.damping_hi)};
-    const std::vector<std::complex<double>> c = Phasors(centre, n, spec.grid_s);
+    const std::vector<std::complex<double>> c = DesignPhasors(centre, n, spec.grid_s);
     for (int m = 1; m <= spec.derivatives; ++m) {
       std::vector<double> re(n + 1), im(n + 1);
       for (int k = 0; k <= n; ++k) {
@@ -155,7 +155,7 @@ bool DesignFeasible(const DesignSpec& spec, int n, std::vector<double>* coeffici
                           std::to_string(kMaxDesignSamples) + " samples or " + FormatNumber(kMaxDesignEntries) +
                           " samples x grid points: narrow the bands, coarsen the grid or raise the margin");
       }
-      phasors.push_back(Phasors(s, n, h));
+      phasors.push_back(DesignPhasors(s, n, h));
     }
   }
   std::vector<std::vector<char>> has_face(phasors.size(), std::vector<char>(kPolygonSides, 0));
