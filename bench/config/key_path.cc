@@ -16,10 +16,19 @@ std::optional<std::vector<PathElement>> ParseKeyPath(const std::string& path) {
   std::size_t i = 0;
   const std::size_t n = path.size();
   while (true) {
-    const std::size_t key_begin = i;
-    while (i < n && IsKeyChar(path[i])) ++i;
-    if (i == key_begin) return std::nullopt;  // empty key: "", "a..b", ".a", "[0]"
-    elements.push_back({path.substr(key_begin, i - key_begin), std::nullopt});
+    if (i < n && path[i] == '"') {
+      // A quoted key, taken as written: a name with dots or brackets of its own, as an
+      // FMU's structured variable names have (machine.fmu_parameters."modes[0].f").
+      const std::size_t close = path.find('"', i + 1);
+      if (close == std::string::npos || close == i + 1) return std::nullopt;
+      elements.push_back({path.substr(i + 1, close - i - 1), std::nullopt});
+      i = close + 1;
+    } else {
+      const std::size_t key_begin = i;
+      while (i < n && IsKeyChar(path[i])) ++i;
+      if (i == key_begin) return std::nullopt;  // empty key: "", "a..b", ".a", "[0]"
+      elements.push_back({path.substr(key_begin, i - key_begin), std::nullopt});
+    }
     while (i < n && path[i] == '[') {
       const std::size_t digits_begin = ++i;
       while (i < n && std::isdigit(static_cast<unsigned char>(path[i])) != 0) ++i;

@@ -15,7 +15,8 @@ struct PathElement {
   std::optional<std::size_t> index;
 };
 
-// Strict parse for user input (--set): keys are [A-Za-z0-9_-]+, indices [digits].
+// Strict parse for user input (--set): keys are [A-Za-z0-9_-]+ or any text but '"' in
+// double quotes (taken as written: "a.b[0]" is one key), indices [digits].
 // Returns nullopt when the text is not such a path.
 std::optional<std::vector<PathElement>> ParseKeyPath(const std::string& path);
 

@@ -18,6 +18,20 @@ TEST(KeyPath, ParsesKeysAndIndices) {
   EXPECT_EQ(ParseKeyPath("a[1][2]")->size(), 3u);
 }
 
+// Tests that a quoted key is one element taken as written (an FMU's structured name with
+// dots and brackets), and that an empty or unclosed quote is refused.
+TEST(KeyPath, QuotedKeyIsOneElement) {
+  const auto elements = ParseKeyPath("machine.fmu_parameters.\"machine.modes[0].frequency_hz\"");
+  ASSERT_TRUE(elements.has_value());
+  ASSERT_EQ(elements->size(), 3u);
+  EXPECT_EQ((*elements)[2].key, "machine.modes[0].frequency_hz");
+  EXPECT_FALSE((*elements)[2].index.has_value());
+  EXPECT_EQ(ParseKeyPath("a.\"b.c\"[1].d")->size(), 4u);
+  for (const char* bad : {"a.\"\"", "a.\"b", "a.\"b\"c", "\"a\"\"b\""}) {
+    EXPECT_FALSE(ParseKeyPath(bad).has_value()) << bad;
+  }
+}
+
 // Tests that malformed paths are refused.
 TEST(KeyPath, RefusesMalformedPaths) {
   for (const char* bad : {"", ".", "a.", ".a", "a..b", "[0]", "a[", "a[x]", "a[]", "a b", "a[0]b"}) {
