@@ -71,10 +71,19 @@ FmuInstance::FmuInstance(std::shared_ptr<const UnpackedFmu> fmu,
   }
   Resolve();
   Instantiate();
-  Initialize(parameters, stop_time_s);
+  try {
+    Initialize(parameters, stop_time_s);
+  } catch (...) {
+    // A refused initialisation (fmi2ExitInitializationMode returned Error, say) leaves an
+    // instance the destructor will not see: the constructor did not finish.
+    Release();
+    throw;
+  }
 }
 
-FmuInstance::~FmuInstance() {
+FmuInstance::~FmuInstance() { Release(); }
+
+void FmuInstance::Release() {
   if (instance_ == nullptr || fatal_) return;  // after Fatal no function may be called
   if (v3_) {
     if (initialized_ && !failed_) api_->fmi3Terminate(instance_);
@@ -83,6 +92,7 @@ FmuInstance::~FmuInstance() {
     if (initialized_ && !failed_) api_->fmi2Terminate(instance_);
     api_->fmi2FreeInstance(instance_);
   }
+  instance_ = nullptr;
 }
 
 void FmuInstance::Resolve() {

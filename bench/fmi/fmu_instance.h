@@ -39,6 +39,7 @@ class FmuInstance {
  private:
   struct Api;
   void Resolve();
+  void Release();  // terminates (when initialised) and frees the instance, once
   void Instantiate();
   void Initialize(const std::vector<std::pair<unsigned, double>>& parameters, double stop_time_s);
   // Throws SolverError unless `status` is OK or Warning.
