@@ -156,20 +156,26 @@ inline std::string ShellQuoted(const std::string& text) {
   return quoted + "'";
 }
 
-// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr. `wrapper`, when
-// given, is shell text put before the binary (an environment assignment, `prlimit ...`).
-inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir,
-                        const std::string& wrapper = "") {
+// Runs shell `command` (its own redirections none) with stdout and stderr captured.
+inline CliResult RunCapturing(const std::string& command) {
   ScratchDir capture;
-  std::string command = "cd " + ShellQuoted(work_dir) + " && " + wrapper + ShellQuoted(SHAPEBENCH_BINARY);
-  for (const auto& arg : args) command += " " + ShellQuoted(arg);
-  command += " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
-  const int status = std::system(command.c_str());
+  const std::string redirected =
+      command + " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
+  const int status = std::system(redirected.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   result.out = ReadText(capture.File("out"));
   result.err = ReadText(capture.File("err"));
   return result;
+}
+
+// Runs the CLI with `args` in `work_dir`, capturing stdout and stderr. `wrapper`, when
+// given, is shell text put before the binary (an environment assignment, `prlimit ...`).
+inline CliResult RunCli(const std::vector<std::string>& args, const std::string& work_dir,
+                        const std::string& wrapper = "") {
+  std::string command = "cd " + ShellQuoted(work_dir) + " && " + wrapper + ShellQuoted(SHAPEBENCH_BINARY);
+  for (const auto& arg : args) command += " " + ShellQuoted(arg);
+  return RunCapturing(command);
 }
 
 // Starts the CLI as a child process in `work_dir` and returns its pid (the caller waits

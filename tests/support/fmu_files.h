@@ -39,15 +39,7 @@ inline bool UnpackFmu(const std::string& fmu, const std::filesystem::path& dir) 
 inline CliResult ValidateAgainstSchema(const std::string& xml_file, int fmi_version) {
   const std::string schema = std::string(SHAPEBENCH_SOURCE_DIR) + "/tests/data/fmi/" +
                              (fmi_version == 3 ? "fmi3/fmi3ModelDescription.xsd" : "fmi2/fmi2ModelDescription.xsd");
-  ScratchDir capture;
-  const std::string command = "xmllint --noout --schema " + ShellQuoted(schema) + " " + ShellQuoted(xml_file) +
-                              " >" + ShellQuoted(capture.File("out")) + " 2>" + ShellQuoted(capture.File("err"));
-  const int status = std::system(command.c_str());
-  CliResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = ReadText(capture.File("out"));
-  result.err = ReadText(capture.File("err"));
-  return result;
+  return RunCapturing("xmllint --noout --schema " + ShellQuoted(schema) + " " + ShellQuoted(xml_file));
 }
 
 }  // namespace shapebench::bench::testing
