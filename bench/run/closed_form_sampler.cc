@@ -27,6 +27,9 @@ using single_mode::SingleModeKernel;
 // a contour error of rounding size, 1e-15 m, stays below a margin of 1e-13 m.)
 constexpr double kSampleMargin = 1e-12;
 
+// ContourUnreadScope's state on this thread.
+thread_local bool contour_unread = false;
+
 // The sampler: the kernel through the run's ticks, its tally as the plant samplers keep it
 // (plant_sampler.cc: SampleTick, DeferredTick, SettleTail).
 class ClosedFormSampler final : public Sampler {
@@ -36,7 +39,8 @@ class ClosedFormSampler final : public Sampler {
         result_(*result),
         kernel_(*plan.single_mode.mode, *plan.single_mode.line, plan.single_mode.axis, plan.samples, plan.dt_s,
                 plan.substeps),
-        window_(plan.window) {
+        window_(plan.window),
+        contour_(!contour_unread) {
     Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
     static_gain(kernel_.axis_, kernel_.axis_) = kernel_.StaticGain();
     SetStaticReference(plan, static_gain, &tally_);
@@ -55,6 +59,8 @@ class ClosedFormSampler final : public Sampler {
                 (std::abs(kernel_.start_) + largest + kernel_.length_) * 2.0;
     end_off_ = std::abs((end - kernel_.start_) * kernel_.direction_ - kernel_.length_) + rounding_;
     FindInnerTicks();
+    // Unread: no sample can raise it (every bound test passes), reported NaN by Run.
+    if (!contour_) tally_.contour_sq = std::numeric_limits<double>::infinity();
   }
 
   MetricTally Run() override;
@@ -82,6 +88,7 @@ class ClosedFormSampler final : public Sampler {
   RunResult& result_;
   SingleModeKernel kernel_;
   const RunWindow& window_;
+  const bool contour_;  // max_contour_error_m read (ContourUnreadScope)
   double static_m_ = 0.0;
   MetricTally tally_;
   std::vector<std::size_t>::const_iterator next_probe_;
@@ -118,6 +125,7 @@ void ClosedFormSampler::TickIn(std::size_t k) {
     // The last sample outside the settling band: the end's, else an inner one's.
     int last = end >= tally_.band ? kernel_.substeps_ - 1 : -1;
     if (last < 0 && largest >= tally_.band && !motion_end) {
+      kernel_.PrepareSubsteps();
       for (int j = kernel_.substeps_ - 2; j >= 0; --j) {
         if (std::abs(kernel_.Substep(j)) >= tally_.band) {
           last = j;
@@ -130,8 +138,9 @@ void ClosedFormSampler::TickIn(std::size_t k) {
       tally_.quiet_since_tick = k;
     }
   }
-  const double bound = largest + kSampleMargin * (largest + static_m_);
-  if ((k >= inner_from_ && k <= inner_to_) || ContourCannotGrow(k, bound)) {
+  if (!contour_ || (k >= inner_from_ && k <= inner_to_)) {
+    ++deferred_;
+  } else if (const double bound = largest + kSampleMargin * (largest + static_m_); ContourCannotGrow(k, bound)) {
     ++deferred_;
   } else {
     Contour(k, bound);
@@ -208,6 +217,7 @@ void ClosedFormSampler::Contour(std::size_t k, double bound) {
     ++deferred_;
     return;
   }
+  kernel_.PrepareSubsteps();
   for (int j = 0; j < kernel_.substeps_; ++j) {
     const double tau = kernel_.taus_[static_cast<std::size_t>(j)];
     const double actual = p0 + v0 * tau + half_a * tau * tau + kernel_.Substep(j);
@@ -374,7 +384,7 @@ void ClosedFormSampler::FreeWindow(std::size_t from) {
     tally_.last_outside_band = static_cast<long>(from - 1) * kernel_.substeps_ + last;
     tally_.quiet_since_tick = from + static_cast<std::size_t>((last - 1) / kernel_.substeps_);
   }
-  FreeWindowContour(count);
+  if (contour_) FreeWindowContour(count);
   double q = kernel_.q();
   double v = kernel_.v();
   const double largest = kernel_.Jump(0.0, ticks, 0.0, &q, &v);
@@ -449,6 +459,7 @@ void ClosedFormSampler::FreeWindowContour(long count) {
 MetricTally ClosedFormSampler::Run() {
   RunTicks(*this, window_, &tally_);
   tally_.peak_axes(kernel_.axis_) = tally_.peak;
+  if (!contour_) tally_.contour_sq = std::numeric_limits<double>::quiet_NaN();
   result_.sampler = SamplerKind::kClosedForm;
   result_.single_mode = true;
   result_.tail_in_closed_form = tail_closed_;
@@ -466,5 +477,8 @@ MetricTally ClosedFormSampler::Run() {
 std::unique_ptr<Sampler> MakeClosedFormSampler(const RunPlan& plan, RunResult* result) {
   return std::make_unique<ClosedFormSampler>(plan, result);
 }
+
+ContourUnreadScope::ContourUnreadScope(bool unread) : previous_(contour_unread) { contour_unread = unread; }
+ContourUnreadScope::~ContourUnreadScope() { contour_unread = previous_; }
 
 }  // namespace shapebench::bench

@@ -51,10 +51,17 @@ class SingleModeKernel {
     twice_ = At(2.0 * dt);
     h_q_ = period_.xx * g_q_ + period_.xv * g_v_;  // phi gamma: a held over the first of two
     h_v_ = period_.vx * g_q_ + period_.vv * g_v_;
-    inner_.resize(static_cast<std::size_t>(substeps));
-    taus_.resize(static_cast<std::size_t>(substeps));
-    for (int j = 1; j <= substeps; ++j) {
-      taus_[j - 1] = dt * static_cast<double>(j) / substeps;
+  }
+
+  // The substeps' times and transitions (an exp, a cos and a sin each), made when a
+  // sample inside a period is first needed (Substep, taus_): a run that reads none (its
+  // contour error unread, its settling decided at the periods' ends) never makes them.
+  void PrepareSubsteps() {
+    if (!inner_.empty()) return;
+    inner_.resize(static_cast<std::size_t>(substeps_));
+    taus_.resize(static_cast<std::size_t>(substeps_));
+    for (int j = 1; j <= substeps_; ++j) {
+      taus_[j - 1] = dt_ * static_cast<double>(j) / substeps_;
       inner_[j - 1] = At(taus_[j - 1]);
     }
   }
@@ -209,7 +216,8 @@ class SingleModeKernel {
     }
     return peak;
   }
-  // The deflection at substep j (0-based) of the period Advance stepped last.
+  // The deflection at substep j (0-based) of the period Advance stepped last (after
+  // PrepareSubsteps).
   double Substep(int j) const {
     const Transition& t = inner_[static_cast<std::size_t>(j)];
     const double q_eq = -a_ / w2_;

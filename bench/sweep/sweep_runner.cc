@@ -25,6 +25,7 @@
 #include "common/csv.h"
 #include "common/interrupt.h"
 #include "bench/output/mat_file.h"
+#include "bench/run/closed_form_sampler.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
 #include "bench/sweep/point_loop.h"
@@ -111,6 +112,11 @@ Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
               const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
   while (HangsForTests(point_index)) std::this_thread::sleep_for(std::chrono::seconds(1));
   const SweepPoint point = MakePoint(sweep, point_index, sets);
+  // The row reads only its columns: without the contour error's, the closed form skips it.
+  const bool contour_read =
+      std::any_of(metric_columns.begin(), metric_columns.end(),
+                  [](const MetricInfo* info) { return info->field == &Metrics::max_contour_error_m; });
+  const ContourUnreadScope contour_unread(!contour_read);
   const PointOutcome outcome = RunPoint(sweep, point);
   // CsvRecord's line, written in place: a number (ExactDouble's text) never needs quotes.
   std::string line = std::to_string(point_index);
