@@ -77,7 +77,7 @@ class ClosedFormSampler final : public Sampler {
   void FindInnerTicks();
   [[gnu::always_inline]] bool ContourCannotGrow(std::size_t k, double bound) const;
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
-  long LastSampleOutside(const model::FreeTerms& free) const;
+  long LastSampleOutside(std::complex<double> q, std::complex<double> lambda) const;
   std::size_t QuietStretchEnd(std::size_t k) const;
   bool FreeWindowApplies(std::size_t k) const;
   void FreeWindow(std::size_t from);
@@ -231,11 +231,12 @@ void ClosedFormSampler::Contour(std::size_t k, double bound) {
 // with the one pole pair); false when the simulated tail must decide.
 bool ClosedFormSampler::SettleTail(std::size_t k) {
   if (window_.never_settles_late || k != window_.window_end()) return false;
-  const model::FreeTerms free = kernel_.Free();
+  // The pole pair, not model::FreeTerms (two vectors): its envelope now is |q|.
+  const std::complex<double> q = kernel_.FreeQ();
   constexpr double kMargin = 1.0 + 1e-9;
-  const double envelope = free.Envelope(0.0);
+  const double envelope = std::abs(q);
   if (!(envelope * kMargin <= tally_.peak) || !(envelope * envelope * kMargin <= tally_.contour_sq)) return false;
-  const long last = LastSampleOutside(free);
+  const long last = LastSampleOutside(q, kernel_.FreeLambda());
   if (last == -2) return false;
   long last_outside = tally_.last_outside_band;
   std::size_t quiet = tally_.quiet_since_tick;
@@ -259,10 +260,8 @@ bool ClosedFormSampler::SettleTail(std::size_t k) {
 // is below about 1e-4 (the grid can miss the last crests, each only pi zeta higher than
 // the next): beyond four periods back, model/band_crossing.h's search decides, as the
 // general path's tail does.
-long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
+long ClosedFormSampler::LastSampleOutside(std::complex<double> q, std::complex<double> lambda) const {
   const double band = tally_.band;
-  const std::complex<double> q = free.q.front();
-  const std::complex<double> lambda = free.lambda.front();
   const double envelope = std::abs(q);
   if (!(band > 0.0) || !(lambda.real() < 0.0)) return -2;
   if (envelope < band) return 0;
@@ -277,6 +276,7 @@ long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
   }
   if (top <= reach) return 0;
   // The bisection's last crossing, then the grid back from it (plant_sampler.cc SettleTail).
+  const model::FreeTerms free = kernel_.Free();
   const double last = model::LastBandCrossing(free, band);
   if (std::isnan(last)) return -2;
   for (long j = last >= 0.0 ? static_cast<long>(std::floor(last / h)) + 1 : 0; j >= 1; --j) {
@@ -401,9 +401,8 @@ void ClosedFormSampler::FreeWindow(std::size_t from) {
 // sample (LastSampleOutside's walk).
 long ClosedFormSampler::LastWindowSampleOutside(long count) const {
   const double band = tally_.band;
-  const model::FreeTerms free = kernel_.Free();
-  const std::complex<double> q = free.q.front();
-  const std::complex<double> lambda = free.lambda.front();
+  const std::complex<double> q = kernel_.FreeQ();
+  const std::complex<double> lambda = kernel_.FreeLambda();
   if (!(band > 0.0) || std::abs(q) < band) return 0;
   const double h = kernel_.dt_ / kernel_.substeps_;
   long top = count;

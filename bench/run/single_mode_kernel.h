@@ -223,11 +223,14 @@ class SingleModeKernel {
     const double q_eq = -a_ / w2_;
     return gain_ * (t.xx * (q0_ - q_eq) + t.xv * v0_ + q_eq);
   }
-  // The free response from the current state (input 0 from now on) as one pole pair.
+  // The free response from the current state (input 0 from now on) as one pole pair:
+  // Re(FreeQ() exp(FreeLambda() t)); Free() as model/band_crossing.h's terms.
+  std::complex<double> FreeQ() const { return {gain_ * q_, -gain_ * (v_ + sigma_ * q_) / wd_}; }
+  std::complex<double> FreeLambda() const { return {-sigma_, wd_}; }
   model::FreeTerms Free() const {
     model::FreeTerms terms;
-    terms.q = {std::complex<double>(gain_ * q_, -gain_ * (v_ + sigma_ * q_) / wd_)};
-    terms.lambda = {std::complex<double>(-sigma_, wd_)};
+    terms.q = {FreeQ()};
+    terms.lambda = {FreeLambda()};
     return terms;
   }
 

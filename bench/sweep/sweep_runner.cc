@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -118,10 +119,16 @@ Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
                   [](const MetricInfo* info) { return info->field == &Metrics::max_contour_error_m; });
   const ContourUnreadScope contour_unread(!contour_read);
   const PointOutcome outcome = RunPoint(sweep, point);
-  // CsvRecord's line, written in place: a number (ExactDouble's text) never needs quotes.
-  std::string line = std::to_string(point_index);
-  for (const std::string& text : point.texts) line += ',' + CsvField(text);
+  // CsvRecord's line, written in place into one string (no temporary a field): a number
+  // (ExactDouble's text) never needs quotes.
+  std::string line;
+  line.reserve(64 + 24 * (point.texts.size() + metric_columns.size()));
   char number[40];
+  line.append(number, std::to_chars(number, number + sizeof number, point_index).ptr);
+  for (const std::string& text : point.texts) {
+    line += ',';
+    line += CsvField(text);
+  }
   for (const MetricInfo* info : metric_columns) {
     line += ',';
     const double value = outcome.metrics.*info->field;
