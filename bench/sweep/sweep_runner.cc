@@ -127,7 +127,12 @@ Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
   line.append(number, std::to_chars(number, number + sizeof number, point_index).ptr);
   for (const std::string& text : point.texts) {
     line += ',';
-    line += CsvField(text);
+    // CsvField's test: a plain text as it is (no copy of it a point).
+    if (text.find_first_of(",\"\r\n") == std::string::npos) {
+      line += text;
+    } else {
+      line += CsvField(text);
+    }
   }
   for (const MetricInfo* info : metric_columns) {
     line += ',';
