@@ -65,6 +65,7 @@ class ClosedFormSampler final : public Sampler {
 
   MetricTally Run() override;
   std::size_t Tick(std::size_t k);
+  std::size_t MotionTicks(std::size_t k);
   bool SettleTail(std::size_t k);
   // limits.max_work (run_work.h): output samples only; a tick costs a few of them.
   std::size_t CheckWork(std::size_t k) const {
@@ -285,32 +286,41 @@ long ClosedFormSampler::LastSampleOutside(std::complex<double> q, std::complex<d
   return 0;
 }
 
-std::size_t ClosedFormSampler::Tick(std::size_t k) {
+// Motion ticks from k to the last before the motion's end in one call: RunTicks has
+// nothing to do between them (the run cannot end or settle before the residual window;
+// the work is checked after them, its verdict the whole count's), and a period near the
+// line's ends, one at a time, paid RunTicks' loop again.
+std::size_t ClosedFormSampler::MotionTicks(std::size_t k) {
   const std::size_t motion = window_.motion_ticks;
-  if (k < motion) {
+  for (;;) {
+    std::size_t next = k + 1;
+    std::size_t end = k;
     if (k >= inner_from_ && k <= inner_to_) {
-      std::size_t end = std::min(inner_to_ + 1, motion);
+      end = std::min(inner_to_ + 1, motion);
       if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
-      if (end > k) {
-        tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
-        deferred_ += static_cast<long>(end - k);
-        return end - 1;
-      }
     }
-    if (const std::size_t end = QuietStretchEnd(k); end > k) {
+    if (end <= k) end = QuietStretchEnd(k);
+    if (end > k) {
       tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
       deferred_ += static_cast<long>(end - k);
-      return end - 1;
+      next = end;
+    } else {
+      TickIn<RunPhase::kMotion>(k);
+      if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
+        ++next_probe_;
+        const double amplitude = kernel_.ModalAmplitude();
+        if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
+        first_probe_ = false;
+      }
     }
-    TickIn<RunPhase::kMotion>(k);
-    if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
-      ++next_probe_;
-      const double amplitude = kernel_.ModalAmplitude();
-      if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
-      first_probe_ = false;
-    }
-    return k;
+    if (next >= motion) return next - 1;
+    k = next;
   }
+}
+
+std::size_t ClosedFormSampler::Tick(std::size_t k) {
+  const std::size_t motion = window_.motion_ticks;
+  if (k < motion) return MotionTicks(k);
   if (k <= window_.window_end()) {
     if (FreeWindowApplies(k)) {
       FreeWindow(k);
