@@ -87,13 +87,16 @@ TEST(ContourUnread, SweepRowsWithAndWithoutTheContourColumn) {
   ASSERT_EQ(without.size(), with.size());
   // Columns: point, the two keys, the metrics, status, error.
   ASSERT_EQ(with[0][4], "max_contour_error_m");
+  int positive = 0;  // 0 where the pattern leaves no overshoot at the line's ends
   for (std::size_t r = 1; r < with.size(); ++r) {
     ASSERT_GE(with[r].size(), 7u) << r;
     ASSERT_GE(without[r].size(), 6u) << r;
-    EXPECT_GT(std::stod(with[r][4]), 0.0) << "row " << r;
+    ASSERT_FALSE(with[r][4].empty()) << "row " << r;
+    if (std::stod(with[r][4]) > 0.0) ++positive;
     EXPECT_EQ(with[r][3], without[r][3]) << "peak_ratio, row " << r;
     EXPECT_EQ(with[r][5], without[r][4]) << "residual_ratio, row " << r;
   }
+  EXPECT_GE(positive, 36);
 }
 
 }  // namespace
