@@ -27,6 +27,9 @@ using single_mode::SingleModeKernel;
 // a contour error of rounding size, 1e-15 m, stays below a margin of 1e-13 m.)
 constexpr double kSampleMargin = 1e-12;
 
+// ContourUnreadScope's state on this thread.
+thread_local bool contour_unread = false;
+
 // The sampler: the kernel through the run's ticks, its tally as the plant samplers keep it
 // (plant_sampler.cc: SampleTick, DeferredTick, SettleTail).
 class ClosedFormSampler final : public Sampler {
@@ -36,7 +39,8 @@ class ClosedFormSampler final : public Sampler {
         result_(*result),
         kernel_(*plan.single_mode.mode, *plan.single_mode.line, plan.single_mode.axis, plan.samples, plan.dt_s,
                 plan.substeps),
-        window_(plan.window) {
+        window_(plan.window),
+        contour_(!contour_unread) {
     Eigen::Matrix3d static_gain = Eigen::Matrix3d::Zero();
     static_gain(kernel_.axis_, kernel_.axis_) = kernel_.StaticGain();
     SetStaticReference(plan, static_gain, &tally_);
@@ -55,10 +59,13 @@ class ClosedFormSampler final : public Sampler {
                 (std::abs(kernel_.start_) + largest + kernel_.length_) * 2.0;
     end_off_ = std::abs((end - kernel_.start_) * kernel_.direction_ - kernel_.length_) + rounding_;
     FindInnerTicks();
+    // Unread: no sample can raise it (every bound test passes), reported NaN by Run.
+    if (!contour_) tally_.contour_sq = std::numeric_limits<double>::infinity();
   }
 
   MetricTally Run() override;
   std::size_t Tick(std::size_t k);
+  std::size_t MotionTicks(std::size_t k);
   bool SettleTail(std::size_t k);
   // limits.max_work (run_work.h): output samples only; a tick costs a few of them.
   std::size_t CheckWork(std::size_t k) const {
@@ -71,7 +78,7 @@ class ClosedFormSampler final : public Sampler {
   void FindInnerTicks();
   [[gnu::always_inline]] bool ContourCannotGrow(std::size_t k, double bound) const;
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
-  long LastSampleOutside(const model::FreeTerms& free) const;
+  long LastSampleOutside(std::complex<double> q, std::complex<double> lambda) const;
   std::size_t QuietStretchEnd(std::size_t k) const;
   bool FreeWindowApplies(std::size_t k) const;
   void FreeWindow(std::size_t from);
@@ -82,6 +89,7 @@ class ClosedFormSampler final : public Sampler {
   RunResult& result_;
   SingleModeKernel kernel_;
   const RunWindow& window_;
+  const bool contour_;  // max_contour_error_m read (ContourUnreadScope)
   double static_m_ = 0.0;
   MetricTally tally_;
   std::vector<std::size_t>::const_iterator next_probe_;
@@ -118,6 +126,7 @@ void ClosedFormSampler::TickIn(std::size_t k) {
     // The last sample outside the settling band: the end's, else an inner one's.
     int last = end >= tally_.band ? kernel_.substeps_ - 1 : -1;
     if (last < 0 && largest >= tally_.band && !motion_end) {
+      kernel_.PrepareSubsteps();
       for (int j = kernel_.substeps_ - 2; j >= 0; --j) {
         if (std::abs(kernel_.Substep(j)) >= tally_.band) {
           last = j;
@@ -130,8 +139,9 @@ void ClosedFormSampler::TickIn(std::size_t k) {
       tally_.quiet_since_tick = k;
     }
   }
-  const double bound = largest + kSampleMargin * (largest + static_m_);
-  if ((k >= inner_from_ && k <= inner_to_) || ContourCannotGrow(k, bound)) {
+  if (!contour_ || (k >= inner_from_ && k <= inner_to_)) {
+    ++deferred_;
+  } else if (const double bound = largest + kSampleMargin * (largest + static_m_); ContourCannotGrow(k, bound)) {
     ++deferred_;
   } else {
     Contour(k, bound);
@@ -208,6 +218,7 @@ void ClosedFormSampler::Contour(std::size_t k, double bound) {
     ++deferred_;
     return;
   }
+  kernel_.PrepareSubsteps();
   for (int j = 0; j < kernel_.substeps_; ++j) {
     const double tau = kernel_.taus_[static_cast<std::size_t>(j)];
     const double actual = p0 + v0 * tau + half_a * tau * tau + kernel_.Substep(j);
@@ -221,11 +232,12 @@ void ClosedFormSampler::Contour(std::size_t k, double bound) {
 // with the one pole pair); false when the simulated tail must decide.
 bool ClosedFormSampler::SettleTail(std::size_t k) {
   if (window_.never_settles_late || k != window_.window_end()) return false;
-  const model::FreeTerms free = kernel_.Free();
+  // The pole pair, not model::FreeTerms (two vectors): its envelope now is |q|.
+  const std::complex<double> q = kernel_.FreeQ();
   constexpr double kMargin = 1.0 + 1e-9;
-  const double envelope = free.Envelope(0.0);
+  const double envelope = std::abs(q);
   if (!(envelope * kMargin <= tally_.peak) || !(envelope * envelope * kMargin <= tally_.contour_sq)) return false;
-  const long last = LastSampleOutside(free);
+  const long last = LastSampleOutside(q, kernel_.FreeLambda());
   if (last == -2) return false;
   long last_outside = tally_.last_outside_band;
   std::size_t quiet = tally_.quiet_since_tick;
@@ -249,10 +261,8 @@ bool ClosedFormSampler::SettleTail(std::size_t k) {
 // is below about 1e-4 (the grid can miss the last crests, each only pi zeta higher than
 // the next): beyond four periods back, model/band_crossing.h's search decides, as the
 // general path's tail does.
-long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
+long ClosedFormSampler::LastSampleOutside(std::complex<double> q, std::complex<double> lambda) const {
   const double band = tally_.band;
-  const std::complex<double> q = free.q.front();
-  const std::complex<double> lambda = free.lambda.front();
   const double envelope = std::abs(q);
   if (!(band > 0.0) || !(lambda.real() < 0.0)) return -2;
   if (envelope < band) return 0;
@@ -267,6 +277,7 @@ long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
   }
   if (top <= reach) return 0;
   // The bisection's last crossing, then the grid back from it (plant_sampler.cc SettleTail).
+  const model::FreeTerms free = kernel_.Free();
   const double last = model::LastBandCrossing(free, band);
   if (std::isnan(last)) return -2;
   for (long j = last >= 0.0 ? static_cast<long>(std::floor(last / h)) + 1 : 0; j >= 1; --j) {
@@ -275,32 +286,41 @@ long ClosedFormSampler::LastSampleOutside(const model::FreeTerms& free) const {
   return 0;
 }
 
-std::size_t ClosedFormSampler::Tick(std::size_t k) {
+// Motion ticks from k to the last before the motion's end in one call: RunTicks has
+// nothing to do between them (the run cannot end or settle before the residual window;
+// the work is checked after them, its verdict the whole count's), and a period near the
+// line's ends, one at a time, paid RunTicks' loop again.
+std::size_t ClosedFormSampler::MotionTicks(std::size_t k) {
   const std::size_t motion = window_.motion_ticks;
-  if (k < motion) {
+  for (;;) {
+    std::size_t next = k + 1;
+    std::size_t end = k;
     if (k >= inner_from_ && k <= inner_to_) {
-      std::size_t end = std::min(inner_to_ + 1, motion);
+      end = std::min(inner_to_ + 1, motion);
       if (next_probe_ != window_.cruise_probe_ticks.end()) end = std::min(end, *next_probe_);
-      if (end > k) {
-        tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
-        deferred_ += static_cast<long>(end - k);
-        return end - 1;
-      }
     }
-    if (const std::size_t end = QuietStretchEnd(k); end > k) {
+    if (end <= k) end = QuietStretchEnd(k);
+    if (end > k) {
       tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
       deferred_ += static_cast<long>(end - k);
-      return end - 1;
+      next = end;
+    } else {
+      TickIn<RunPhase::kMotion>(k);
+      if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
+        ++next_probe_;
+        const double amplitude = kernel_.ModalAmplitude();
+        if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
+        first_probe_ = false;
+      }
     }
-    TickIn<RunPhase::kMotion>(k);
-    if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
-      ++next_probe_;
-      const double amplitude = kernel_.ModalAmplitude();
-      if (first_probe_ || amplitude > tally_.cruise_m) tally_.cruise_m = amplitude;
-      first_probe_ = false;
-    }
-    return k;
+    if (next >= motion) return next - 1;
+    k = next;
   }
+}
+
+std::size_t ClosedFormSampler::Tick(std::size_t k) {
+  const std::size_t motion = window_.motion_ticks;
+  if (k < motion) return MotionTicks(k);
   if (k <= window_.window_end()) {
     if (FreeWindowApplies(k)) {
       FreeWindow(k);
@@ -374,7 +394,7 @@ void ClosedFormSampler::FreeWindow(std::size_t from) {
     tally_.last_outside_band = static_cast<long>(from - 1) * kernel_.substeps_ + last;
     tally_.quiet_since_tick = from + static_cast<std::size_t>((last - 1) / kernel_.substeps_);
   }
-  FreeWindowContour(count);
+  if (contour_) FreeWindowContour(count);
   double q = kernel_.q();
   double v = kernel_.v();
   const double largest = kernel_.Jump(0.0, ticks, 0.0, &q, &v);
@@ -391,9 +411,8 @@ void ClosedFormSampler::FreeWindow(std::size_t from) {
 // sample (LastSampleOutside's walk).
 long ClosedFormSampler::LastWindowSampleOutside(long count) const {
   const double band = tally_.band;
-  const model::FreeTerms free = kernel_.Free();
-  const std::complex<double> q = free.q.front();
-  const std::complex<double> lambda = free.lambda.front();
+  const std::complex<double> q = kernel_.FreeQ();
+  const std::complex<double> lambda = kernel_.FreeLambda();
   if (!(band > 0.0) || std::abs(q) < band) return 0;
   const double h = kernel_.dt_ / kernel_.substeps_;
   long top = count;
@@ -449,6 +468,7 @@ void ClosedFormSampler::FreeWindowContour(long count) {
 MetricTally ClosedFormSampler::Run() {
   RunTicks(*this, window_, &tally_);
   tally_.peak_axes(kernel_.axis_) = tally_.peak;
+  if (!contour_) tally_.contour_sq = std::numeric_limits<double>::quiet_NaN();
   result_.sampler = SamplerKind::kClosedForm;
   result_.single_mode = true;
   result_.tail_in_closed_form = tail_closed_;
@@ -466,5 +486,8 @@ MetricTally ClosedFormSampler::Run() {
 std::unique_ptr<Sampler> MakeClosedFormSampler(const RunPlan& plan, RunResult* result) {
   return std::make_unique<ClosedFormSampler>(plan, result);
 }
+
+ContourUnreadScope::ContourUnreadScope(bool unread) : previous_(contour_unread) { contour_unread = unread; }
+ContourUnreadScope::~ContourUnreadScope() { contour_unread = previous_; }
 
 }  // namespace shapebench::bench

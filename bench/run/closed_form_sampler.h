@@ -16,4 +16,19 @@ namespace shapebench::bench {
 // For a plan whose single_mode case is set.
 std::unique_ptr<Sampler> MakeClosedFormSampler(const RunPlan& plan, RunResult* result);
 
+// While one lives on this thread, the caller reads no max_contour_error_m (a sweep whose
+// rows do not list it): the closed form skips the contour error's samples, a third of a
+// natural-period sweep's point, and reports it n/a (NaN). Every other metric is the same
+// bit for bit. Thread-local like CrossCheckFamilyScope; nests.
+class ContourUnreadScope {
+ public:
+  explicit ContourUnreadScope(bool unread);
+  ~ContourUnreadScope();
+  ContourUnreadScope(const ContourUnreadScope&) = delete;
+  ContourUnreadScope& operator=(const ContourUnreadScope&) = delete;
+
+ private:
+  bool previous_;
+};
+
 }  // namespace shapebench::bench

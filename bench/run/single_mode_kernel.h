@@ -51,10 +51,17 @@ class SingleModeKernel {
     twice_ = At(2.0 * dt);
     h_q_ = period_.xx * g_q_ + period_.xv * g_v_;  // phi gamma: a held over the first of two
     h_v_ = period_.vx * g_q_ + period_.vv * g_v_;
-    inner_.resize(static_cast<std::size_t>(substeps));
-    taus_.resize(static_cast<std::size_t>(substeps));
-    for (int j = 1; j <= substeps; ++j) {
-      taus_[j - 1] = dt * static_cast<double>(j) / substeps;
+  }
+
+  // The substeps' times and transitions (an exp, a cos and a sin each), made when a
+  // sample inside a period is first needed (Substep, taus_): a run that reads none (its
+  // contour error unread, its settling decided at the periods' ends) never makes them.
+  void PrepareSubsteps() {
+    if (!inner_.empty()) return;
+    inner_.resize(static_cast<std::size_t>(substeps_));
+    taus_.resize(static_cast<std::size_t>(substeps_));
+    for (int j = 1; j <= substeps_; ++j) {
+      taus_[j - 1] = dt_ * static_cast<double>(j) / substeps_;
       inner_[j - 1] = At(taus_[j - 1]);
     }
   }
@@ -209,17 +216,21 @@ class SingleModeKernel {
     }
     return peak;
   }
-  // The deflection at substep j (0-based) of the period Advance stepped last.
+  // The deflection at substep j (0-based) of the period Advance stepped last (after
+  // PrepareSubsteps).
   double Substep(int j) const {
     const Transition& t = inner_[static_cast<std::size_t>(j)];
     const double q_eq = -a_ / w2_;
     return gain_ * (t.xx * (q0_ - q_eq) + t.xv * v0_ + q_eq);
   }
-  // The free response from the current state (input 0 from now on) as one pole pair.
+  // The free response from the current state (input 0 from now on) as one pole pair:
+  // Re(FreeQ() exp(FreeLambda() t)); Free() as model/band_crossing.h's terms.
+  std::complex<double> FreeQ() const { return {gain_ * q_, -gain_ * (v_ + sigma_ * q_) / wd_}; }
+  std::complex<double> FreeLambda() const { return {-sigma_, wd_}; }
   model::FreeTerms Free() const {
     model::FreeTerms terms;
-    terms.q = {std::complex<double>(gain_ * q_, -gain_ * (v_ + sigma_ * q_) / wd_)};
-    terms.lambda = {std::complex<double>(-sigma_, wd_)};
+    terms.q = {FreeQ()};
+    terms.lambda = {FreeLambda()};
     return terms;
   }
 

@@ -1,6 +1,7 @@
 #include "bench/sweep/sweep_point_run.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -115,8 +116,13 @@ const Scenario& PointScenario(const Sweep& sweep, const SweepPoint& point, Scena
     // Set in place: every such point sets every swept number, so what the last one set
     // is overwritten (no copy of the scenario a point). A refused value may have left some
     // set: the cache is dropped then.
-    const std::vector<Override> values(point.overrides.begin(),
-                                       point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
+    // The point's own values: its overrides, unless --set options follow them (a copy then).
+    const bool sets_follow = point.overrides.size() != point.keys.size();
+    std::vector<Override> copied;
+    if (sets_follow) {
+      copied.assign(point.overrides.begin(), point.overrides.begin() + static_cast<std::ptrdiff_t>(point.keys.size()));
+    }
+    const std::vector<Override>& values = sets_follow ? copied : point.overrides;
     if (SetStructureNumbers(&loaded.scenario, values, loaded.motion_s)) return loaded.scenario;
     loaded = LoadedScenario{};
   }
@@ -219,10 +225,14 @@ const CrossCheckFamilyBand* PointFamily(const Sweep& sweep, const SweepPoint& po
   thread_local FamilyKey key;
   if (key.sweep_id != sweep.id || sweep.id == 0) key = FindFamilyKey(sweep, point);
   if (!key.found) return nullptr;
+  // Built in place (its capacity kept from the last point: no allocation a point).
   std::string& identity = key.band.identity;
-  identity = std::to_string(sweep.id) + "\n";
+  char id[24];
+  identity.assign(id, std::to_chars(id, id + sizeof id, sweep.id).ptr);
+  identity += '\n';
   for (std::size_t i = 0; i < point.overrides.size(); ++i) {
-    if (i != key.index) identity += point.overrides[i].key_path + "=" + point.overrides[i].value_yaml + "\n";
+    if (i == key.index) continue;
+    identity.append(point.overrides[i].key_path).append(1, '=').append(point.overrides[i].value_yaml).append(1, '\n');
   }
   return &key.band;
 }

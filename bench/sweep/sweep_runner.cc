@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +27,7 @@
 #include "common/csv.h"
 #include "common/interrupt.h"
 #include "bench/output/mat_file.h"
+#include "bench/run/closed_form_sampler.h"
 #include "bench/sweep/distribute.h"
 #include "bench/sweep/output_dir.h"
 #include "bench/sweep/point_loop.h"
@@ -107,19 +110,61 @@ bool HangsForTests(std::uint64_t point_index) {
   return !hang.empty() && hang.find("," + std::to_string(point_index) + ",") != std::string::npos;
 }
 
+// CsvField's test (a comma, a quote or a line break: quoted), a character at a time.
+bool NeedsCsvQuotes(const std::string& text) {
+  for (const char c : text) {
+    if (c == ',' || c == '"' || c == '\r' || c == '\n') return true;
+  }
+  return false;
+}
+
+// A metric's text in a row (AppendExactDouble's), the last one kept per column and
+// thread: a column a sweep does not change (motion_time_s along a natural-period sweep)
+// is converted once.
+void AppendMetricText(std::size_t column, double value, std::string* line) {
+  struct Last {
+    double value = NAN;
+    char text[40];
+    std::size_t size = 0;
+  };
+  thread_local std::vector<Last> last;
+  if (last.size() <= column) last.resize(column + 1);
+  Last& kept = last[column];
+  if (std::memcmp(&kept.value, &value, sizeof value) != 0) {
+    kept.size = static_cast<std::size_t>(AppendExactDouble(kept.text, kept.text + sizeof kept.text, value) - kept.text);
+    kept.value = value;
+  }
+  line->append(kept.text, kept.size);
+}
+
 Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
               const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
   while (HangsForTests(point_index)) std::this_thread::sleep_for(std::chrono::seconds(1));
   const SweepPoint point = MakePoint(sweep, point_index, sets);
+  // The row reads only its columns: without the contour error's, the closed form skips it.
+  const bool contour_read =
+      std::any_of(metric_columns.begin(), metric_columns.end(),
+                  [](const MetricInfo* info) { return info->field == &Metrics::max_contour_error_m; });
+  const ContourUnreadScope contour_unread(!contour_read);
   const PointOutcome outcome = RunPoint(sweep, point);
-  // CsvRecord's line, written in place: a number (ExactDouble's text) never needs quotes.
-  std::string line = std::to_string(point_index);
-  for (const std::string& text : point.texts) line += ',' + CsvField(text);
+  // CsvRecord's line, written in place into one string (no temporary a field): a number
+  // (ExactDouble's text) never needs quotes.
+  std::string line;
+  line.reserve(64 + 24 * (point.texts.size() + metric_columns.size()));
   char number[40];
-  for (const MetricInfo* info : metric_columns) {
+  line.append(number, std::to_chars(number, number + sizeof number, point_index).ptr);
+  for (const std::string& text : point.texts) {
     line += ',';
-    const double value = outcome.metrics.*info->field;
-    if (outcome.ok() && !std::isnan(value)) line.append(number, AppendExactDouble(number, number + sizeof number, value));
+    if (NeedsCsvQuotes(text)) {
+      line += CsvField(text);
+    } else {
+      line += text;  // as CsvField would give it, without its copy
+    }
+  }
+  for (std::size_t c = 0; c < metric_columns.size(); ++c) {
+    line += ',';
+    const double value = outcome.metrics.*metric_columns[c]->field;
+    if (outcome.ok() && !std::isnan(value)) AppendMetricText(c, value, &line);
   }
   line += outcome.ok() ? ",ok," : ",error,";
   line += CsvField(outcome.error);
