@@ -89,6 +89,7 @@ TEST(ContourWindow, EqualsTheWholePathSearchOnTheCorpus) {
         {{"program_file", entry.path().string()},
          {"program_dialect", folder == "ugs" || folder == "bcnc" ? "grbl" : "linuxcnc"},
          {"limits.max_simulated_s", "20000"},
+         {"limits.max_memory_mb", "2048"},  // flower_mold.nc: 3.08 million periods
          {"machine.reference_mm", "{g28: {x: 0, y: 0, z: 40}}"},
          {"machine.stroke", "{x: [-1000, 1000], y: [-1000, 1000], z: [-400, 400]}"},
          {"controller.post_interp", "{type: exponential, time_constant_s: 0.0333}"}});
@@ -100,7 +101,7 @@ TEST(ContourWindow, EqualsTheWholePathSearchOnTheCorpus) {
     // Every third tick: a few seconds for the corpus's 3,000 simulated seconds. The whole
     // path's search costs ticks x elements, so a long program is looked at more sparsely:
     // at most 3e8 element distances each (flower_mold.nc: 16,553 elements, 2.9 million
-    // ticks, every 163rd tick, 18,000 of them).
+    // ticks: about every 170th tick, 18,000 of them).
     const std::size_t elements = std::max<std::size_t>(path.elements().size(), 1);
     const std::size_t stride = std::max<std::size_t>(3, positions.size() * elements / 300000000 + 1);
     long exceptions = 0;
