@@ -119,6 +119,17 @@ double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& af
   return corner_velocity_change_m_s / change;
 }
 
+double JunctionDeviationLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& after, double accel_m_s2,
+                              double deviation_m) {
+  const double cos_interior = -before.dot(after);
+  if (cos_interior > 0.999999) return 0.0;   // a reversal: stop
+  if (cos_interior < -0.999999) return kInf;  // straight on
+  const Eigen::Vector3d junction = (after - before).normalized();
+  const double accel = accel_m_s2 / junction.cwiseAbs().maxCoeff();
+  const double sin_half = std::sqrt(0.5 * (1.0 - cos_interior));
+  return std::sqrt(accel * deviation_m * sin_half / (1.0 - sin_half));
+}
+
 namespace {
 
 // The stroke check at run time: at the first tick whose interpolated position has
@@ -314,8 +325,10 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& programmed, 
     if (slow_down && element.start_s_m >= crossing_s) feed = std::min(feed, crossing_limit);
     double limit = kInf;
     if (previous != nullptr) {
-      limit = CornerSpeedLimit(previous->TangentAtFraction(1.0), element.TangentAtFraction(0.0),
-                               settings.corner_velocity_change_m_s);
+      const Eigen::Vector3d before = previous->TangentAtFraction(1.0), after = element.TangentAtFraction(0.0);
+      limit = settings.junction_deviation_m >= 0.0
+                  ? JunctionDeviationLimit(before, after, settings.accel_m_s2, settings.junction_deviation_m)
+                  : CornerSpeedLimit(before, after, settings.corner_velocity_change_m_s);
       if (limit <= 0.0) motion.Finish();  // an exact stop at the corner
     }
     if (slow_down && element.start_s_m < crossing_s && crossing_s < element.end_s_m()) {

@@ -31,6 +31,8 @@ struct PlannerSettings {
   double default_feed_m_s = 0.1;    // blocks before the first F word
   double rapid_feed_m_s = 0.5;      // G0
   double corner_velocity_change_m_s = 0.0;  // per axis, per junction; 0: stop at corners
+  // >= 0: grbl's junction rule with this junction deviation (m) instead of the corner rule.
+  double junction_deviation_m = -1.0;
   ShortBlockConfig short_block;
   StrokeEndConfig stroke_end;
   StrokeLimits stroke_limits;
@@ -67,5 +69,15 @@ SpeedPlan PlanPathSpeed(const Program& program, const PathGeometry& programmed, 
 // infinite when they agree (within 1e-9), else allowance / max_axis |t2 - t1|.
 double CornerSpeedLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& after,
                         double corner_velocity_change_m_s);
+
+// grbl's junction rule (planner.c): the speed at which a circle tangent to both directions
+// whose closest point lies `deviation_m` from the junction is run with the centripetal
+// acceleration a_j: v^2 = a_j delta sin(phi/2) / (1 - sin(phi/2)), phi the junction's
+// interior angle (180 deg for a straight continuation: infinite; 0 for a reversal: 0, a
+// stop). a_j is the largest acceleration along the junction vector t2 - t1 that keeps every
+// axis within `accel_m_s2` (a / max_axis |j|, j its unit vector), as grbl limits each axis
+// to its own maximum. Straight and reversal within grbl's 1e-6 of cos(phi).
+double JunctionDeviationLimit(const Eigen::Vector3d& before, const Eigen::Vector3d& after, double accel_m_s2,
+                              double deviation_m);
 
 }  // namespace shapebench::controller

@@ -131,6 +131,11 @@ void ControllerConfig::validate() const {
                           "must be >= 0 (0 stops at every corner; got " +
                               FormatNumber(corner_velocity_change_mm_min) + ")");
   }
+  if (!(std::isfinite(junction_deviation_mm) && junction_deviation_mm >= 0.0)) {
+    throw ValidationError("junction_deviation_mm",
+                          "must be >= 0 (grbl's $11, default 0.01; 0 stops at every corner; got " +
+                              FormatNumber(junction_deviation_mm) + ")");
+  }
   try {
     pattern.validate();
   } catch (const ValidationError& e) {
@@ -390,6 +395,7 @@ MultiAxisCommand GenerateProgramCommand(const ControllerConfig& controller, cons
   settings.default_feed_m_s = controller.feed_m_s();
   settings.rapid_feed_m_s = controller.rapid_feed_mm_min / 60000.0;
   settings.corner_velocity_change_m_s = controller.corner_velocity_change_mm_min / 60000.0;
+  if (program.junction_deviation_rule) settings.junction_deviation_m = controller.junction_deviation_mm * 1e-3;
   settings.short_block = controller.short_block;
   settings.stroke_end = controller.stroke_end;
   settings.stroke_limits = controller.stroke_limits;

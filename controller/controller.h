@@ -59,6 +59,9 @@ struct ControllerConfig {
   // Corner rule: the largest velocity change per axis at a block junction (taken within
   // one period). 0 stops wherever the direction changes; collinear blocks never stop.
   double corner_velocity_change_mm_min = 0.0;
+  // grbl's junction deviation (its setting $11, default 0.01 mm): the junction speed of a
+  // grbl program (program_dialect: grbl) instead of the corner rule; 0 stops at every corner.
+  double junction_deviation_mm = 0.01;
   PatternConfig pattern;
   PostInterpConfig post_interp;
   ShortBlockConfig short_block;  // seed 002
@@ -80,6 +83,7 @@ struct ControllerConfig {
     a->Visit("accel_time_s", &accel_time_s);
     a->Visit("rapid_feed_mm_min", &rapid_feed_mm_min);
     a->Visit("corner_velocity_change_mm_min", &corner_velocity_change_mm_min);
+    a->Visit("junction_deviation_mm", &junction_deviation_mm);
     a->Visit("pattern", &pattern);
     a->Visit("post_interp", &post_interp);
     a->Visit("short_block", &short_block);

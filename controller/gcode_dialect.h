@@ -4,7 +4,8 @@
 //             X/U in s; G61 and G64 without P/Q; I/J/K always incremental.
 //   linuxcnc  LinuxCNC's RS274NGC: G4 P in s; G61, G61.1, G64 [P [Q]]; G90.1/G91.1;
 //             G28/G30 without axis words return every axis.
-//   grbl      grbl 1.1: G4 P in s; G61 only; G91.1 only; G28/G30 as LinuxCNC.
+//   grbl      grbl 1.1: G4 P in s; G61 only (grbl's junction rule); G91.1 only; G28/G30
+//             as LinuxCNC.
 // G codes are handled in tenths (G90.1 is 901, G1 is 10) so that the decimal ones stay
 // exact integers.
 #pragma once

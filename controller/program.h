@@ -50,7 +50,8 @@ struct ProgramBlock {
   // corner it ends in may be rounded by a tangent arc whose midpoint lies within this
   // distance of the corner (G64 P, m; infinity for G64 without P: the best speed, no
   // tolerance); < 0 (G61, G61.1, every mode of fanuc and grbl): no blending, the corner
-  // rule. merge_tolerance_m: G64 Q, collinear lines within it run as one (0: none).
+  // rule (grbl: its junction rule, junction_deviation_rule below). merge_tolerance_m:
+  // G64 Q, collinear lines within it run as one (0: none).
   double blend_tolerance_m = -1.0;
   double merge_tolerance_m = 0.0;
   // Where the block came from, for messages: the G-code line (1-based) or the index of
@@ -69,6 +70,9 @@ struct Program {
   // The G-code file those lines are in, as the scenario resolved it ("" for `program:`,
   // `move:` and text parsed without a file): where a run's attribution points.
   std::string source_file;
+  // grbl's dialect: every junction takes grbl's junction-deviation speed
+  // (controller.junction_deviation_mm, controller/block_planner.h) instead of the corner rule.
+  bool junction_deviation_rule = false;
 };
 
 }  // namespace shapebench::controller

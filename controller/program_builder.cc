@@ -192,6 +192,7 @@ bool LinearBlockMoves(const BlockWords& words, const ProgramBlock& move) {
 ProgramBuilder::ProgramBuilder(const Eigen::Vector3d& start_m, ProgramOptions options)
     : options_(std::move(options)), position_m_(start_m) {
   program_.start_m = start_m;
+  program_.junction_deviation_rule = options_.dialect == Dialect::kGrbl;
 }
 
 void ProgramBuilder::AddRapid(const ProgramBlock& here, const Eigen::Vector3d& end_m) {

@@ -40,7 +40,8 @@ TEST(ScenarioLoaderErrors, UnknownKeyListsAllowedKeys) {
   const std::string path = DataPath("unknown_key.yaml");
   ExpectError(LoadError(path), path, 3, 3, "controller.feed_rate",
               "unknown key 'feed_rate'; allowed: period_s, feed_mm_min, accel_time_s, "
-              "rapid_feed_mm_min, corner_velocity_change_mm_min, pattern, post_interp");
+              "rapid_feed_mm_min, corner_velocity_change_mm_min, junction_deviation_mm, pattern, "
+              "post_interp");
 }
 
 // Tests that an unknown top-level key lists the scenario keys.
