@@ -17,7 +17,6 @@
 
 #include "common/math_constants.h"
 #include "tests/support/bench_test_support.h"
-#include "tests/support/test_fmu.h"
 
 namespace shapebench::bench::fmu_servo_test {
 namespace {
@@ -146,6 +145,29 @@ OracleTrace DelayedLoopOracle(const ServoTrace& trace, double h) {
   return out;
 }
 
+// The rows of `coarse` (a trace at `coarse_substeps` a period) and their rows in `fine` (at
+// `fine_substeps`): the largest |difference| of `column` over the common times.
+double LargestDifference(const ServoTrace& coarse, int coarse_substeps, const ServoTrace& fine, int fine_substeps,
+                         const std::string& column) {
+  const std::size_t stride = static_cast<std::size_t>(fine_substeps / coarse_substeps);
+  double worst = 0.0;
+  for (std::size_t r = 0; r < coarse.rows.size() && r * stride < fine.rows.size(); ++r) {
+    EXPECT_NEAR(coarse.rows[r][0], fine.rows[r * stride][0], 1e-12) << "row " << r;
+    worst = std::max(worst, std::abs(coarse.At(r, column) - fine.At(r * stride, column)));
+  }
+  return worst;
+}
+
+// The largest |d column / dt| of a trace, by differences of its rows.
+double LargestRate(const ServoTrace& trace, const std::string& column) {
+  double rate = 0.0;
+  for (std::size_t r = 1; r < trace.rows.size(); ++r) {
+    const double dt = trace.rows[r][0] - trace.rows[r - 1][0];
+    rate = std::max(rate, std::abs(trace.At(r, column) - trace.At(r - 1, column)) / dt);
+  }
+  return rate;
+}
+
 }  // namespace
 
 // Tests that the one-mode move under the servo drive, its machine exported (FMI 2.0 and 3.0)
@@ -184,6 +206,76 @@ TEST(FmuServo, BoundaryLoopIsTheDelayedDiscreteOracle) {
       EXPECT_LE(worst_tool, 1e-9 * static_m);
     }
   }
+}
+
+// Tests that the servo across the boundary differs from the native servo (the loop closed
+// continuously; on a modal machine the master's loop is the native one up to the sampling) by
+// the one-step delay's effect: the feedback held over each step is, on average, h/2 old (a
+// zero-order hold's leading term is a delay of h/2, a phase lag of w h / 2), so the difference
+// is first order in h (halving h halves it: ratios within 2 +- 0.3, measured 1.89 and 1.95) and
+// no larger than shifting the native deflection by h/2 ((h/2) max |dy/dt|; it was 0.06 of that:
+// the loops correct most of the delay); the peak deflection moves by no more than the trace.
+TEST(FmuServo, DelayEffectIsFirstOrderInTheStep) {
+  ScratchDir dir;
+  const std::string scenario = OneModeServoScenario(dir);
+  const std::string fmu = ExportServoMachine(dir, scenario, 2);
+  const std::vector<std::string> fine = {"--set", "integrator.output_substeps=4"};
+  const nlohmann::json native = RunServo(dir, scenario, "", "native", fine);
+  ASSERT_TRUE(native.contains("static_displacement_m"));
+  const ServoTrace native_trace = ReadServoTrace(dir.File("native/trace.csv"));
+  const double rate = LargestRate(native_trace, "deflection_y_m");
+  std::vector<double> differences;
+  for (int substeps : {1, 2, 4}) {
+    SCOPED_TRACE(std::to_string(substeps) + " substeps");
+    const std::string out = "boundary" + std::to_string(substeps);
+    const nlohmann::json boundary =
+        RunServo(dir, scenario, fmu, out, {"--set", "integrator.output_substeps=" + std::to_string(substeps)});
+    ASSERT_TRUE(boundary.contains("peak_deflection_m"));
+    const ServoTrace trace = ReadServoTrace(dir.File(out + "/trace.csv"));
+    const double h = 0.001 / substeps;
+    const double difference = LargestDifference(trace, substeps, native_trace, 4, "deflection_y_m");
+    EXPECT_LE(difference, 0.5 * h * rate);
+    EXPECT_LE(std::abs(boundary["peak_deflection_m"].get<double>() - native["peak_deflection_m"].get<double>()),
+              difference);
+    differences.push_back(difference);
+  }
+  for (std::size_t i = 1; i < differences.size(); ++i) {
+    ASSERT_GT(differences[i], 0.0);
+    EXPECT_NEAR(differences[i - 1] / differences[i], 2.0, 0.3) << "h halved from " << 0.001 / (1 << (i - 1)) << " s";
+  }
+}
+
+// Tests that the demo (the lumped moving column) runs under the servo drive with its exported
+// machine (FMI 3.0) and the servo on the master: every metric a number (the residual read
+// through the native servo plant's modes from the FMU's states and the master's servo
+// states), its metrics at a 1 ms step within the delay's estimate ((h/2) max |dy/dt|) of those
+// at the run's own step (26 a period); and that a servo on the master beside an FMU that
+// carries its servo inside is refused (exit 2 at drive).
+TEST(FmuServo, DemoRunsWithTheServoOnTheMaster) {
+  ScratchDir dir;
+  const std::string demo = "configs/demo.yaml";
+  const std::string fmu = ExportServoMachine(dir, demo, 3);
+  const nlohmann::json own_step = RunServo(dir, demo, fmu, "own_step");
+  const nlohmann::json coarse = RunServo(dir, demo, fmu, "coarse", {"--set", "integrator.output_substeps=1"});
+  for (const char* metric : {"peak_ratio", "residual_ratio", "cruise_residual_ratio", "settling_time_s"}) {
+    ASSERT_TRUE(own_step[metric].is_number()) << metric;
+    ASSERT_TRUE(coarse[metric].is_number()) << metric;
+  }
+  const double rate = LargestRate(ReadServoTrace(dir.File("own_step/trace.csv")), "deflection_y_m");
+  EXPECT_LE(std::abs(coarse["peak_deflection_m"].get<double>() - own_step["peak_deflection_m"].get<double>()),
+            0.5 * 0.001 * rate);
+  EXPECT_LE(std::abs(coarse["residual_peak_m"].get<double>() - own_step["residual_peak_m"].get<double>()),
+            0.5 * 0.001 * rate);
+
+  const std::string inside = dir.File("servo_inside.fmu");
+  ASSERT_EQ(RunCli({"fmu", demo, "--part", "machine", "--set", "drive.type=servo", "--out", inside}, kSourceDir)
+                .exit_code,
+            0);
+  const CliResult refused =
+      RunCli({"run", demo, "--set", "machine={fmu: " + inside + "}", "--set", "drive.type=servo"}, kSourceDir);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("drive: the FMU " + inside + " carries its servo inside already"), std::string::npos)
+      << refused.err;
 }
 
 }  // namespace shapebench::bench::fmu_servo_test
