@@ -7,6 +7,7 @@
 // the difference is the one-step delay's, first order in the step.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 
 #include "common/math_constants.h"
 #include "tests/support/bench_test_support.h"
+#include "tests/support/fmu_files.h"
 
 namespace shapebench::bench::fmu_servo_test {
 namespace {
@@ -68,7 +70,8 @@ ServoTrace ReadServoTrace(const std::string& path) {
   return trace;
 }
 
-// Exports `scenario`'s machine (kinematic) at `version`; the FMU's path.
+// Exports `scenario`'s machine (kinematic) at `version`, its modelDescription.xml (with the
+// drive_position / drive_velocity outputs) valid against the standard's schema; the FMU's path.
 std::string ExportServoMachine(const ScratchDir& dir, const std::string& scenario, int version,
                                const std::vector<std::string>& sets = {}) {
   const std::string fmu = dir.File("machine" + std::to_string(version) + ".fmu");
@@ -76,6 +79,12 @@ std::string ExportServoMachine(const ScratchDir& dir, const std::string& scenari
                                                    std::to_string(version), "--out", fmu}, sets),
                                     kSourceDir);
   EXPECT_EQ(exported.exit_code, 0) << exported.err;
+  const std::filesystem::path unpacked = dir.path() / ("unpacked" + std::to_string(version));
+  EXPECT_TRUE(testing::UnpackFmu(fmu, unpacked));
+  const std::string description = (unpacked / "modelDescription.xml").string();
+  EXPECT_NE(testing::ReadText(description).find("name=\"drive_velocity_y\""), std::string::npos);
+  const CliResult valid = testing::ValidateAgainstSchema(description, version);
+  EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
   return fmu;
 }
 
