@@ -39,6 +39,10 @@ struct FmuMachine {
   FmuAxisSignals deflection_peak;           // max |deflection| over the last step (m): in-step peaks
   FmuAxisSignals static_compliance;   // deflection per held m/s^2 (s^2): static_displacement_m
   FmuAxisSignals residual_amplitude;  // the free vibration's amplitude about rest (m)
+  // The driven point's position (m, from rest at 0) and velocity (m/s): what a servo on the
+  // master's side feeds back (master_servo).
+  FmuAxisSignals drive_position;
+  FmuAxisSignals drive_velocity;
   std::vector<std::pair<FmuSignal, double>> parameters;  // fmu_parameters, in the file's order
   // shapebench's own machine FMU (bench/fmu: resources/scenario.yaml, outputs state[i]): the
   // scenario got the FMU's own machine model, so the run's window, substeps and static
@@ -49,6 +53,11 @@ struct FmuMachine {
   // Its drive (a servo's loops run inside the FMU, on the commanded acceleration): the run
   // takes it in place of the scenario's kinematic one.
   std::optional<model::DriveConfig> drive;
+  // `drive: {type: servo}` beside an FMU whose input is the drive's acceleration: the servo's
+  // loops run on the master, closed across the FMU boundary once per communication step on
+  // the drive_position / drive_velocity outputs of the last communication point (FmuPlant;
+  // docs/fmi.md#the-servo-drive).
+  std::optional<model::ServoConfig> master_servo;
 };
 
 }  // namespace shapebench::bench

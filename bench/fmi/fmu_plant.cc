@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/math_constants.h"
 #include "model/multi_axis_machine.h"
 
 namespace shapebench::bench {
 namespace {
 
 constexpr int kPeakRow = model::kNumOutputRows;  // rows_ 6..8: the step peaks per axis
+constexpr int kDrivePositionRow = kPeakRow + 3;   // rows_ 9..11 (master's servo)
+constexpr int kDriveVelocityRow = kPeakRow + 6;   // rows_ 12..14
 
 std::vector<std::pair<unsigned, double>> Parameters(const FmuMachine& machine) {
   std::vector<std::pair<unsigned, double>> parameters;
@@ -36,6 +39,10 @@ FmuPlant::FmuPlant(const FmuMachine& machine, double period_s, int substeps, dou
     add_output(machine.deflection[axis], model::kDeflectionRow + axis);
     add_output(machine.tool_error[axis], model::kToolErrorRow + axis);
     add_output(machine.deflection_peak[axis], kPeakRow + axis);
+    if (machine.master_servo && machine.base_acceleration[axis]) {
+      add_output(machine.drive_position[axis], kDrivePositionRow + axis);
+      add_output(machine.drive_velocity[axis], kDriveVelocityRow + axis);
+    }
   }
   inputs_.assign(input_refs_.size(), 0.0);
   read_.assign(output_refs_.size(), 0.0);
@@ -62,18 +69,53 @@ void FmuPlant::Reset(const Eigen::VectorXd& /*drive_velocity*/) {
 }
 
 void FmuPlant::SetInput(const Eigen::VectorXd& drive_accel) {
-  for (std::size_t i = 0; i < input_axes_.size(); ++i) inputs_[i] = drive_accel(input_axes_[i]);
+  for (int axis = 0; axis < 3; ++axis) command_accel_[static_cast<std::size_t>(axis)] = drive_accel(axis);
 }
 
 double FmuPlant::Time() const { return period_s_ * static_cast<double>(count_) / substeps_; }
 
 void FmuPlant::Step() {
-  if (!input_refs_.empty()) instance_->SetReal(input_refs_, inputs_.data());
   const double t = Time();
-  ++count_;
   // The step ends on the grid point t_(count+1) (an integer count, never accumulated).
-  instance_->DoStep(t, Time() - t);
+  const double h = period_s_ * static_cast<double>(count_ + 1) / substeps_ - t;
+  if (machine_.master_servo) {
+    ServoInputs(h);
+  } else {
+    for (std::size_t i = 0; i < input_axes_.size(); ++i) inputs_[i] = command_accel_[static_cast<std::size_t>(input_axes_[i])];
+  }
+  if (!input_refs_.empty()) instance_->SetReal(input_refs_, inputs_.data());
+  ++count_;
+  instance_->DoStep(t, h);
+  if (machine_.master_servo) AdvanceCommand(h);
   ReadOutputs();
+}
+
+// servo_drive.h's finite velocity loop with the motor an acceleration source (the FMU's
+// input): v_ref = -Kp e + FF v, s'' = w_v (v_ref - s') + (w_v^2 / 4) z, z' = v_ref - s',
+// i.e. F_m / m_m with Kv = m_m w_v, Ki = Kv w_v / 4 (the native modal form exactly, whose
+// structure neither loads nor pushes the motor). Sampled: s, s' the FMU's outputs at t, u,
+// v the command there; the PI's integral summed by the rectangle at t.
+void FmuPlant::ServoInputs(double h) {
+  const model::ServoConfig& servo = *machine_.master_servo;
+  const double kp = servo.position_gain_1_s;
+  const double w_v = 2.0 * kPi * servo.velocity_loop_hz;
+  for (std::size_t i = 0; i < input_axes_.size(); ++i) {
+    const int axis = input_axes_[i];
+    ServoAxis& a = servo_[static_cast<std::size_t>(axis)];
+    const double s = rows_[static_cast<std::size_t>(kDrivePositionRow + axis)];
+    const double s_dot = rows_[static_cast<std::size_t>(kDriveVelocityRow + axis)];
+    const double velocity_error = -kp * (s - a.u) + servo.velocity_feedforward * a.v - s_dot;
+    inputs_[i] = w_v * velocity_error + 0.25 * w_v * w_v * a.z;
+    a.z += h * velocity_error;
+  }
+}
+
+void FmuPlant::AdvanceCommand(double h) {
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    ServoAxis& a = servo_[axis];
+    a.u += a.v * h + 0.5 * command_accel_[axis] * h * h;
+    a.v += command_accel_[axis] * h;
+  }
 }
 
 void FmuPlant::ReadOutputs() {
@@ -82,6 +124,12 @@ void FmuPlant::ReadOutputs() {
   for (std::size_t i = 0; i < read_.size(); ++i) rows_[static_cast<std::size_t>(output_rows_[i])] = read_[i];
   for (int axis = 0; axis < 3; ++axis) {
     if (!machine_.tool_error[axis]) rows_[model::kToolErrorRow + axis] = rows_[model::kDeflectionRow + axis];
+    // The tool error measured from the command: the FMU's (from its driven point) plus the
+    // following error e = s - u (servo_drive.h's row 1 for a tool that moves with the drive).
+    if (machine_.master_servo && machine_.base_acceleration[axis]) {
+      rows_[model::kToolErrorRow + axis] +=
+          rows_[kDrivePositionRow + axis] - servo_[static_cast<std::size_t>(axis)].u;
+    }
   }
 }
 
@@ -94,7 +142,7 @@ Eigen::VectorXd FmuPlant::Output() const {
 }
 
 void FmuPlant::AdvancePeriod(const double* drive_accel, long /*same_input_periods*/, double* outputs) {
-  for (std::size_t i = 0; i < input_axes_.size(); ++i) inputs_[i] = drive_accel[input_axes_[i]];
+  for (std::size_t axis = 0; axis < 3; ++axis) command_accel_[axis] = drive_accel[axis];
   period_peak_ = 0.0;
   const int width = output_width();
   for (int j = 0; j < substeps_; ++j) {
@@ -120,7 +168,30 @@ bool FmuPlant::WatchExtremum(int row) {
 Eigen::VectorXd FmuPlant::PlantState() const {
   Eigen::VectorXd x(static_cast<Eigen::Index>(machine_.states.size()));
   if (!machine_.states.empty()) instance_->GetReal(machine_.states, x.data());
-  return x;
+  if (!servo_state_layout_) return x;
+  // The native servo plant's layout: per axis the structure's states, then e, e', z.
+  Eigen::VectorXd servo_x(x.size() + 9);
+  Eigen::Index from = 0, to = 0;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const int n = structure_states_[axis];
+    servo_x.segment(to, n) = x.segment(from, n);
+    from += n;
+    to += n;
+    const ServoAxis& a = servo_[axis];
+    const bool driven = machine_.base_acceleration[axis].has_value();
+    servo_x(to++) = driven ? rows_[kDrivePositionRow + axis] - a.u : 0.0;
+    servo_x(to++) = driven ? rows_[kDriveVelocityRow + axis] - a.v : 0.0;
+    servo_x(to++) = a.z;
+  }
+  return servo_x;
+}
+
+bool FmuPlant::LayOutServoStates(const std::array<int, 3>& structure_states) {
+  int total = 0;
+  for (int n : structure_states) total += n;
+  servo_state_layout_ = machine_.master_servo && static_cast<std::size_t>(total) == machine_.states.size();
+  if (servo_state_layout_) structure_states_ = structure_states;
+  return servo_state_layout_;
 }
 
 bool FmuPlant::StaticGain(Eigen::Matrix3d* gain) const {

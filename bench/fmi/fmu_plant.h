@@ -6,6 +6,11 @@
 // tool error x, y, z; an unmapped axis reads 0, an unmapped tool error its deflection).
 // A mapped deflection_peak output is offered as the period's extremum (period_extremum), so the
 // in-step peaks the FMU saw survive; nothing else is offered.
+// With FmuMachine::master_servo the servo's loops run here, on the master: before each
+// communication step the drive acceleration of each driven axis is computed from the
+// drive_position / drive_velocity outputs of the last communication point (the one-step
+// delay: the feedback is held over the step) and the command there, then held over the step
+// (docs/fmi.md#the-servo-drive).
 #pragma once
 
 #include <array>
@@ -47,9 +52,21 @@ class FmuPlant final : public model::PlantIntegrator {
   // The residual_amplitude output of `axis` (-1: the sum over the mapped axes) now; NaN when
   // not mapped.
   double ResidualAmplitude(int axis);
+  // Under the master's servo: the number of the FMU's states (state[i]) per axis, so that
+  // PlantState() gives the native servo plant's layout (per axis its structure's states, then
+  // e, e', z). False (PlantState stays the FMU's states) when they do not add up.
+  bool LayOutServoStates(const std::array<int, 3>& structure_states);
 
  private:
   void ReadOutputs();
+  void ServoInputs(double h);       // the held drive accelerations of the step [t, t + h]
+  void AdvanceCommand(double h);    // the command's position and velocity, to t + h
+
+  // One axis of the master's servo (servo_drive.h's notation): the command u, v (the held
+  // command acceleration integrated exactly), the PI's integral state z.
+  struct ServoAxis {
+    double u = 0.0, v = 0.0, z = 0.0;
+  };
 
   const FmuMachine& machine_;
   std::unique_ptr<FmuInstance> instance_;
@@ -61,7 +78,12 @@ class FmuPlant final : public model::PlantIntegrator {
   std::vector<unsigned> output_refs_;  // deflection, tool error, step peak (those mapped)
   std::vector<int> output_rows_;       // their rows (6 + axis: the step peak of axis)
   std::vector<double> inputs_, read_;
-  std::array<double, 9> rows_{};       // the six output rows, then the step peaks
+  // The six output rows, then the step peaks, the drive positions and velocities per axis.
+  std::array<double, 15> rows_{};
+  std::array<double, 3> command_accel_{};  // held over the period (SetInput, AdvancePeriod)
+  std::array<ServoAxis, 3> servo_{};
+  std::array<int, 3> structure_states_{};
+  bool servo_state_layout_ = false;
   int watched_ = -1;                   // the step peak row PeriodExtremum reports
   double period_peak_ = 0.0;
   Eigen::Matrix3d static_gain_ = Eigen::Matrix3d::Zero();

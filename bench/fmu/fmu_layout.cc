@@ -119,6 +119,16 @@ void MakeMachine(const Scenario& scenario, Layout* layout) {
     if (i == 0) layout->first_state = vr;
   }
   AddMachineParameters(layout, scenario.machine);
+  // A servo inside the FMU moves its driven point off the command's integral: no such outputs.
+  if (scenario.drive.type != model::DriveType::kKinematic) return;
+  for (int axis = 0; axis < model::kNumAxes; ++axis) {
+    if (layout->input[axis] == kNoVariable) continue;
+    const std::string a = Axis(axis);
+    layout->drive_position[axis] = Add(layout, Output("drive_position_" + a, "m",
+        "position of the " + a + " drive (the driven point) from rest at 0: the held base_accel_" + a + " integrated twice"));
+    layout->drive_velocity[axis] = Add(layout, Output("drive_velocity_" + a, "m/s",
+        "velocity of the " + a + " drive: the held base_accel_" + a + " integrated"));
+  }
 }
 
 void MakeController(Layout* layout) {
@@ -154,6 +164,8 @@ Layout MakeLayout(const Scenario& scenario, Part part) {
   layout.position.fill(kNoVariable);
   layout.velocity.fill(kNoVariable);
   layout.accel.fill(kNoVariable);
+  layout.drive_position.fill(kNoVariable);
+  layout.drive_velocity.fill(kNoVariable);
   if (part == Part::kMachine) {
     MakeMachine(scenario, &layout);
   } else {

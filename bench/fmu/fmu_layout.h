@@ -59,6 +59,10 @@ struct Layout {
   std::array<int, 3> input{kNoVariable, kNoVariable, kNoVariable};
   std::array<int, 3> deflection{}, tool_error{}, deflection_peak{}, tool_error_peak{};
   std::array<int, 3> static_compliance{}, static_deflection{};
+  // The kinematic drive's own motion (the held input's integrals from rest), for a master
+  // that closes a servo loop across the FMU boundary (docs/fmi.md#the-servo-drive): after
+  // the parameters, so the other value references are those of FMUs without them.
+  std::array<int, 3> drive_position{}, drive_velocity{};
   int first_state = kNoVariable;  // the plant's states, consecutive
   int num_states = 0;
   std::vector<ParameterRef> parameters;

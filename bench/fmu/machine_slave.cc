@@ -1,5 +1,6 @@
 // The machine part: base accelerations in, deflection and tool error out (docs/fmi.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -55,6 +56,11 @@ class MachineSlave final : public Slave {
       const int vr = layout_.input[axis];
       accel_[static_cast<std::size_t>(axis)] = vr == kNoVariable ? 0.0 : (*values)[static_cast<std::size_t>(vr)];
     }
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      // The held acceleration integrated exactly (position first: it reads the old velocity).
+      drive_position_[axis] += drive_velocity_[axis] * h + 0.5 * accel_[axis] * h * h;
+      drive_velocity_[axis] += accel_[axis] * h;
+    }
     if (exact_) {
       exact_->Step(accel_.data(), h);
       for (int row = 0; row < exact_->num_outputs(); ++row) {
@@ -100,6 +106,8 @@ class MachineSlave final : public Slave {
       double statik = 0.0;
       for (int b = 0; b < 3; ++b) statik += machine_.static_gain(axis, b) * accel_[static_cast<std::size_t>(b)];
       Set(values, layout_.static_deflection[axis], statik);
+      Set(values, layout_.drive_position[axis], drive_position_[static_cast<std::size_t>(axis)]);
+      Set(values, layout_.drive_velocity[axis], drive_velocity_[static_cast<std::size_t>(axis)]);
     }
     if (layout_.num_states == 0) return;
     const Eigen::VectorXd x = exact_ ? exact_->State()
@@ -113,6 +121,7 @@ class MachineSlave final : public Slave {
   std::vector<double> accel_;
   std::vector<double> outputs_;
   std::vector<double> peaks_;
+  std::array<double, 3> drive_position_{}, drive_velocity_{};  // from rest at t = 0
   std::unique_ptr<ExactStepper> exact_;
   std::unique_ptr<model::PlantIntegrator> cvode_;
   double cvode_h_ = 0.0;

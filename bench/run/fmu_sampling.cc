@@ -1,14 +1,34 @@
+#include <array>
 #include <cmath>
 #include <memory>
 
 #include "bench/fmi/fmu_plant.h"
 #include "bench/run/finish_metrics.h"
 #include "bench/run/plant_sampler.h"
+#include "model/machine.h"
+#include "model/multi_axis_machine.h"
 
 // The plant sampler's FMU path (docs/fmi.md#importing-a-plant-fmu): the FMU in place of the
 // integrator, stepped by the general sampler; the metrics it cannot give are n/a with the
 // reason as a warning.
 namespace shapebench::bench {
+namespace {
+
+// Under the master's servo the native servo plant (the run's machine_) reads the FMU's
+// structure states with the master's e, e', z after each axis' (FmuPlant::PlantState): its
+// per-axis blocks, when the machine's axes are separate and the counts add up.
+bool LayOutServoStates(const model::MultiAxisMachineConfig& config, int servo_plant_states, FmuPlant* fmu) {
+  if (config.CoupledModes() != nullptr) return false;
+  std::array<int, 3> structure_states{};
+  int total = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (config.axes[axis]) structure_states[static_cast<std::size_t>(axis)] = model::BuildPlant(*config.axes[axis]).num_states();
+    total += structure_states[static_cast<std::size_t>(axis)] + 3;  // e, e', z per axis
+  }
+  return total == servo_plant_states && fmu->LayOutServoStates(structure_states);
+}
+
+}  // namespace
 
 void PlantSampler::SetUpFmu() {
   // The FMU's stop time: the longest the run may go (the residual window and the tail).
@@ -27,7 +47,8 @@ void PlantSampler::SetUpFmu() {
   }
   // shapebench's own machine FMU: its states read as the native run reads its plant's.
   if (machine.model_known && nonlinear_ == false && machine_.plant.num_states() > 0 &&
-      static_cast<std::size_t>(machine_.plant.num_states()) == machine.states.size()) {
+      (machine.master_servo ? LayOutServoStates(plan_.scenario.machine, machine_.plant.num_states(), fmu.get())
+                            : static_cast<std::size_t>(machine_.plant.num_states()) == machine.states.size())) {
     residual_vibration_ = std::make_unique<ResidualVibration>(machine_.plant, plan_.view);
   }
   bool residual = residual_vibration_ != nullptr;

@@ -28,6 +28,8 @@ const std::vector<Role>& Roles() {
       {"deflection_peak", &FmuMachine::deflection_peak, {"output"}},
       {"static_compliance", &FmuMachine::static_compliance, {"output", "calculatedParameter", "parameter"}},
       {"residual_amplitude", &FmuMachine::residual_amplitude, {"output"}},
+      {"drive_position", &FmuMachine::drive_position, {"output"}},
+      {"drive_velocity", &FmuMachine::drive_velocity, {"output"}},
   };
   return kRoles;
 }
@@ -171,7 +173,47 @@ bool ReadPackedModel(const NodeReader& at, const PackedMachineLoader& load_packe
   return true;
 }
 
+// The child `key` of `drive` when written there, else `drive` itself: where a refusal points.
+NodeReader DriveKey(const NodeReader& drive, const char* key) {
+  if (auto child = drive.Child(key)) return *child;
+  return drive;
+}
+
 }  // namespace
+
+std::shared_ptr<const FmuMachine> WithMasterServo(const FmuMachine& fmu, const model::ServoConfig& servo,
+                                                  const NodeReader& drive) {
+  const std::string file = fmu.fmu->fmu_path();
+  if (fmu.drive && fmu.drive->type == model::DriveType::kServo) {
+    throw drive.Error("the FMU " + file + " carries its servo inside already (it was exported from a servo "
+                      "scenario): leave drive: out, or export the machine under drive: {type: kinematic} to run "
+                      "the servo on the master");
+  }
+  if (servo.velocity_loop_hz == 0.0) {
+    throw DriveKey(drive, "velocity_loop_hz").Error(
+        "a servo closed across the FMU boundary needs a velocity loop (velocity_loop_hz > 0): the FMU takes the "
+        "drive's acceleration, and under ideal inner loops (0) the motor is a velocity source");
+  }
+  if (servo.nonlinear()) {
+    throw DriveKey(drive, servo.friction.present() ? "friction" : "force_limit_n").Error(
+        "the drive's friction and force limit act inside a step on the motor's force balance, which a servo "
+        "closed across the FMU boundary does not see: put the servo inside the FMU (export the machine from "
+        "the servo scenario)");
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!fmu.base_acceleration[axis]) continue;
+    for (const char* role : {"drive_position", "drive_velocity"}) {
+      if ((fmu.*RoleNamed(role).signals)[axis]) continue;
+      throw drive.Error("a servo closed across the FMU boundary feeds back the drive's position and velocity, "
+                        "and the FMU " + file + " maps no " + role + " output for axis " + kAxisNames[axis] +
+                        ": map one with 'outputs: {" + role + ": {" + kAxisNames[axis] + ": VARIABLE}}' (its "
+                        "outputs: " + fmu.fmu->description().DoubleNames("output") + ")");
+    }
+  }
+  auto copy = std::make_shared<FmuMachine>(fmu);
+  copy->master_servo = servo;
+  return copy;
+}
 
 const std::vector<std::string>& FmuMachineKeys() {
   static const std::vector<std::string> kKeys = {"fmu", "inputs", "outputs", "fmu_parameters"};
@@ -179,8 +221,9 @@ const std::vector<std::string>& FmuMachineKeys() {
 }
 
 const std::vector<std::string>& FmuOutputRoles() {
-  static const std::vector<std::string> kRoles = {"deflection", "tool_error", "deflection_peak", "static_compliance",
-                                                  "residual_amplitude"};
+  static const std::vector<std::string> kRoles = {"deflection",         "tool_error",     "deflection_peak",
+                                                  "static_compliance",  "residual_amplitude",
+                                                  "drive_position",     "drive_velocity"};
   return kRoles;
 }
 

@@ -35,6 +35,13 @@ using PackedMachineLoader = std::function<Scenario(const std::string& path, cons
 std::shared_ptr<const FmuMachine> ReadFmuMachine(const NodeReader& machine, model::MultiAxisMachineConfig* config,
                                                  const PackedMachineLoader& load_packed);
 
+// `drive: {type: servo}` (`servo`, read at `drive`) beside the FMU: the FMU with the servo's
+// loops run on the master (FmuMachine::master_servo). Exit 2 at `drive` for an FMU that
+// carries a servo inside, a servo without a velocity loop or with friction or a force limit,
+// and an FMU without the drive_position and drive_velocity outputs of each driven axis.
+std::shared_ptr<const FmuMachine> WithMasterServo(const FmuMachine& fmu, const model::ServoConfig& servo,
+                                                  const NodeReader& drive);
+
 // The variable name shapebench's machine FMU gives `role` ("base_acceleration" or one of
 // FmuOutputRoles()) of axis 0, 1, 2: e.g. base_accel_y, deflection_y.
 std::string FmuDefaultName(const std::string& role, int axis);

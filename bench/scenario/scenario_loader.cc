@@ -392,13 +392,13 @@ void ReadMachineAndDrive(const NodeReader& top, Scenario* scenario) {
     }
   }
   if (auto drive = top.Child("drive")) scenario->drive = ReadDrive(*drive);
-  if (scenario->fmu && scenario->drive.type != model::DriveType::kKinematic) {
-    // The servo's loop would close across the FMU boundary with a one-step delay
-    // (docs/fmi.md#importing-a-plant-fmu): not built.
-    throw top.Child("drive")->Error("a plant FMU (machine.fmu) runs under the kinematic drive only: its input is "
-                                    "the held base acceleration; put the servo inside the FMU");
+  if (scenario->fmu && scenario->drive.type == model::DriveType::kServo) {
+    // The servo's loops on the master, closed across the FMU boundary with the one-step
+    // delay (docs/fmi.md#the-servo-drive); the run keeps the servo drive as its own.
+    scenario->fmu = WithMasterServo(*scenario->fmu, scenario->drive.servo, *top.Child("drive"));
+  } else if (scenario->fmu && scenario->fmu->drive) {
+    scenario->drive = *scenario->fmu->drive;  // shapebench's FMU's own
   }
-  if (scenario->fmu && scenario->fmu->drive) scenario->drive = *scenario->fmu->drive;  // shapebench's FMU's own
 }
 
 Scenario ReadScenario(const ConfigDocument& document, const std::string& path,

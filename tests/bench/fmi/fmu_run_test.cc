@@ -101,7 +101,9 @@ TEST(FmuRun, FmuParametersTakeSet) {
 
 // Tests that the load-time errors are located at their keys and say what is allowed: a
 // variable the FMU lacks (its outputs listed, with the closest name), a parameter that is
-// an output, an input of the wrong causality, a missing .fmu, and the servo drive.
+// an output, an input of the wrong causality, a missing .fmu, and the servo drive closed
+// across the boundary of an FMU without the drive's position and velocity outputs, without a
+// velocity loop or with a force limit.
 TEST(FmuRun, BadKeysAreLocatedConfigErrors) {
   ScratchDir dir;
   const std::string fmu = TestPlantFmu(2);
@@ -119,7 +121,11 @@ TEST(FmuRun, BadKeysAreLocatedConfigErrors) {
        "has causality output, not parameter"},
       {"{fmu: " + fmu + ", inputs: {y: deflection_y}}", {}, "machine.inputs.y", "base_acceleration wants input"},
       {"{fmu: " + dir.File("missing.fmu") + "}", {}, "machine.fmu", "cannot be opened as an FMU"},
-      {"{fmu: " + fmu + "}", {{"drive.type", "servo"}}, "drive", "kinematic drive only"},
+      {"{fmu: " + fmu + "}", {{"drive.type", "servo"}}, "drive", "maps no drive_position output for axis y"},
+      {"{fmu: " + fmu + "}", {{"drive.type", "servo"}, {"drive.velocity_loop_hz", "0"}}, "drive.velocity_loop_hz",
+       "needs a velocity loop (velocity_loop_hz > 0)"},
+      {"{fmu: " + fmu + "}", {{"drive.type", "servo"}, {"drive.force_limit_n", "500"}}, "drive.force_limit_n",
+       "put the servo inside the FMU"},
   };
   for (const auto& c : cases) {
     const std::string path = dir.Write("bad.yaml", TestPlantScenario(c.machine));
