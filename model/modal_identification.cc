@@ -12,7 +12,6 @@
 #include "common/math_constants.h"
 #include "common/validation_error.h"
 #include "model/integrator.h"
-#include "model/modal_checks.h"
 #include "model/modal_local_damping.h"
 #include "model/modal_refinement.h"
 #include "model/modal_subbands.h"
@@ -501,7 +500,6 @@ ModalIdentification FitInSubBands(const std::vector<double>& frequency_hz,
                                   const IdentificationOptions& options, const BandData& band,
                                   ModalIdentification result, WorkBudget* budget) {
   const std::vector<std::size_t> edges = SubBandEdges(band.frfs);
-  std::vector<std::vector<IdentifiedMode>> per_band;
   for (std::size_t e : edges) result.sub_band_edges_hz.push_back(result.frequency_hz[e]);
   for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
     IdentificationOptions sub = options;
@@ -518,10 +516,14 @@ ModalIdentification FitInSubBands(const std::vector<double>& frequency_hz,
     result.diagram.insert(result.diagram.end(), part.diagram.begin(), part.diagram.end());
     result.rejected.insert(result.rejected.end(), part.rejected.begin(), part.rejected.end());
     result.refined = result.refined || part.refined;
-    per_band.push_back(std::move(part.modes));
+    // Each sub-band's modes ascend, inside its edges: the list stays ascending.
+    const std::vector<double>& f = result.frequency_hz;
+    for (const IdentifiedMode& mode : part.modes) {
+      if (!NearInnerEdge(mode.frequency_hz, result.sub_band_edges_hz, (f.back() - f.front()) / (f.size() - 1.0))) {
+        result.modes.push_back(mode);
+      }
+    }
   }
-  const std::vector<double>& f = result.frequency_hz;
-  result.modes = MergeSubBandModes(per_band, result.sub_band_edges_hz, (f.back() - f.front()) / (f.size() - 1.0));
   ModalModel model;
   for (const IdentifiedMode& mode : result.modes) model.poles.push_back(Pole(mode) / band.omega.back());
   std::vector<double> x;
@@ -545,7 +547,8 @@ ModalIdentification IdentifyWithin(const std::vector<double>& frequency_hz,
   }
   const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
   const int count = static_cast<int>(frfs.size());
-  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options, budget->used());
+  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options.max_work,
+                    options.max_work_key, budget->used());
   const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
   const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
   const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi

@@ -162,4 +162,8 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
                                   const std::vector<std::vector<std::complex<double>>>& frfs,
                                   int derivative_order, const IdentificationOptions& options);
 
+// Throws ValidationError("frf") when `result`'s fit error or modes are not finite numbers
+// (lines 1e-300 Hz apart: the LSCF basis degenerates) rather than report "-nan %", exit 0.
+void RequireFinite(const ModalIdentification& result);
+
 }  // namespace shapebench::model

@@ -283,8 +283,8 @@ std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vect
     const int trial_modes = static_cast<int>(model->poles.size()) + 1;
     budget->Charge(static_cast<double>(candidates.size()) *
                        (RefinementWork(lines, frfs, trial_modes) + LsfdWork(lines, frfs, trial_modes)),
-                   "trying " + std::to_string(candidates.size()) + " poles the diagram missed (" +
-                       std::to_string(trial_modes) + " modes, " + std::to_string(lines) + " lines)");
+                   "trying " + std::to_string(candidates.size()) + " candidates for a pole the diagram missed (" +
+                       std::to_string(trial_modes) + " modes refined over " + std::to_string(lines) + " lines each)");
     for (const std::vector<Complex>& poles : candidates) {
       ModalModel trial = *model;
       const double trial_error = Candidate(x, data, d, max_damping_ratio, min_prominence, poles, &trial);

@@ -1,4 +1,4 @@
-// SubBandEdges and MergeSubBandModes (model/modal_subbands.h).
+// SubBandEdges and NearInnerEdge (model/modal_subbands.h).
 #include "model/modal_subbands.h"
 
 #include <algorithm>
@@ -25,21 +25,11 @@ std::vector<std::size_t> SubBandEdges(const std::vector<std::vector<std::complex
   return edges;
 }
 
-std::vector<IdentifiedMode> MergeSubBandModes(const std::vector<std::vector<IdentifiedMode>>& per_band,
-                                              const std::vector<double>& edges_hz, double line_spacing_hz) {
-  std::vector<IdentifiedMode> modes;
-  for (const auto& band : per_band) {
-    for (const IdentifiedMode& mode : band) {
-      bool at_edge = false;
-      for (std::size_t i = 1; i + 1 < edges_hz.size(); ++i) {
-        at_edge = at_edge || std::abs(mode.frequency_hz - edges_hz[i]) <= 2.0 * line_spacing_hz;
-      }
-      if (!at_edge) modes.push_back(mode);
-    }
+bool NearInnerEdge(double frequency_hz, const std::vector<double>& edges_hz, double line_spacing_hz) {
+  for (std::size_t i = 1; i + 1 < edges_hz.size(); ++i) {
+    if (std::abs(frequency_hz - edges_hz[i]) <= 2.0 * line_spacing_hz) return true;
   }
-  std::stable_sort(modes.begin(), modes.end(),
-                   [](const IdentifiedMode& a, const IdentifiedMode& b) { return a.frequency_hz < b.frequency_hz; });
-  return modes;
+  return false;
 }
 
 }  // namespace shapebench::model

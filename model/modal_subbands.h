@@ -10,8 +10,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "model/modal_identification.h"
-
 namespace shapebench::model {
 
 // A band of more lines is fitted in sub-bands of about kSubBandLines lines at most.
@@ -23,10 +21,9 @@ inline constexpr int kSubBandLines = 2048;
 // of |H| is the least within an eighth of a part of it (between peaks, not on one).
 std::vector<std::size_t> SubBandEdges(const std::vector<std::vector<std::complex<double>>>& frfs);
 
-// The sub-bands' modes as one list, ascending: a mode within two lines of an inner edge is
+// Whether a sub-band's mode at `frequency_hz` lies within two lines of an inner edge: it is
 // left out (the edge lies where |H| is least: such a pole fits the cut, not a peak; the
 // neighbouring sub-band holds the peak it leans on).
-std::vector<IdentifiedMode> MergeSubBandModes(const std::vector<std::vector<IdentifiedMode>>& per_band,
-                                              const std::vector<double>& edges_hz, double line_spacing_hz);
+bool NearInnerEdge(double frequency_hz, const std::vector<double>& edges_hz, double line_spacing_hz);
 
 }  // namespace shapebench::model

@@ -2,6 +2,7 @@
 #include "model/modal_work.h"
 
 #include <cmath>
+#include <string>
 
 #include "common/format.h"
 #include "model/integrator.h"
@@ -38,6 +39,24 @@ void WorkBudget::Charge(double work, const std::string& what) {
                                       FormatNumber(limit_, 3) + "; " + FormatNumber(used_, 3) +
                                       " spent before it); stopped, no mode is reported: raise " + key_ + " (e.g. to " +
                                       FormatNumber(suggested, 3) + "), or narrow the band");
+}
+
+// Refused before the fit starts when its work exceeds max_work (ten copies of a
+// record at order 200 took 40 s; a thousand records an estimated hour); in a sub-band,
+// max_work is what the sub-bands below left.
+void RequireWithinWork(int lines, int frfs, int max_order, double max_work, const std::string& key, double spent) {
+  const double work = IdentificationWork(lines, frfs, max_order);
+  if (!(work > max_work)) return;
+  const double suggested = std::pow(10.0, std::ceil(std::log10(work + spent)));
+  throw SolverError("WORK_LIMIT", "identifying " + std::to_string(frfs) + " FRF" + (frfs == 1 ? "" : "s") + " of " +
+                                      std::to_string(lines) + " lines up to order " + std::to_string(max_order) +
+                                      " would take about " + FormatNumber(work, 3) +
+                                      " multiply-adds, more than " + key + " (" +
+                                      FormatNumber(spent + max_work, 3) + ")" +
+                                      (spent > 0.0 ? " less the " + FormatNumber(spent, 3) + " spent on the sub-bands "
+                                                     "below; stopped, no mode is reported" : "; nothing was fitted") +
+                                      ": raise " + key + " (e.g. to " + FormatNumber(suggested, 3) +
+                                      "), or lower the order, narrow the band or take fewer records");
 }
 
 }  // namespace shapebench::model

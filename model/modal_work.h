@@ -19,6 +19,11 @@ double RefinementWork(int lines, int frfs, int modes);
 // One LSFD of `modes` poles (FitLinear) and its squared error.
 double LsfdWork(int lines, int frfs, int modes);
 
+// Throws SolverError("WORK_LIMIT") before a fit when its diagram of `lines` lines up to
+// `max_order` exceeds `max_work` (in a sub-band, what the sub-bands below left after
+// spending `spent`), naming `key`.
+void RequireWithinWork(int lines, int frfs, int max_order, double max_work, const std::string& key, double spent);
+
 // The identification's budget: each part is charged before it runs; past the limit,
 // SolverError("WORK_LIMIT") naming `key`, the part and the work spent.
 class WorkBudget {

@@ -1,6 +1,5 @@
-// IdentificationOptions::validate, ToReceptance and the identification's checks
-// (model/modal_checks.h).
-#include "model/modal_checks.h"
+// IdentificationOptions::validate, ToReceptance and RequireFinite (model/modal_identification.h).
+#include "model/modal_identification.h"
 
 #include <cmath>
 #include <complex>
@@ -9,7 +8,6 @@
 #include "common/format.h"
 #include "common/math_constants.h"
 #include "common/validation_error.h"
-#include "model/integrator.h"
 
 namespace shapebench::model {
 
@@ -56,24 +54,6 @@ void RequireFinite(const ModalIdentification& result) {
                                      " Hz from " + FormatNumber(f.front()) + " Hz; lines a usable distance apart "
                                      "are needed)");
   }
-}
-
-// Refused before the fit starts when its work exceeds options.max_work (ten copies of a
-// record at order 200 took 40 s; a thousand records an estimated hour); in a sub-band,
-// options.max_work is what the sub-bands below left.
-void RequireWithinWork(int lines, int frfs, int max_order, const IdentificationOptions& options, double spent) {
-  const double work = IdentificationWork(lines, frfs, max_order);
-  if (!(work > options.max_work)) return;
-  const double suggested = std::pow(10.0, std::ceil(std::log10(work + spent)));
-  throw SolverError("WORK_LIMIT", "identifying " + std::to_string(frfs) + " FRF" + (frfs == 1 ? "" : "s") + " of " +
-                                      std::to_string(lines) + " lines up to order " + std::to_string(max_order) +
-                                      " would take about " + FormatNumber(work, 3) +
-                                      " multiply-adds, more than " + options.max_work_key + " (" +
-                                      FormatNumber(spent + options.max_work, 3) + ")" +
-                                      (spent > 0.0 ? " less the " + FormatNumber(spent, 3) + " spent on the sub-bands "
-                                                     "below; stopped, no mode is reported" : "; nothing was fitted") +
-                                      ": raise " + options.max_work_key + " (e.g. to " + FormatNumber(suggested, 3) +
-                                      "), or lower the order, narrow the band or take fewer records");
 }
 
 }  // namespace shapebench::model
