@@ -540,11 +540,11 @@ ModalIdentification IdentifyWithin(const std::vector<double>& frequency_hz,
                                    const IdentificationOptions& options, WorkBudget* budget) {
   ModalIdentification result;
   const BandData band = SelectBand(frequency_hz, frfs, options, &result.frequency_hz);
-  // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
   const int lines = static_cast<int>(band.omega.size());
   if (lines > kMaxLinesPerFit) {
     return FitInSubBands(frequency_hz, frfs, derivative_order, options, band, std::move(result), budget);
   }
+  // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
   const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
   const int count = static_cast<int>(frfs.size());
   RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options.max_work,
