@@ -14,6 +14,7 @@
 #include "model/integrator.h"
 #include "model/modal_local_damping.h"
 #include "model/modal_refinement.h"
+#include "model/modal_subbands.h"
 
 namespace shapebench::model {
 namespace {
@@ -321,7 +322,7 @@ Complex Pole(const IdentifiedMode& mode) {
 // dropped (kept in `rejected`) and the linear terms refitted, until none is.
 void DropHidden(const std::vector<double>& x, const BandData& band, int derivative_order,
                 const IdentificationOptions& options, std::vector<IdentifiedMode>* modes, ModalModel* model,
-                std::vector<RejectedMode>* rejected) {
+                std::vector<RejectedMode>* rejected, WorkBudget* budget) {
   while (!modes->empty()) {
     std::size_t weakest = 0;
     double lowest = std::numeric_limits<double>::infinity();
@@ -335,15 +336,10 @@ void DropHidden(const std::vector<double>& x, const BandData& band, int derivati
     rejected->push_back({mode.frequency_hz, mode.damping_ratio, mode.stable_orders, lowest});
     modes->erase(modes->begin() + static_cast<std::ptrdiff_t>(weakest));
     model->poles.erase(model->poles.begin() + static_cast<std::ptrdiff_t>(weakest));
+    budget->Charge(LsfdWork(static_cast<int>(x.size()), static_cast<int>(band.frfs.size()),
+                            static_cast<int>(model->poles.size())), "refitting the modal constants");
     FitLinear(x, band.frfs, derivative_order, model);
   }
-}
-
-// Refinement's work estimate (multiply-adds): 50 iterations of a dense QR of every
-// residual by every unknown.
-double RefinementWork(int lines, int frfs, int modes) {
-  const double unknowns = 2.0 * modes + frfs * (2.0 * modes + 2.0);
-  return 50.0 * 2.0 * lines * frfs * unknowns * unknowns;
 }
 
 // The refinement may carry a pole past its neighbour: modes in ascending frequency again.
@@ -368,12 +364,12 @@ void SortByFrequency(ModalModel* model, std::vector<IdentifiedMode>* modes) {
 // Poles the diagram missed (AddMissedPoles); each mode keeps the diagram's metadata of
 // the mode nearest its pole, an added one its error drop.
 void AddMissed(const BandData& band, int derivative_order, const IdentificationOptions& options,
-               const std::vector<double>& x, ModalModel* model, ModalIdentification* result) {
+               const std::vector<double>& x, ModalModel* model, ModalIdentification* result, WorkBudget* budget) {
   if (options.max_added_modes <= 0) return;
   const ModalModel before = *model;
   const std::vector<double> drops =
       AddMissedPoles(x, band.frfs, derivative_order, options.max_damping_ratio, options.min_prominence,
-                     options.min_error_drop, options.max_added_modes, model);
+                     options.min_error_drop, options.max_added_modes, model, budget);
   if (model->poles.size() == before.poles.size()) {
     *model = before;  // nothing added: the refined model as it was
     return;
@@ -400,17 +396,22 @@ void AddMissed(const BandData& band, int derivative_order, const IdentificationO
 // The picked modes fitted to the band: LSFD, the hidden ones dropped, the rest refined by
 // nonlinear least squares (then checked again), in normalised units (model/modal_refinement.h).
 ModalModel FitModes(const BandData& band, int derivative_order, const IdentificationOptions& options,
-                    const std::vector<double>& x, ModalIdentification* result) {
+                    const std::vector<double>& x, ModalIdentification* result, WorkBudget* budget) {
   const double w_ref = band.omega.back();
   ModalModel model;
   for (const IdentifiedMode& mode : result->modes) model.poles.push_back(Pole(mode) / w_ref);
   FitLinear(x, band.frfs, derivative_order, &model);
-  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected);
+  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected, budget);
   const int lines = static_cast<int>(x.size());
   const int frfs = static_cast<int>(band.frfs.size());
+  const auto refining = [&](const ModalModel& m) {
+    budget->Charge(RefinementWork(lines, frfs, static_cast<int>(m.poles.size())),
+                   "refining " + std::to_string(m.poles.size()) + " modes over " + std::to_string(lines) + " lines");
+  };
   if (!options.refine || RefinementWork(lines, frfs, static_cast<int>(model.poles.size())) > options.max_work) {
     return model;
   }
+  refining(model);
   const double x_lo = x.front(), x_hi = x.back();
   result->refined = RefineModalModel(x, band.frfs, derivative_order, options.max_damping_ratio, x_lo, x_hi, &model);
   const std::size_t before = model.poles.size();
@@ -418,18 +419,25 @@ ModalModel FitModes(const BandData& band, int derivative_order, const Identifica
     result->modes[r].frequency_hz = std::abs(model.poles[r]) * w_ref / kTwoPi;
     result->modes[r].damping_ratio = -model.poles[r].real() / std::abs(model.poles[r]);
   }
-  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected);
+  DropHidden(x, band, derivative_order, options, &result->modes, &model, &result->rejected, budget);
   if (model.poles.size() != before && result->refined) {
+    refining(model);
     RefineModalModel(x, band.frfs, derivative_order, options.max_damping_ratio, x_lo, x_hi, &model);
   }
-  AddMissed(band, derivative_order, options, x, &model, result);
+  AddMissed(band, derivative_order, options, x, &model, result, budget);
   SortByFrequency(&model, &result->modes);
+  // Each narrow mode's golden section (62 LSFDs of one mode) on its neighbourhood, then one refit.
+  budget->Charge(2.0 * 62.0 * LsfdWork(lines, frfs, 1) + LsfdWork(lines, frfs, static_cast<int>(model.poles.size())),
+                 "fitting narrow peaks' damping on their neighbourhoods");
   const std::vector<bool> local = LocalDampingOfNarrowPeaks(x, band.frfs, derivative_order, options.max_damping_ratio,
                                                             kLocalDampingErrorGrowth, &model);
   for (std::size_t r = 0; r < local.size(); ++r) result->modes[r].local_damping = local[r];
   // Modes that explain too little of the data (IdentificationOptions::min_error_rise_percent).
   double rise = 0.0;
   while (options.min_error_rise_percent > 0.0 && !model.poles.empty()) {
+    const int m = static_cast<int>(model.poles.size());
+    budget->Charge(m * LsfdWork(lines, frfs, m) + LsfdWork(lines, frfs, m), "checking what each of " +
+                   std::to_string(m) + " modes explains");
     const std::size_t r = LeastContribution(x, band.frfs, derivative_order, model, &rise);
     if (!(rise < options.min_error_rise_percent)) break;
     const Complex lambda = model.poles[r] * band.omega.back();  // an added mode has only its pole yet
@@ -480,78 +488,87 @@ void StoreFit(const BandData& band, int derivative_order, const std::vector<doub
   result->fit_error_percent = total > 0.0 ? 100.0 * std::sqrt(error / total) : 0.0;
 }
 
-}  // namespace
+ModalIdentification IdentifyWithin(const std::vector<double>& frequency_hz,
+                                   const std::vector<std::vector<Complex>>& frfs, int derivative_order,
+                                   const IdentificationOptions& options, WorkBudget* budget);
 
-std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, int derivative_order) {
-  return h / std::pow(Complex(0.0, kTwoPi * frequency_hz), derivative_order);
-}
-
-void IdentificationOptions::validate() const {
-  if (!(min_frequency_hz >= 0.0) || !(max_frequency_hz > min_frequency_hz)) {
-    throw ValidationError("band", "expected 0 <= min < max in Hz");
-  }
-  if (max_order < 1 || max_order > 200) throw ValidationError("max_order", "must be in [1, 200]");
-  if (!(frequency_tolerance > 0.0) || !(damping_tolerance > 0.0)) {
-    throw ValidationError("tolerance", "the stabilisation tolerances must be > 0");
-  }
-  if (!(max_damping_ratio > 0.0 && max_damping_ratio <= 1.0)) {
-    throw ValidationError("max_damping_ratio", "must be in (0, 1]");
-  }
-  if (!(min_stable_fraction >= 0.0 && min_stable_fraction <= 1.0)) {
-    throw ValidationError("min_stable_fraction", "must be in [0, 1]");
-  }
-  if (!(max_work >= 1.0)) throw ValidationError("max_work", "must be >= 1");
-  if (!(min_error_rise_percent >= 0.0)) throw ValidationError("min_error_rise_percent", "must be >= 0");
-  if (!(min_prominence >= 0.0 && min_prominence < 1.0)) throw ValidationError("min_prominence", "must be in [0, 1)");
-  if (!(min_error_drop > 0.0 && min_error_drop < 1.0)) throw ValidationError("min_error_drop", "must be in (0, 1)");
-}
-
-namespace {
-
-// A fit whose error or modes are not numbers (lines 1e-300 Hz apart: the LSCF basis
-// degenerates) is refused rather than reported as "fit error -nan %" with exit 0.
-void RequireFinite(const ModalIdentification& result) {
-  // The lower residual's term LR / w^2 at the lowest line must be a number too.
-  const double w_lo = kTwoPi * result.frequency_hz.front();
-  bool finite = std::isfinite(result.fit_error_percent) && std::isfinite(1.0 / (w_lo * w_lo));
-  for (const IdentifiedMode& mode : result.modes) {
-    finite = finite && std::isfinite(mode.frequency_hz) && std::isfinite(mode.damping_ratio);
-    for (const Complex& c : mode.modal_constants) finite = finite && std::isfinite(c.real()) && std::isfinite(c.imag());
-  }
-  if (!finite) {
+// A band of more than kMaxLinesPerFit lines: each sub-band identified on its own
+// (model/modal_subbands.h), within what the budget has left; the modes merged and their
+// linear terms fitted on the whole band.
+ModalIdentification FitInSubBands(const std::vector<double>& frequency_hz,
+                                  const std::vector<std::vector<Complex>>& frfs, int derivative_order,
+                                  const IdentificationOptions& options, const BandData& band,
+                                  ModalIdentification result, WorkBudget* budget) {
+  const std::vector<std::size_t> edges = SubBandEdges(band.frfs);
+  for (std::size_t e : edges) result.sub_band_edges_hz.push_back(result.frequency_hz[e]);
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    IdentificationOptions sub = options;
+    sub.min_frequency_hz = result.sub_band_edges_hz[i];
+    sub.max_frequency_hz = result.sub_band_edges_hz[i + 1];
+    sub.max_work = budget->remaining();
+    ModalIdentification part = IdentifyWithin(frequency_hz, frfs, derivative_order, sub, budget);
+    result.sub_band_orders.push_back(part.max_order);
+    if (part.max_order > result.max_order) {
+      result.max_order = part.max_order;
+      result.orders_compared = part.orders_compared;
+      result.order_stop = part.order_stop;
+    }
+    result.diagram.insert(result.diagram.end(), part.diagram.begin(), part.diagram.end());
+    result.rejected.insert(result.rejected.end(), part.rejected.begin(), part.rejected.end());
+    result.refined = result.refined || part.refined;
+    // Each sub-band's modes ascend, inside its edges: the list stays ascending.
     const std::vector<double>& f = result.frequency_hz;
-    throw ValidationError("frf", "cannot be fitted: the fit's error or modes are not finite numbers (the band's " +
-                                     std::to_string(f.size()) + " lines span " + FormatNumber(f.back() - f.front()) +
-                                     " Hz from " + FormatNumber(f.front()) + " Hz; lines a usable distance apart "
-                                     "are needed)");
+    for (const IdentifiedMode& mode : part.modes) {
+      if (!NearInnerEdge(mode.frequency_hz, result.sub_band_edges_hz, (f.back() - f.front()) / (f.size() - 1.0))) {
+        result.modes.push_back(mode);
+      }
+    }
   }
+  ModalModel model;
+  for (const IdentifiedMode& mode : result.modes) model.poles.push_back(Pole(mode) / band.omega.back());
+  std::vector<double> x;
+  for (double w : band.omega) x.push_back(w / band.omega.back());
+  budget->Charge(LsfdWork(static_cast<int>(x.size()), static_cast<int>(frfs.size()),
+                          static_cast<int>(model.poles.size())), "fitting the sub-bands' modes on the whole band");
+  FitLinear(x, band.frfs, derivative_order, &model);
+  StoreFit(band, derivative_order, x, model, &result);
+  return result;
 }
 
-// Refused before the fit starts when its work exceeds options.max_work (ten copies of a
-// record at order 200 took 40 s; a thousand records an estimated hour).
-void RequireWithinWork(int lines, int frfs, int max_order, const IdentificationOptions& options) {
-  const double work = IdentificationWork(lines, frfs, max_order);
-  if (!(work > options.max_work)) return;
-  const double suggested = std::pow(10.0, std::ceil(std::log10(work)));
-  throw SolverError("WORK_LIMIT", "identifying " + std::to_string(frfs) + " FRF" + (frfs == 1 ? "" : "s") + " of " +
-                                      std::to_string(lines) + " lines up to order " + std::to_string(max_order) +
-                                      " would take about " + FormatNumber(work, 3) +
-                                      " multiply-adds, more than " + options.max_work_key + " (" +
-                                      FormatNumber(options.max_work, 3) + "); nothing was fitted: raise " +
-                                      options.max_work_key + " (e.g. to " + FormatNumber(suggested, 3) +
-                                      "), or lower the order, narrow the band or take fewer records");
+ModalIdentification IdentifyWithin(const std::vector<double>& frequency_hz,
+                                   const std::vector<std::vector<Complex>>& frfs, int derivative_order,
+                                   const IdentificationOptions& options, WorkBudget* budget) {
+  ModalIdentification result;
+  const BandData band = SelectBand(frequency_hz, frfs, options, &result.frequency_hz);
+  const int lines = static_cast<int>(band.omega.size());
+  if (lines > kMaxLinesPerFit) {
+    return FitInSubBands(frequency_hz, frfs, derivative_order, options, band, std::move(result), budget);
+  }
+  // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
+  const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
+  const int count = static_cast<int>(frfs.size());
+  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options.max_work,
+                    options.max_work_key, budget->used());
+  const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
+  const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
+  const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi
+  const LagSums sums = ComputeLagSums(band, ts, 2 * cap);
+  Diagram diagram;
+  result.max_order = options.auto_order
+                         ? ChooseOrder(sums, ts, options, band_lo, band_hi, cap, lines, count, &diagram, &result)
+                         : cap;
+  budget->Charge(IdentificationWork(lines, count, result.max_order), "the stabilisation diagram");
+  ExtendDiagram(sums, ts, options, band_lo, band_hi, result.max_order, &diagram);
+  result.diagram = std::move(diagram.poles);
+  result.modes = PickModes(result.diagram, options, result.max_order);
+  std::vector<double> x;
+  for (double w : band.omega) x.push_back(w / band.omega.back());
+  const ModalModel model = FitModes(band, derivative_order, options, x, &result, budget);
+  StoreFit(band, derivative_order, x, model, &result);
+  return result;
 }
 
 }  // namespace
-
-double IdentificationWork(int lines, int frfs, int max_order) {
-  const double l = lines;
-  const double r = frfs;
-  const double m = max_order;
-  double work = l * (4.0 * m + 1.0) * (r + 2.0) + r * 2.0 * l * (2.0 * m + 2.0) * (2.0 * m + 2.0);
-  for (int o = 1; o <= max_order; ++o) work += (2.0 * r + 12.0) * std::pow(2.0 * o + 1.0, 3);
-  return work;
-}
 
 ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
                                   const std::vector<std::vector<Complex>>& frfs, int derivative_order,
@@ -561,28 +578,9 @@ ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
   for (const auto& frf : frfs) {
     if (frf.size() != frequency_hz.size()) throw ValidationError("frf", "an FRF and its frequencies differ in length");
   }
-  ModalIdentification result;
-  const BandData band = SelectBand(frequency_hz, frfs, options, &result.frequency_hz);
-  // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
-  const int lines = static_cast<int>(band.omega.size());
-  const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
-  const int count = static_cast<int>(frfs.size());
-  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options);
-  const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
-  const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
-  const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi
-  const LagSums sums = ComputeLagSums(band, ts, 2 * cap);
-  Diagram diagram;
-  result.max_order = options.auto_order
-                         ? ChooseOrder(sums, ts, options, band_lo, band_hi, cap, lines, count, &diagram, &result)
-                         : cap;
-  ExtendDiagram(sums, ts, options, band_lo, band_hi, result.max_order, &diagram);
-  result.diagram = std::move(diagram.poles);
-  result.modes = PickModes(result.diagram, options, result.max_order);
-  std::vector<double> x;
-  for (double w : band.omega) x.push_back(w / band.omega.back());
-  const ModalModel model = FitModes(band, derivative_order, options, x, &result);
-  StoreFit(band, derivative_order, x, model, &result);
+  WorkBudget budget(options.max_work, options.max_work_key);
+  ModalIdentification result = IdentifyWithin(frequency_hz, frfs, derivative_order, options, &budget);
+  result.work = budget.used();
   RequireFinite(result);
   return result;
 }

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "model/modal_work.h"
+
 namespace shapebench::model {
 
 // Receptance from an FRF of the given form at `frequency_hz` (> 0): h / (j w)^order.
@@ -71,9 +73,11 @@ struct IdentificationOptions {
   // max_added_modes of them.
   double min_error_drop = 0.1;
   int max_added_modes = 5;
-  // The most work the fit may take, in multiply-adds estimated from its sizes before it
-  // starts (IdentificationWork); beyond, SolverError("WORK_LIMIT") naming max_work_key,
-  // the option or key that sets it. Counted, never timed: the same verdict on every host.
+  // The most work the fit may take, in multiply-adds estimated from its sizes before each
+  // part runs (model/modal_work.h: the diagram, every refinement, the trials of poles the
+  // diagram missed, the LSFD re-solves, in every sub-band); beyond, SolverError("WORK_LIMIT")
+  // naming max_work_key, the option or key that sets it. Counted, never timed: the same
+  // verdict on every host.
   double max_work = kDefaultIdentificationWork;
   std::string max_work_key = "--max-work";
 
@@ -81,11 +85,6 @@ struct IdentificationOptions {
   void validate() const;
 };
 
-// IdentifyModes' work in multiply-adds, from its sizes alone (lines in the band, FRFs,
-// highest order after the cap): the lag sums (lines x (4 M + 1) lags x (FRFs + 2)), at each
-// order o the normal equations and the companion matrix's eigenvalues ((2 FRFs + 12)
-// (2 o + 1)^3), and each FRF's modal constants (a QR of 2 lines x (2 M + 2)^2).
-double IdentificationWork(int lines, int frfs, int max_order);
 
 enum class PoleStability { kNew, kFrequency, kStable };
 
@@ -146,6 +145,12 @@ struct ModalIdentification {
   // Whether the nonlinear refinement was kept (it lowered the error, its poles physical);
   // false: the modes are the diagram's with LSFD residues.
   bool refined = false;
+  // A band of more than kMaxLinesPerFit lines is fitted in sub-bands (model/modal_subbands.h):
+  // their edges in Hz, ascending, and each one's order (empty: one fit). max_order,
+  // orders_compared and order_stop are then those of the sub-band of the highest order.
+  std::vector<double> sub_band_edges_hz;
+  std::vector<int> sub_band_orders;
+  double work = 0.0;  // the multiply-adds charged to max_work
   std::vector<FrfFit> fits;           // one per FRF
   double fit_error_percent = 0.0;     // over every FRF together
 };
@@ -156,5 +161,9 @@ struct ModalIdentification {
 ModalIdentification IdentifyModes(const std::vector<double>& frequency_hz,
                                   const std::vector<std::vector<std::complex<double>>>& frfs,
                                   int derivative_order, const IdentificationOptions& options);
+
+// Throws ValidationError("frf") when `result`'s fit error or modes are not finite numbers
+// (lines 1e-300 Hz apart: the LSCF basis degenerates) rather than report "-nan %", exit 0.
+void RequireFinite(const ModalIdentification& result);
 
 }  // namespace shapebench::model

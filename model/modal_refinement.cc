@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
@@ -243,7 +244,7 @@ Complex PoleAt(double x, double zeta) { return {-zeta * x, x * std::sqrt(1.0 - z
 
 std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vector<std::vector<Complex>>& data, int d,
                                    double max_damping_ratio, double min_prominence, double min_drop, int max_added,
-                                   ModalModel* model) {
+                                   ModalModel* model, WorkBudget* budget) {
   std::vector<double> drops(model->poles.size(), 0.0);
   double energy = 0.0;
   for (const auto& frf : data) {
@@ -278,6 +279,12 @@ std::vector<double> AddMissedPoles(const std::vector<double>& x, const std::vect
     candidates.back().push_back(PoleAt(at, 0.01));
     ModalModel best;
     double best_error = std::numeric_limits<double>::infinity();
+    const int lines = static_cast<int>(x.size()), frfs = static_cast<int>(data.size());
+    const int trial_modes = static_cast<int>(model->poles.size()) + 1;
+    budget->Charge(static_cast<double>(candidates.size()) *
+                       (RefinementWork(lines, frfs, trial_modes) + LsfdWork(lines, frfs, trial_modes)),
+                   "trying " + std::to_string(candidates.size()) + " candidates for a pole the diagram missed (" +
+                       std::to_string(trial_modes) + " modes refined over " + std::to_string(lines) + " lines each)");
     for (const std::vector<Complex>& poles : candidates) {
       ModalModel trial = *model;
       const double trial_error = Candidate(x, data, d, max_damping_ratio, min_prominence, poles, &trial);

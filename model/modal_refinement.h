@@ -12,6 +12,8 @@
 #include <complex>
 #include <vector>
 
+#include "model/modal_work.h"
+
 namespace shapebench::model {
 
 struct ModalModel {
@@ -53,11 +55,12 @@ bool RefineModalModel(const std::vector<double>& x, const std::vector<std::vecto
 // fraction), all its poles show (Prominence >= min_prominence) and no two of them lie
 // closer than two lines before the fit and one line after it (the data cannot tell such a
 // pair from one mode); repeated up to
-// `max_added` times. Returns, per pole of the result, the drop its addition brought (0 for
-// the poles given).
+// `max_added` times. Each trial's LSFD and refinement is charged to `budget` before it runs
+// (the trials are most of the work of a wide band). Returns, per pole of the result, the drop
+// its addition brought (0 for the poles given).
 std::vector<double> AddMissedPoles(const std::vector<double>& x,
                                    const std::vector<std::vector<std::complex<double>>>& data, int d,
                                    double max_damping_ratio, double min_prominence, double min_drop, int max_added,
-                                   ModalModel* model);
+                                   ModalModel* model, WorkBudget* budget);
 
 }  // namespace shapebench::model

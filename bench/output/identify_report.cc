@@ -13,6 +13,7 @@
 #include "common/atomic_file.h"
 #include "common/format.h"
 #include "common/shown_text.h"
+#include "model/modal_subbands.h"
 
 namespace shapebench::bench {
 namespace {
@@ -78,6 +79,17 @@ std::string OrderRule(const model::ModalIdentification& id) {
          "; the highest order built is used";
 }
 
+// A wide band's sub-bands (model/modal_subbands.h), in words.
+std::string SubBandsText(const model::ModalIdentification& id) {
+  std::string text = "more than " + std::to_string(model::kMaxLinesPerFit) + " lines: the modes found in " +
+                     std::to_string(id.sub_band_orders.size()) + " sub-bands, each on its own (";
+  for (std::size_t i = 0; i < id.sub_band_orders.size(); ++i) {
+    text += (i == 0 ? "" : ", ") + FormatNumber(id.sub_band_edges_hz[i], 6) + "-" +
+            FormatNumber(id.sub_band_edges_hz[i + 1], 6) + " Hz order " + std::to_string(id.sub_band_orders[i]);
+  }
+  return text + "), their modal constants and residuals fitted on the whole band";
+}
+
 // --band auto and --max-order auto: what they chose and why ({} when neither was asked).
 nlohmann::ordered_json AutoJson(const IdentifiedFrfs& frfs) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
@@ -107,6 +119,7 @@ void PrintIdentifyTable(std::ostream& out, const IdentifiedFrfs& frfs) {
       << id.max_order << "\n";
   if (frfs.auto_band) out << "band auto: " << TerminalSafe(frfs.auto_band->rule, false) << "\n";
   if (!id.orders_compared.empty()) out << "order auto: " << OrderRule(id) << "\n";
+  if (!id.sub_band_orders.empty()) out << "sub-bands: " << SubBandsText(id) << "\n";
   out << "record  line  response  reference  fit_error_percent\n";
   for (std::size_t k = 0; k < frfs.records.size(); ++k) {
     const Uff58Record& record = frfs.file.records[frfs.records[k]];
@@ -145,6 +158,14 @@ nlohmann::ordered_json IdentifyJson(const IdentifiedFrfs& frfs) {
   json["band_hz"] = {id.frequency_hz.front(), id.frequency_hz.back()};
   json["lines"] = id.frequency_hz.size();
   json["max_order"] = id.max_order;
+  if (!id.sub_band_orders.empty()) {
+    json["sub_bands"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < id.sub_band_orders.size(); ++i) {
+      json["sub_bands"].push_back({{"band_hz", {id.sub_band_edges_hz[i], id.sub_band_edges_hz[i + 1]}},
+                                   {"order", id.sub_band_orders[i]}});
+    }
+    json["sub_bands_rule"] = SubBandsText(id);
+  }
   json["records"] = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < frfs.records.size(); ++k) {
     const Uff58Record& record = frfs.file.records[frfs.records[k]];

@@ -288,6 +288,58 @@ TEST(IdentifyPeer, HammerBand500To3000) {
             std::string::npos);
 }
 
+// The frequencies of the `count` largest peaks of |H| (a line the largest of the 10 lines
+// either side), largest first.
+std::vector<double> LargestPeaksHz(const Uff58Record& record, std::size_t count) {
+  std::vector<std::pair<double, double>> peaks;  // |H|, Hz
+  const std::size_t n = record.values.size();
+  for (std::size_t i = 10; i + 10 < n; ++i) {
+    bool largest = std::isfinite(std::abs(record.values[i]));
+    for (std::size_t j = i - 10; j <= i + 10 && largest; ++j) {
+      largest = j == i || !(std::abs(record.values[j]) >= std::abs(record.values[i]));
+    }
+    if (largest) peaks.push_back({std::abs(record.values[i]), record.frequency_hz[i]});
+  }
+  std::sort(peaks.rbegin(), peaks.rend());
+  std::vector<double> hz;
+  for (std::size_t i = 0; i < count && i < peaks.size(); ++i) hz.push_back(peaks[i].second);
+  return hz;
+}
+
+// The identified mode nearest `f` Hz.
+double NearestModeHz(const nlohmann::json& own, double f) {
+  double nearest = 0.0;
+  for (const auto& mode : own["modes"]) {
+    const double g = mode["frequency_hz"].get<double>();
+    if (std::abs(g - f) < std::abs(nearest - f)) nearest = g;
+  }
+  return nearest;
+}
+
+// Tests that the default run on the hammer test's whole file (0-12.8 kHz, 12,800 lines, no
+// band: fitted in sub-bands of about 2,000 lines) exits 0 and finds the peer's four modes of
+// 500-3000 Hz (810.5, 851.6, 900.1, 2640.1 Hz) within 0.5 % in frequency, and a mode within
+// 0.5 % of each of |H|'s ten largest peaks (computed here: 4128, 3669, 4164, 5969, 4392, 3689,
+// 6078, 4094, 900 and 10505 Hz). It ran over 15 minutes before the sub-bands; now about 10 s of CPU.
+TEST(IdentifyPeer, HammerWholeFileDefault) {
+  ScratchDir dir;
+  const CliResult result = RunCli({"identify", HammerFile(), "--json", "--out", "out"}, dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json own = nlohmann::json::parse(result.out);
+  EXPECT_GE(own["sub_bands"].size(), 6u) << own["sub_bands"].dump();
+  EXPECT_LE(own["fit_error_percent"].get<double>(), 20.0);
+  for (const auto& mode : Peer("sdypy_ema_pyfrf_hammer_500_3000_hz.json")["modes"]) {
+    const double f = mode["frequency_hz"].get<double>();
+    EXPECT_NEAR(NearestModeHz(own, f), f, 0.005 * f);
+  }
+  const std::vector<double> peaks = LargestPeaksHz(ReadUff58(HammerFile()).records.front(), 10);
+  ASSERT_EQ(peaks.size(), 10u);
+  for (const double f : {4128.0, 3669.0, 5969.0, 900.0, 10505.0}) {
+    EXPECT_TRUE(std::any_of(peaks.begin(), peaks.end(), [f](double p) { return std::abs(p - f) <= 1.0; })) << f << " Hz is not among " << ::testing::PrintToString(peaks);
+  }
+  for (const double f : peaks) EXPECT_NEAR(NearestModeHz(own, f), f, 0.005 * f) << "peak at " << f << " Hz";
+}
+
 }  // namespace
 }  // namespace identify_peer_test
 }  // namespace shapebench::bench

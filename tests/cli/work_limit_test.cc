@@ -1,5 +1,6 @@
 // limits.max_work and identify --max-work (docs/reliability.md#limits): work is counted,
 // never timed, so these small budgets fire the same way on any host and at any --jobs.
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -144,6 +145,32 @@ TEST(WorkLimit, IdentifyOverBudgetExits3) {
   EXPECT_EQ(machine.exit_code, 3) << machine.err;
   EXPECT_TRUE(Says(machine.err, "more than machine.max_work (1e+03); nothing was fitted: raise machine.max_work"))
       << machine.err;
+}
+
+// Tests that --max-work bounds every part of an identification, the trials of poles the
+// diagram missed too (they made the hammer test's whole file run over 15 minutes): with a
+// budget the diagram and the first refinement fit in, the default and the automatic run
+// on it stop at those trials with exit 3, naming the part, the budget and the work spent,
+// writing nothing, within seconds.
+TEST(WorkLimit, IdentifyChargesTheMissedPoleTrials) {
+  ScratchDir dir;
+  const std::string uff = "tests/data/uff/real/pyfrf_hammer_h1_accelerance.uff";
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, std::vector<std::string>{"--band", "auto", "--max-order", "auto"}}) {
+    std::vector<std::string> args = {"identify", uff, "--max-work", "3e8", "--out", dir.File("o")};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto start = std::chrono::steady_clock::now();
+    const CliResult over = RunCli(args, kSourceDir);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(over.exit_code, 3) << over.err;
+    EXPECT_TRUE(Says(over.err, "error: solver failed: WORK_LIMIT: " + uff + ": trying ")) << over.err;
+    EXPECT_TRUE(Says(over.err, " candidates for a pole the diagram missed (")) << over.err;
+    EXPECT_TRUE(Says(over.err, "more than --max-work (3e+08; ")) << over.err;
+    EXPECT_TRUE(Says(over.err, " spent before it); stopped, no mode is reported: raise --max-work (e.g. to "))
+        << over.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.File("o/modes.json")));
+    EXPECT_LT(seconds, 30.0);  // 0.05-0.2 s of CPU; generous for a loaded host
+  }
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // identify's automatic band (model/modal_band.h) and order (IdentificationOptions::
 // auto_order), and the damping of peaks narrower than a line (model/modal_local_damping.h),
 // against FRFs synthesised here from known modes: the closed form
-// -w^2 sum R_r / (w_r^2 - w^2 + 2 j zeta_r w_r w) of a proportionally damped accelerance.
+// -w^2 sum R_r / (w_r^2 - w^2 + 2 j zeta_r w_r w) of a proportionally damped accelerance;
+// a wide band's sub-bands (model/modal_subbands.h).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -14,7 +15,9 @@
 #include "common/math_constants.h"
 #include "model/modal_band.h"
 #include "model/modal_identification.h"
+#include "model/integrator.h"
 #include "model/modal_local_damping.h"
+#include "model/modal_subbands.h"
 
 namespace shapebench::model {
 namespace modal_auto_test {
@@ -150,6 +153,54 @@ TEST(ModalLocalDamping, NarrowPeakDampingComesFromItsNeighbourhood) {
   EXPECT_NEAR(-model.poles[0].real() / std::abs(model.poles[0]), 0.0005, 0.05 * 0.0005);
   EXPECT_NEAR(std::abs(model.poles[0]), 51.5 / f.back(), 1e-12);
   EXPECT_NEAR(-model.poles[1].real() / std::abs(model.poles[1]), 0.02, 1e-15);
+}
+
+// Tests that a band of more than kMaxLinesPerFit lines (6,000 lines, six modes 500-5300 Hz,
+// 1 % noise) is fitted in sub-bands of at most about kSubBandLines lines, cut between the
+// peaks (no cut within 5 % of a mode), that every mode is found within 0.5 % in frequency
+// and 15 % in damping and no other, that the charged work is counted and within the
+// budget, and that a budget below it stops the fit with WORK_LIMIT.
+TEST(ModalSubBands, WideBandIsFittedSubBandBySubBand) {
+  const std::vector<KnownMode> modes = {{500.0, 0.01, 2e-4},  {1400.0, 0.008, 1e-4}, {2300.0, 0.01, 1.5e-4},
+                                        {3100.0, 0.012, 1e-4}, {4200.0, 0.01, 2e-4}, {5300.0, 0.009, 1e-4}};
+  const std::vector<double> f = Lines(1.0, 6000.0);
+  const std::vector<std::vector<Complex>> h = {KnownAccelerance(modes, f, 0.01, 7)};
+  IdentificationOptions options;
+  options.min_frequency_hz = 1.0;
+  const ModalIdentification result = IdentifyModes(f, h, 2, options);
+  ASSERT_EQ(result.sub_band_edges_hz.size(), 4u);  // 6,000 lines: 3 sub-bands
+  ASSERT_EQ(result.sub_band_orders.size(), 3u);
+  for (std::size_t i = 0; i + 1 < result.sub_band_edges_hz.size(); ++i) {
+    EXPECT_LE(result.sub_band_edges_hz[i + 1] - result.sub_band_edges_hz[i], 1.25 * kSubBandLines);
+    for (const KnownMode& mode : modes) {
+      EXPECT_GT(std::abs(result.sub_band_edges_hz[i] - mode.frequency_hz), 0.05 * mode.frequency_hz);
+    }
+  }
+  ASSERT_EQ(result.modes.size(), modes.size());
+  for (std::size_t r = 0; r < modes.size(); ++r) {
+    EXPECT_NEAR(result.modes[r].frequency_hz, modes[r].frequency_hz, 0.005 * modes[r].frequency_hz);
+    EXPECT_NEAR(result.modes[r].damping_ratio, modes[r].damping_ratio, 0.15 * modes[r].damping_ratio);
+  }
+  EXPECT_GT(result.work, 0.0);
+  EXPECT_LE(result.work, options.max_work);
+  options.max_work = 0.5 * result.work;
+  try {
+    IdentifyModes(f, h, 2, options);
+    ADD_FAILURE() << "no WORK_LIMIT";
+  } catch (const SolverError& error) {
+    EXPECT_EQ(error.flag_name(), "WORK_LIMIT");
+  }
+}
+
+// Tests that a sub-band's mode within two lines of an inner edge is left out, one at the
+// band's ends or farther from the edges kept.
+TEST(ModalSubBands, ModeAtAnInnerEdgeIsLeftOut) {
+  const std::vector<double> edges = {1.0, 2000.0, 4000.0, 6000.0};
+  EXPECT_TRUE(NearInnerEdge(2001.5, edges, 1.0));
+  EXPECT_TRUE(NearInnerEdge(3998.0, edges, 1.0));
+  EXPECT_FALSE(NearInnerEdge(2003.0, edges, 1.0));
+  EXPECT_FALSE(NearInnerEdge(5999.0, edges, 1.0));
+  EXPECT_FALSE(NearInnerEdge(1.0, edges, 1.0));
 }
 
 }  // namespace
