@@ -27,7 +27,8 @@ namespace shapebench::model {
 std::complex<double> ToReceptance(std::complex<double> h, double frequency_hz, int derivative_order);
 
 // IdentificationOptions::max_work's default (docs/reliability.md#limits: 1e11, about 3,000 times
-// the shipped measurement's fit; ten copies of it at order 200 need 1.05e11, above it).
+// the shipped measurement's stabilisation diagram (3.2e7; its whole fit 1e8-2e8); ten copies
+// of it at order 200 need 1.05e11, above it).
 constexpr double kDefaultIdentificationWork = 1e11;
 
 // The first order auto_order tries.
