@@ -80,6 +80,8 @@ class ClosedFormSampler final : public Sampler {
   [[gnu::noinline]] void Contour(std::size_t k, double bound);
   long LastSampleOutside(std::complex<double> q, std::complex<double> lambda) const;
   std::size_t QuietStretchEnd(std::size_t k) const;
+  bool NotQuiet(std::size_t k) const;
+  std::size_t UnreadTicks(std::size_t k);
   bool FreeWindowApplies(std::size_t k) const;
   void FreeWindow(std::size_t from);
   long LastWindowSampleOutside(long count) const;
@@ -304,6 +306,8 @@ std::size_t ClosedFormSampler::MotionTicks(std::size_t k) {
       tally_.peak = kernel_.AdvancePeaks(k, end, tally_.peak, &start_abs_);
       deferred_ += static_cast<long>(end - k);
       next = end;
+    } else if (!contour_ && !(next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_)) {
+      next = UnreadTicks(k);
     } else {
       TickIn<RunPhase::kMotion>(k);
       if (next_probe_ != window_.cruise_probe_ticks.end() && k == *next_probe_) {
@@ -332,6 +336,52 @@ std::size_t ClosedFormSampler::Tick(std::size_t k) {
     TickIn<RunPhase::kTail>(k);
   }
   return k;
+}
+
+// Motion ticks one at a time from k (one QuietStretchEnd refused) while the contour error
+// is unread, to the first tick MotionTicks would treat otherwise (an inner tick, a quiet
+// stretch, a cruise probe, the motion's end); returns it. Each tick is TickIn<kMotion>'s
+// (Advance's arithmetic and peak, bit for bit) without its per-tick calls, and the next
+// tick's QuietStretchEnd only where NotQuiet's cheaper test cannot already refuse it: the
+// same ticks jump or step one at a time as with the contour read, so every other metric
+// keeps its bits (ContourUnread.OtherMetricsBitForBitContourNa).
+std::size_t ClosedFormSampler::UnreadTicks(std::size_t k) {
+  const std::size_t motion = window_.motion_ticks;
+  const std::size_t probe = next_probe_ != window_.cruise_probe_ticks.end() ? *next_probe_ : motion;
+  const int ax = kernel_.axis_;
+  const double* accel = kernel_.s_.accel.front().data() + ax;  // Vector3d: 3 doubles, packed
+  double peak = tally_.peak;
+  double end = 0.0;
+  for (;;) {
+    double inside = 0.0;
+    double within = 0.0;
+    end = kernel_.Advance(accel[3 * k], peak, &inside, &within);
+    peak = std::max(peak, std::max(end, inside));
+    ++deferred_;
+    ++k;
+    if (k >= motion || k == probe || (k >= inner_from_ && k <= inner_to_)) break;
+    if (!NotQuiet(k)) {
+      if (QuietStretchEnd(k) > k) break;
+    }
+  }
+  tally_.peak = peak;
+  start_abs_ = end;
+  return k;
+}
+
+// True only where QuietStretchEnd(k) returns k: the tool within a lower bound of its
+// `keep` of either end of the line (the speed at the stretch's start, the free
+// oscillation's bound from below and the margin, less a relative 1e-12 for rounding: its
+// keep adds only nonnegative terms to them). No cursor, no search: most ticks near the
+// line's ends are refused here.
+inline bool ClosedFormSampler::NotQuiet(std::size_t k) const {
+  const CommandSamples& s = kernel_.s_;
+  const int ax = kernel_.axis_;
+  const double margin = 1e-9 * kernel_.length_ + 1e-12;
+  const double bound = kernel_.ExtremumBoundBelow(kernel_.q(), kernel_.v(), s.accel[k](ax));
+  const double low = (std::abs(s.velocity[k - 1](ax)) * kernel_.dt_ + bound + margin) * (1.0 - 1e-12);
+  const double along = (s.positions[k - 1](ax) - kernel_.start_) * kernel_.direction_;
+  return along <= low || along >= kernel_.length_ - low;
 }
 
 // Outside FindInnerTicks' ticks, per stretch of held a: the end of the one starting at
