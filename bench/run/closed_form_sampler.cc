@@ -416,6 +416,8 @@ std::size_t ClosedFormSampler::QuietStretchEnd(std::size_t k) const {
   std::size_t lo = k - 1;  // along(lo) < length - keep, the last known so
   if (!(along(lo) < kernel_.length_ - keep)) return k;
   std::size_t hi = stop;  // one past the last candidate
+  // The whole stretch first (the cruise's, most often): the search would end there.
+  if (along(stop - 1) < kernel_.length_ - keep) return stop;
   while (hi - lo > 1) {
     const std::size_t mid = lo + (hi - lo) / 2;
     if (along(mid) < kernel_.length_ - keep) lo = mid; else hi = mid;

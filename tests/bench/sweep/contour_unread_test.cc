@@ -41,10 +41,15 @@ std::vector<std::vector<std::string>> CsvCells(const std::string& text) {
 
 // Tests that under ContourUnreadScope the closed form reports max_contour_error_m n/a and
 // every other metric as a run without the scope, bit for bit, over the sweeps' natural
-// periods, undamped and damped; and that the scope ends with its block.
+// periods (every 0.5 Hz and a few between), undamped and damped (the unread path steps the
+// ticks near the line's ends in its own loop and refuses them by a cheaper test: the same
+// ticks must jump); and that the scope ends with its block.
 TEST(ContourUnread, OtherMetricsBitForBitContourNa) {
-  for (const double hz : {15.0, 19.3, 25.0, 31.7, 35.0}) {
-    for (const double zeta : {0.0, 0.02}) {
+  std::vector<double> frequencies = {19.3, 31.7};
+  for (int i = 0; i <= 40; ++i) frequencies.push_back(15.0 + 0.5 * i);
+  int overshooting = 0;  // runs whose tool leaves the line (0 where the pattern leaves none)
+  for (const double hz : frequencies) {
+    for (const double zeta : {0.0, 0.02, 0.3}) {
       const Scenario scenario = testing::SdofScenario(hz, zeta);
       const RunResult all = RunScenario(scenario, RunOptions{false});
       RunResult unread;
@@ -53,7 +58,7 @@ TEST(ContourUnread, OtherMetricsBitForBitContourNa) {
         unread = RunScenario(scenario, RunOptions{false});
       }
       ASSERT_TRUE(unread.single_mode) << hz;
-      EXPECT_GT(all.metrics.max_contour_error_m, 0.0) << hz << " Hz, zeta " << zeta;
+      if (all.metrics.max_contour_error_m > 0.0) ++overshooting;
       EXPECT_TRUE(std::isnan(unread.metrics.max_contour_error_m)) << hz << " Hz, zeta " << zeta;
       for (const MetricInfo& info : MetricTable()) {
         if (info.field == &Metrics::max_contour_error_m) continue;
@@ -64,6 +69,7 @@ TEST(ContourUnread, OtherMetricsBitForBitContourNa) {
       EXPECT_EQ(RunScenario(scenario, RunOptions{false}).metrics.max_contour_error_m, all.metrics.max_contour_error_m);
     }
   }
+  EXPECT_GE(overshooting, 120);  // of 129: the contour error was read and nonzero
 }
 
 // Tests that a sweep listing max_contour_error_m writes it in every row, and that the same
