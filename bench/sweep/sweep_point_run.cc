@@ -156,13 +156,17 @@ void UseSharedCommand(const Sweep& sweep, const SweepPoint& point, const Scenari
   } last;
   std::string key = CommandKey(point);
   if (last.command == nullptr || last.sweep_id != sweep.id || last.key != key) {
-    std::shared_ptr<const SharedCommand> got = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
-      return GenerateScenarioCommand(scenario, scenario.RunProgram());
-    });
+    std::shared_ptr<const SharedCommand> got =
+        SharedCommandCache::Instance().Get(sweep.id, key, [&](controller::Program* program) {
+          *program = scenario.RunProgram();
+          return GenerateScenarioCommand(scenario, *program);
+        });
     last = {sweep.id, std::move(key), std::move(got)};
   }
   options->command = &last.command->command;
   options->samples = &last.command->samples;
+  options->program = &last.command->program;
+  options->path = &*last.command->path;
 }
 
 // The swept key whose values make a family for CVODE's cross-check (cross_check_family.h):

@@ -94,14 +94,14 @@ TEST(SharedCommand, FailedGenerationIsNotKept) {
   const std::uint64_t sweep_id = 0xfeedULL << 40;  // no loaded sweep has it
   const std::uint64_t before = cache.generated();
   int calls = 0;
-  auto fail = [&]() -> controller::MultiAxisCommand {
+  auto fail = [&](controller::Program*) -> controller::MultiAxisCommand {
     ++calls;
     throw std::runtime_error("no command");
   };
   EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
   EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
   EXPECT_EQ(calls, 2);
-  auto make = [&] {
+  auto make = [&](controller::Program*) {
     ++calls;
     controller::MultiAxisCommand command;
     command.period_s = 0.001;
