@@ -212,6 +212,9 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
   }
   sweep.axes = ReadGrid(document, grid);
   DrawSamples(&sweep, top, options);
+  for (SweepAxis& axis : sweep.axes) {
+    for (SweepValues& values : axis.keys) values.KeepTexts();
+  }
   sweep.points = CountPoints(sweep.axes, grid);
   if (sweep.points > options.max_points && !options.force) {
     throw grid.Error("the grid has " + WithThousands(sweep.points) + " points, more than the " +
