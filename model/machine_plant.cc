@@ -68,6 +68,7 @@ LinearPlant BuildFormPlant(const LumpedMachineConfig& config) {
 ModalAnalysis AnalyzeForm(const ModalMachineConfig& config) {
   RefuseCoupled(config, "AnalyzeModes");
   ModalAnalysis analysis;
+  analysis.modes.reserve(config.modes.size());
   double signed_static = 0.0;
   for (const ModalMode& mode : config.modes) {
     const double w = kTwoPi * mode.frequency_hz;
@@ -78,9 +79,12 @@ ModalAnalysis AnalyzeForm(const ModalMachineConfig& config) {
     const double share = signed_static != 0.0 ? mode.gain / (w * w) / signed_static : 0.0;
     analysis.modes.push_back({mode.frequency_hz, mode.damping_ratio, share});
   }
-  std::stable_sort(
-      analysis.modes.begin(), analysis.modes.end(),
-      [](const ModeInfo& a, const ModeInfo& b) { return a.frequency_hz < b.frequency_hz; });
+  // Modes written in ascending order (one mode, a sweep point) keep it: a stable sort
+  // would not move them, and its buffer costs a sweep point a third of the analysis.
+  const auto lower = [](const ModeInfo& a, const ModeInfo& b) { return a.frequency_hz < b.frequency_hz; };
+  if (!std::is_sorted(analysis.modes.begin(), analysis.modes.end(), lower)) {
+    std::stable_sort(analysis.modes.begin(), analysis.modes.end(), lower);
+  }
   analysis.static_deflection_per_accel_s2 = std::abs(signed_static);
   return analysis;
 }

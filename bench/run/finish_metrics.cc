@@ -143,12 +143,15 @@ void SetPatternMetrics(const controller::PatternConfig& pattern, Metrics* m) {
       (kind != controller::ShaperKind::kPatentStep && kind != controller::ShaperKind::kImpulse)) {
     return;
   }
-  const std::vector<double> frequencies = pattern.DesignFrequencies();
-  const std::size_t lowest = static_cast<std::size_t>(
-      std::min_element(frequencies.begin(), frequencies.end()) - frequencies.begin());
-  m->pattern_frequency_hz = frequencies[lowest];
-  m->pattern_damping_ratio =
-      kind == controller::ShaperKind::kPatentStep ? 0.0 : pattern.DesignDampingRatios()[lowest];
+  // DesignFrequencies() and DesignDampingRatios() read in place (they copy the lists: two
+  // allocations a sweep point).
+  const std::vector<double>& listed = pattern.frequencies_hz;
+  const std::size_t lowest =
+      listed.empty() ? 0 : static_cast<std::size_t>(std::min_element(listed.begin(), listed.end()) - listed.begin());
+  m->pattern_frequency_hz = listed.empty() ? pattern.frequency_hz : listed[lowest];
+  const double damping_ratio =
+      pattern.damping_ratios.empty() ? pattern.design_damping_ratio : pattern.damping_ratios[lowest];
+  m->pattern_damping_ratio = kind == controller::ShaperKind::kPatentStep ? 0.0 : damping_ratio;
 }
 
 Metrics FinishMetrics(const RunPlan& plan, const MetricTally& t) {

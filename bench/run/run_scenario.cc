@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "bench/run/closed_form_sampler.h"
@@ -69,11 +70,14 @@ controller::MultiAxisCommand GenerateScenarioCommand(const Scenario& scenario, c
 
 RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   RunResult result;
-  // The command: generated here, or shared by a sweep's points.
-  result.program = scenario.RunProgram();
-  if (options.command == nullptr) result.command = GenerateScenarioCommand(scenario, result.program);
+  // The program, its path and the command: made here, or shared by a sweep's points.
+  const bool shared_program = options.command != nullptr && options.program != nullptr && options.path != nullptr;
+  if (!shared_program) result.program = scenario.RunProgram();
+  const controller::Program& program = shared_program ? *options.program : result.program;
+  if (options.command == nullptr) result.command = GenerateScenarioCommand(scenario, program);
   const controller::MultiAxisCommand& command = options.command != nullptr ? *options.command : result.command;
-  const controller::PathGeometry path(result.program);
+  std::optional<controller::PathGeometry> own_path;
+  const controller::PathGeometry& path = shared_program ? *options.path : own_path.emplace(program);
   // The prepared run: samples, view, modes, window, substeps (constant from here on).
   const CommandSamples* shared = options.command != nullptr ? options.samples : nullptr;
   const RunPlan plan(scenario, command, path, shared, options.record_trace);
@@ -84,7 +88,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
     const MetricTally tally = MakeSampler(plan, options.fastest_sampler, &result)->Run();
     result.simulated_s = static_cast<double>(tally.last_tick) * plan.dt_s;
     result.metrics = FinishMetrics(plan, tally);
-    result.sources = Sources(plan, command, result.program, tally);
+    result.sources = Sources(plan, command, program, tally);
     AddUnitSlipWarnings(plan, &result);
     return result;
   }
@@ -97,7 +101,7 @@ RunResult RunScenario(const Scenario& scenario, const RunOptions& options) {
   FinishMetrics(plan, traced);  // refuses an overflow as an untraced run would
   result.simulated_s = static_cast<double>(traced.last_tick) * plan.dt_s;
   result.metrics = metrics;
-  result.sources = Sources(plan, command, result.program, traced);
+  result.sources = Sources(plan, command, program, traced);
   result.residual_modes = std::move(closed.residual_modes);
   result.sampler = SamplerKind::kClosedForm;
   result.single_mode = true;

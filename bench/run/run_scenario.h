@@ -7,6 +7,7 @@
 #include "bench/run/run_result.h"
 #include "bench/scenario/scenario.h"
 #include "controller/controller.h"
+#include "controller/path_geometry.h"
 
 namespace shapebench::bench {
 
@@ -21,6 +22,11 @@ struct RunOptions {
   // SampleCommand(*command), computed before with it (a sweep shares both, read-only,
   // between its points and threads). Null: computed here. Ignored without `command`.
   const CommandSamples* samples = nullptr;
+  // The program `command` was generated from and its path geometry (a sweep shares them
+  // with the command): used as they are, and RunResult::program is then left empty.
+  // Null: made here. Ignored without `command`; both or neither.
+  const controller::Program* program = nullptr;
+  const controller::PathGeometry* path = nullptr;
   // The fastest sampler the run may take (sampler.h): the closed form of one mode along
   // one line by default (with a trace, the general sampler records it and the metrics stay
   // the closed form's); kDeferredSubsteps: the plant is stepped (the same to rounding).

@@ -184,11 +184,10 @@ double LowestModalFormHz(const model::MultiAxisMachineConfig& machine) {
   }
   return lowest_hz;
 }
-}  // namespace
 
-double ResidualWindowSeconds(const Scenario& scenario) {
-  // Three periods of the lowest mode (0.1 s for a rigid machine).
-  scenario.machine.validate();  // as AnalyzeMachineModes does first
+// ResidualWindowSeconds of a machine validated already (MachineChecksPass: a sweep point
+// validated it a line before).
+double ResidualWindowOfValidMachine(const Scenario& scenario) {
   double lowest_hz = LowestModalFormHz(scenario.machine);
   if (std::isnan(lowest_hz)) {
     lowest_hz = std::numeric_limits<double>::infinity();
@@ -197,6 +196,13 @@ double ResidualWindowSeconds(const Scenario& scenario) {
     }
   }
   return 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
+}
+}  // namespace
+
+double ResidualWindowSeconds(const Scenario& scenario) {
+  // Three periods of the lowest mode (0.1 s for a rigid machine).
+  scenario.machine.validate();  // as AnalyzeMachineModes does first
+  return ResidualWindowOfValidMachine(scenario);
 }
 
 double MinimumMotionSeconds(const Scenario& scenario, std::string* breakdown) {
@@ -254,7 +260,7 @@ bool MachineChecksPass(const Scenario& scenario, std::optional<double> motion_s)
     scenario.machine.validate();
     CheckPlantFinite(scenario);
     const double motion = motion_s ? *motion_s : MinimumMotionSeconds(scenario);
-    return RunLengthWithinLimits(scenario, motion + ResidualWindowSeconds(scenario));
+    return RunLengthWithinLimits(scenario, motion + ResidualWindowOfValidMachine(scenario));
   } catch (const std::exception&) {
     return false;
   }

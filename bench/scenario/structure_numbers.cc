@@ -28,6 +28,9 @@ struct StructureKey {
   std::optional<model::LumpedDampingKind> block;
   // A component (x, y, z) of a coupled mode's participation or shape (`field`).
   std::string component;
+  // `modes[i].frequency_hz`, `damping_ratio` or `gain`: the member ListNumberField finds in
+  // a modal form, named once here (a sweep point sets it without walking the field list).
+  double model::ModalMode::*modal_number = nullptr;
 };
 
 // `modes[i].participation.x` (or shape; x, y, z) of the single form from `path[1]` on.
@@ -106,6 +109,12 @@ std::optional<StructureKey> ParseStructureKey(const std::string& key_path) {
   key.list = list.key;
   key.index = *entry.index;
   key.field = field.key;
+  if (key.list == FieldName(&model::ModalMachineConfig::modes)) {
+    for (double model::ModalMode::*number :
+         {&model::ModalMode::frequency_hz, &model::ModalMode::damping_ratio, &model::ModalMode::gain}) {
+      if (key.field == FieldName(number)) key.modal_number = number;
+    }
+  }
   return key;
 }
 
@@ -145,6 +154,9 @@ double* ModalFieldOf(model::ModalMachineConfig& modal, const StructureKey& key) 
   if (!modal.modal_file.empty() || key.index >= modal.modes.size()) return nullptr;
   model::ModalMode& mode = modal.modes[key.index];
   if (key.component.empty()) {
+    if (key.modal_number != nullptr) {
+      return mode.coupled() && key.modal_number == &model::ModalMode::gain ? nullptr : &(mode.*key.modal_number);
+    }
     if (mode.coupled() && key.field == FieldName(&model::ModalMode::gain)) return nullptr;
     return ListNumberField(&modal, key.list, key.index, key.field);
   }

@@ -44,7 +44,8 @@ bool SharedCommandCache::Enabled() {
 std::uint64_t SharedCommandCache::generated() const { return impl_->generated.load(); }
 
 std::shared_ptr<const SharedCommand> SharedCommandCache::Get(
-    std::uint64_t sweep_id, const std::string& key, const std::function<controller::MultiAxisCommand()>& generate) {
+    std::uint64_t sweep_id, const std::string& key,
+    const std::function<controller::MultiAxisCommand(controller::Program* program)>& generate) {
   auto id = std::make_pair(sweep_id, key);
   std::shared_ptr<Slot> slot;
   {
@@ -57,7 +58,7 @@ std::shared_ptr<const SharedCommand> SharedCommandCache::Get(
   if (slot->value) return slot->value;
   auto made = std::make_shared<SharedCommand>();
   try {
-    made->command = generate();
+    made->command = generate(&made->program);
   } catch (...) {
     // Not kept: every point of this key reports its own error (and the empty slot goes,
     // so that a sweep of failing points holds nothing).
@@ -67,6 +68,7 @@ std::shared_ptr<const SharedCommand> SharedCommandCache::Get(
     throw;
   }
   made->samples = SampleCommand(made->command);
+  made->path.emplace(made->program);
   slot->value = made;
   ++impl_->generated;
   const std::lock_guard<std::mutex> lock(impl_->mutex);

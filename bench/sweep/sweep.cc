@@ -212,6 +212,9 @@ Sweep LoadSweep(const std::string& given_path, const std::vector<Override>& sets
   }
   sweep.axes = ReadGrid(document, grid);
   DrawSamples(&sweep, top, options);
+  for (SweepAxis& axis : sweep.axes) {
+    for (SweepValues& values : axis.keys) values.KeepTexts();
+  }
   sweep.points = CountPoints(sweep.axes, grid);
   if (sweep.points > options.max_points && !options.force) {
     throw grid.Error("the grid has " + WithThousands(sweep.points) + " points, more than the " +
@@ -271,6 +274,10 @@ std::string SweepHash(const Sweep& sweep, const std::vector<Override>& sets) {
       // A sampled key's values follow from the sampling hashed below: not listed one by
       // one (a sweep of 20,000,000 samples would wait for them before its first point).
       if (values.kind == SweepValues::Kind::kSampled) continue;
+      if (values.kept_texts != nullptr) {  // Yaml(i) is Text(i): read without a copy each
+        for (const std::string& text : *values.kept_texts) HashText(&hash, text);
+        continue;
+      }
       for (std::uint64_t i = 0; i < values.size(); ++i) HashText(&hash, values.Yaml(i));
     }
   }

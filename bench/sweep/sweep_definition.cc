@@ -1,5 +1,6 @@
 #include "bench/sweep/sweep_definition.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -38,6 +39,7 @@ std::uint64_t SweepValues::size() const {
 
 std::string SweepValues::Text(std::uint64_t i) const {
   if (kind == Kind::kList) return texts[i];
+  if (kept_texts != nullptr) return (*kept_texts)[i];
   if (kind == Kind::kSampled) return Digits15(draw->Value(i));
   if (i == 0) return ShortestDouble(from);
   if (i + 1 == steps) return ShortestDouble(to);
@@ -50,6 +52,25 @@ std::string SweepValues::Text(std::uint64_t i) const {
           ? from + (to - from) * k / last
           : std::exp(std::log(from) + (std::log(to) - std::log(from)) * k / last);
   return Digits15(value);
+}
+
+void SweepValues::AssignText(std::uint64_t i, std::string* text) const {
+  if (kind == Kind::kList) {
+    *text = texts[i];
+  } else if (kept_texts != nullptr) {
+    *text = (*kept_texts)[i];
+  } else {
+    *text = Text(i);
+  }
+}
+
+void SweepValues::KeepTexts() {
+  if ((kind != Kind::kLinear && kind != Kind::kLog) || steps > kKeptTexts) return;
+  kept_texts = nullptr;  // Text() makes them
+  auto made = std::make_shared<std::vector<std::string>>();
+  made->reserve(steps);
+  for (std::uint64_t i = 0; i < steps; ++i) made->push_back(Text(i));
+  kept_texts = std::move(made);
 }
 
 std::string SweepValues::Yaml(std::uint64_t i) const {
@@ -87,19 +108,34 @@ std::string SweepPoint::Label() const {
 
 SweepPoint MakePoint(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets) {
   SweepPoint point;
-  point.index = index;
-  const std::vector<std::uint64_t> digits = sweep.AxisIndices(index);
-  for (std::size_t a = 0; a < sweep.axes.size(); ++a) {
-    for (const auto& values : sweep.axes[a].keys) {
-      point.keys.push_back(values.key);
-      point.texts.push_back(values.Text(digits[a]));
+  MakePointInto(sweep, index, sets, &point);
+  return point;
+}
+
+void MakePointInto(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets, SweepPoint* point) {
+  point->index = index;
+  std::size_t keys = 0;
+  for (const SweepAxis& axis : sweep.axes) keys += axis.keys.size();
+  point->keys.resize(keys);
+  point->texts.resize(keys);
+  point->overrides.resize(keys + sets.size());
+  std::uint64_t rest = index;  // the axes' digits, last axis fastest (Sweep::AxisIndices)
+  std::size_t k = keys;
+  for (std::size_t a = sweep.axes.size(); a-- > 0;) {
+    const std::uint64_t digit = rest % sweep.axes[a].size();
+    rest /= sweep.axes[a].size();
+    for (std::size_t j = sweep.axes[a].keys.size(); j-- > 0;) {
+      const SweepValues& values = sweep.axes[a].keys[j];
+      --k;
+      point->keys[k] = values.key;
+      values.AssignText(digit, &point->texts[k]);
       // Yaml is Text except for a list's values (one conversion a point, not two).
-      point.overrides.push_back(
-          Override{values.key, values.kind == SweepValues::Kind::kList ? values.Yaml(digits[a]) : point.texts.back()});
+      point->overrides[k].key_path = values.key;
+      point->overrides[k].value_yaml =
+          values.kind == SweepValues::Kind::kList ? values.yamls[digit] : point->texts[k];
     }
   }
-  point.overrides.insert(point.overrides.end(), sets.begin(), sets.end());
-  return point;
+  std::copy(sets.begin(), sets.end(), point->overrides.begin() + static_cast<std::ptrdiff_t>(keys));
 }
 
 std::string OverridesKey(std::vector<Override>::const_iterator first,

@@ -38,9 +38,17 @@ struct SweepValues {
   // when a point asks (no list of them is held).
   std::optional<Distribution> distribution;
   std::shared_ptr<const SampleDraw> draw;
+  // kLinear, kLog of at most kKeptTexts values: every value's text, made once when the
+  // sweep is loaded (KeepTexts). The manifest's hash and each point read it (each made it
+  // before: a 15-digit text costs about as much as a point's row of metrics).
+  std::shared_ptr<const std::vector<std::string>> kept_texts;
+  static constexpr std::uint64_t kKeptTexts = 100'000;
 
   std::uint64_t size() const;
   std::string Text(std::uint64_t i) const;
+  // Text(i) into *text (its capacity kept: no allocation a point).
+  void AssignText(std::uint64_t i, std::string* text) const;
+  void KeepTexts();
   std::string Yaml(std::uint64_t i) const;
   std::pair<int, int> Position(std::uint64_t i) const;
   bool log() const { return kind == Kind::kLog; }
@@ -124,6 +132,8 @@ struct SweepPoint {
 };
 
 SweepPoint MakePoint(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets);
+// The same into *point, its strings' and vectors' capacity reused (a sweep's thread keeps one).
+void MakePointInto(const Sweep& sweep, std::uint64_t index, const std::vector<Override>& sets, SweepPoint* point);
 
 struct SweepLoadOptions {
   // A grid larger than this is refused (exit 2) unless `force`.

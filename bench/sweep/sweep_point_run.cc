@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 #include <new>
+#include <optional>
 #include <regex>
 #include <type_traits>
 #include <utility>
@@ -102,8 +103,9 @@ std::string WarningText(const std::vector<std::string>& warnings) {
 // scenario the last point loaded on this thread and sets them (structure_numbers.h).
 // Otherwise the base (and its machine file) is parsed once per thread (ParseCacheScope); a
 // point whose scenario does not load is loaded again without, which locates its error.
-// `loaded_here` holds a scenario loaded for this point alone.
-const Scenario& PointScenario(const Sweep& sweep, const SweepPoint& point, Scenario* loaded_here) {
+// `loaded_here` holds a scenario loaded for this point alone (made only then: a point set
+// in place builds and frees no Scenario).
+const Scenario& PointScenario(const Sweep& sweep, const SweepPoint& point, std::optional<Scenario>* loaded_here) {
   thread_local LoadedScenario loaded;
   const bool structure_only =
       std::all_of(point.keys.begin(), point.keys.end(), IsStructureNumberKey);
@@ -130,12 +132,13 @@ const Scenario& PointScenario(const Sweep& sweep, const SweepPoint& point, Scena
   options.design_modes = sweep.design_modes;  // the base's: the pattern stays fixed
   try {
     const ParseCacheScope parse_once;
-    *loaded_here = LoadScenario(sweep.base, point.overrides, options);
+    loaded_here->emplace(LoadScenario(sweep.base, point.overrides, options));
   } catch (const std::exception&) {
-    *loaded_here = LoadScenario(sweep.base, point.overrides, options);
+    loaded_here->emplace(LoadScenario(sweep.base, point.overrides, options));
   }
-  if (structure_only) loaded = {sweep.id, sets_key, *loaded_here, MinimumMotionSeconds(*loaded_here)};
-  return *loaded_here;
+  const Scenario& here = **loaded_here;
+  if (structure_only) loaded = {sweep.id, sets_key, here, MinimumMotionSeconds(here)};
+  return here;
 }
 
 // Points that differ only in keys the controller does not read (the natural-period
@@ -156,13 +159,17 @@ void UseSharedCommand(const Sweep& sweep, const SweepPoint& point, const Scenari
   } last;
   std::string key = CommandKey(point);
   if (last.command == nullptr || last.sweep_id != sweep.id || last.key != key) {
-    std::shared_ptr<const SharedCommand> got = SharedCommandCache::Instance().Get(sweep.id, key, [&] {
-      return GenerateScenarioCommand(scenario, scenario.RunProgram());
-    });
+    std::shared_ptr<const SharedCommand> got =
+        SharedCommandCache::Instance().Get(sweep.id, key, [&](controller::Program* program) {
+          *program = scenario.RunProgram();
+          return GenerateScenarioCommand(scenario, *program);
+        });
     last = {sweep.id, std::move(key), std::move(got)};
   }
   options->command = &last.command->command;
   options->samples = &last.command->samples;
+  options->program = &last.command->program;
+  options->path = &*last.command->path;
 }
 
 // The swept key whose values make a family for CVODE's cross-check (cross_check_family.h):
@@ -247,7 +254,7 @@ PointOutcome RunPoint(const Sweep& sweep, const SweepPoint& point) {
   PointOutcome outcome;
   outcome.index = point.index;
   try {
-    Scenario loaded_here;
+    std::optional<Scenario> loaded_here;
     const Scenario& scenario = PointScenario(sweep, point, &loaded_here);
     try {
       RunOptions options{false};  // no trace needed

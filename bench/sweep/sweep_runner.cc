@@ -140,7 +140,9 @@ void AppendMetricText(std::size_t column, double value, std::string* line) {
 Row FormatRow(const Sweep& sweep, const std::vector<Override>& sets,
               const std::vector<const MetricInfo*>& metric_columns, std::uint64_t point_index) {
   while (HangsForTests(point_index)) std::this_thread::sleep_for(std::chrono::seconds(1));
-  const SweepPoint point = MakePoint(sweep, point_index, sets);
+  // The thread's point, its strings' capacity kept from the last one (no allocation a point).
+  thread_local SweepPoint point;
+  MakePointInto(sweep, point_index, sets, &point);
   // The row reads only its columns: without the contour error's, the closed form skips it.
   const bool contour_read =
       std::any_of(metric_columns.begin(), metric_columns.end(),

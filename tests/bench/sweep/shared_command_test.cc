@@ -33,7 +33,8 @@ std::string SweepResults(const std::string& file, bool share, const ScratchDir& 
 }
 
 // Tests that every shipped sweep, a sweep of controller keys only (no two points share a
-// command) and a grid of both give results.csv byte for byte the same with and without the
+// command), a grid of both and a grid over the move (each length its own program and path,
+// shared with the command) give results.csv byte for byte the same with and without the
 // shared command.
 TEST(SharedCommand, ResultsSameWithoutSharing) {
   ScratchDir dir;
@@ -51,6 +52,10 @@ TEST(SharedCommand, ResultsSameWithoutSharing) {
                                 "\ngrid:\n  machine.modes[0].frequency_hz: {from: 18, to: 32, steps: 15}\n"
                                 "  controller.feed_mm_min: [24000, 30000]\n"
                                 "  machine.modes[0].damping_ratio: [0, 0.02]\nplots: []\n"));
+  files.push_back(dir.Write("move_lengths.yaml",
+                            "base: " + DataPath("sweeps/sdof_method1.yaml") +
+                                "\ngrid:\n  move.distance_mm: [20, 50, 120]\n"
+                                "  machine.modes[0].frequency_hz: {from: 18, to: 32, steps: 8}\nplots: []\n"));
   for (std::size_t i = 0; i < files.size(); ++i) {
     const std::string shared = SweepResults(files[i], true, dir, "shared" + std::to_string(i));
     const std::string alone = SweepResults(files[i], false, dir, "alone" + std::to_string(i));
@@ -94,14 +99,14 @@ TEST(SharedCommand, FailedGenerationIsNotKept) {
   const std::uint64_t sweep_id = 0xfeedULL << 40;  // no loaded sweep has it
   const std::uint64_t before = cache.generated();
   int calls = 0;
-  auto fail = [&]() -> controller::MultiAxisCommand {
+  auto fail = [&](controller::Program*) -> controller::MultiAxisCommand {
     ++calls;
     throw std::runtime_error("no command");
   };
   EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
   EXPECT_THROW(cache.Get(sweep_id, "k", fail), std::runtime_error);
   EXPECT_EQ(calls, 2);
-  auto make = [&] {
+  auto make = [&](controller::Program*) {
     ++calls;
     controller::MultiAxisCommand command;
     command.period_s = 0.001;
