@@ -16,6 +16,7 @@
 
 #include <matio.h>
 
+#include "bench/output/mat5_bytes.h"
 #include "bench/output/report.h"
 #include "common/csv.h"
 
@@ -73,7 +74,7 @@ class CsvRecords {
         // A run up to the next quote as it is.
         const char* run = at_;
         while (at_ != end_ && *at_ != '"') ++at_;
-        text_.append(run, at_);
+        text_.append(run, static_cast<std::size_t>(at_ - run));
         if (at_ == end_) continue;
         ++at_;  // the quote: doubled, it is one; else the quoted part ends
         if (at_ == end_ && !Refill()) return false;  // torn: the record has no end
@@ -87,7 +88,7 @@ class CsvRecords {
       }
       const char* run = at_;
       while (at_ != end_ && *at_ != '"' && *at_ != ',' && *at_ != '\n' && *at_ != '\r') ++at_;
-      text_.append(run, at_);
+      text_.append(run, static_cast<std::size_t>(at_ - run));
       if (at_ == end_) continue;
       const char c = *at_++;
       if (c == '"') {
@@ -131,12 +132,12 @@ struct CsvColumn {
   std::vector<double> numbers;
   std::string text;               // the fields back to back
   std::vector<std::size_t> ends;  // where each ends in text
-  std::vector<std::string> Texts() const {
-    std::vector<std::string> out;
+  std::vector<std::string_view> Texts() const {
+    std::vector<std::string_view> out;
     out.reserve(ends.size());
     std::size_t begin = 0;
     for (const std::size_t end : ends) {
-      out.push_back(text.substr(begin, end - begin));
+      out.push_back(std::string_view(text).substr(begin, end - begin));
       begin = end;
     }
     return out;
@@ -212,16 +213,41 @@ std::size_t TraceSamples(const Trace& trace) {
 
 MatFile::MatFile(const std::string& path, std::uint64_t largest_variable_bytes) : path_(path), temp_(path) {
   errno = 0;
-  const mat_ft version = largest_variable_bytes > kMat5VariableBytes ? MAT_FT_MAT73 : MAT_FT_MAT5;
-  mat_ = Mat_CreateVer(temp_.path().c_str(), "shapebench", version);
-  if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
+  if (largest_variable_bytes > kMat5VariableBytes) {
+    mat_ = Mat_CreateVer(temp_.path().c_str(), "shapebench", MAT_FT_MAT73);
+    if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
+    return;
+  }
+  file_ = std::fopen(temp_.path().c_str(), "wb");
+  if (file_ == nullptr) throw MatFailure(path_, "cannot create the file");
+  const std::string header = mat5::FileHeader("shapebench");
+  Write(header.data(), header.size());
 }
 
 MatFile::~MatFile() {
   if (mat_ != nullptr) Mat_Close(Mat(mat_));
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void MatFile::Write(const char* bytes, std::size_t size) {
+  errno = 0;
+  if (size > 0 && std::fwrite(bytes, 1, size, file_) != size) throw MatFailure(path_, "write failed");
+}
+
+void MatFile::Name(const std::string& name) {
+  // As libmatio refuses a second variable of a name.
+  errno = 0;
+  if (!names_.insert(name).second) throw MatFailure(path_, "two variables named " + name);
 }
 
 void MatFile::WriteColumn(const std::string& name, const std::vector<double>& values) {
+  Name(name);
+  if (file_ != nullptr) {
+    const std::string head = mat5::DoubleColumnHead(name, values.size());
+    Write(head.data(), head.size());
+    Write(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+    return;
+  }
   std::size_t dims[2] = {values.size(), 1};
   // matio reads the data through a non-const pointer; it does not write to it.
   matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
@@ -232,7 +258,14 @@ void MatFile::WriteColumn(const std::string& name, const std::vector<double>& va
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
-void MatFile::WriteStrings(const std::string& name, const std::vector<std::string>& values) {
+void MatFile::WriteStrings(const std::string& name, const std::vector<std::string_view>& values) {
+  Name(name);
+  if (file_ != nullptr) {
+    std::string bytes;
+    mat5::AppendStringColumn(name, values, &bytes);
+    Write(bytes.data(), bytes.size());
+    return;
+  }
   std::size_t dims[2] = {values.size(), 1};
   matvar_t* cell = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
   if (cell == nullptr) throw MatFailure(path_, "libmatio failed creating variable " + name);
@@ -251,9 +284,15 @@ void MatFile::WriteStrings(const std::string& name, const std::vector<std::strin
 
 void MatFile::Commit(Durability durability) {
   errno = 0;
-  const int failed = Mat_Close(Mat(mat_));
-  mat_ = nullptr;
-  if (failed) throw MatFailure(path_, "libmatio failed closing the file");
+  int failed = 0;
+  if (file_ != nullptr) {
+    failed = std::fclose(file_);
+    file_ = nullptr;
+  } else {
+    failed = Mat_Close(Mat(mat_));
+    mat_ = nullptr;
+  }
+  if (failed) throw MatFailure(path_, "closing the file failed");
   temp_.Commit(durability);
 }
 
@@ -308,7 +347,7 @@ void WriteResultsMat(const std::string& results_csv, const std::string& path, Du
       }
     }
   }
-  mat.WriteStrings("columns", header);
+  mat.WriteStrings("columns", std::vector<std::string_view>(header.begin(), header.end()));
   mat.Commit(durability);
 }
 
