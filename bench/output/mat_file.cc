@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include <dlfcn.h>
 #include <matio.h>
 
 #include "bench/output/mat5_bytes.h"
@@ -31,6 +32,47 @@ mat_t* Mat(void* mat) { return static_cast<mat_t*>(mat); }
 std::runtime_error MatFailure(const std::string& path, const std::string& what) {
   return std::runtime_error("cannot write " + path + ": " + what +
                             (errno != 0 ? std::string(" (") + std::strerror(errno) + ")" : std::string()));
+}
+
+// libmatio's functions, the library loaded when a file is to be version 7.3 (HDF5) and only
+// then: linked, it brought HDF5 and libcurl's TLS stack (35 libraries, 70% of the dynamic
+// loader's symbol lookups) into every start of every command.
+struct Matio {
+  decltype(&Mat_CreateVer) create_ver = nullptr;
+  decltype(&Mat_Close) close = nullptr;
+  decltype(&Mat_VarCreate) var_create = nullptr;
+  decltype(&Mat_VarSetCell) var_set_cell = nullptr;
+  decltype(&Mat_VarWrite) var_write = nullptr;
+  decltype(&Mat_VarFree) var_free = nullptr;
+};
+Matio& Lib() {
+  static Matio matio;
+  return matio;
+}
+template <typename Function>
+bool Resolve(void* library, const char* name, Function* function) {
+  *function = reinterpret_cast<Function>(dlsym(library, name));
+  return *function != nullptr;
+}
+// Loaded once (kept for the process); throws naming what is missing.
+const Matio& LoadMatio(const std::string& path) {
+  static const std::string failure = [] {
+    void* library = dlopen(SHAPEBENCH_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (library == nullptr) return std::string(dlerror());
+    Matio& m = Lib();
+    if (!Resolve(library, "Mat_CreateVer", &m.create_ver) || !Resolve(library, "Mat_Close", &m.close) ||
+        !Resolve(library, "Mat_VarCreate", &m.var_create) || !Resolve(library, "Mat_VarSetCell", &m.var_set_cell) ||
+        !Resolve(library, "Mat_VarWrite", &m.var_write) || !Resolve(library, "Mat_VarFree", &m.var_free)) {
+      return std::string(dlerror());
+    }
+    return std::string();
+  }();
+  if (!failure.empty()) {
+    errno = 0;
+    throw MatFailure(path, std::string("a MAT file of version 7.3 (a variable over 2 GiB) needs libmatio (") +
+                               SHAPEBENCH_MATIO_SONAME + "): " + failure);
+  }
+  return Lib();
 }
 
 // A field of results.csv as a number: the whole text, or NaN when empty; false for text.
@@ -214,7 +256,7 @@ std::size_t TraceSamples(const Trace& trace) {
 MatFile::MatFile(const std::string& path, std::uint64_t largest_variable_bytes) : path_(path), temp_(path) {
   errno = 0;
   if (largest_variable_bytes > kMat5VariableBytes) {
-    mat_ = Mat_CreateVer(temp_.path().c_str(), "shapebench", MAT_FT_MAT73);
+    mat_ = LoadMatio(path_).create_ver(temp_.path().c_str(), "shapebench", MAT_FT_MAT73);
     if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
     return;
   }
@@ -225,7 +267,7 @@ MatFile::MatFile(const std::string& path, std::uint64_t largest_variable_bytes) 
 }
 
 MatFile::~MatFile() {
-  if (mat_ != nullptr) Mat_Close(Mat(mat_));
+  if (mat_ != nullptr) Lib().close(Mat(mat_));
   if (file_ != nullptr) std::fclose(file_);
 }
 
@@ -250,11 +292,11 @@ void MatFile::WriteColumn(const std::string& name, const std::vector<double>& va
   }
   std::size_t dims[2] = {values.size(), 1};
   // matio reads the data through a non-const pointer; it does not write to it.
-  matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
-                                const_cast<double*>(values.data()), MAT_F_DONT_COPY_DATA);
+  matvar_t* var = Lib().var_create(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                                   const_cast<double*>(values.data()), MAT_F_DONT_COPY_DATA);
   errno = 0;
-  const int failed = var == nullptr ? 1 : Mat_VarWrite(Mat(mat_), var, MAT_COMPRESSION_NONE);
-  if (var != nullptr) Mat_VarFree(var);
+  const int failed = var == nullptr ? 1 : Lib().var_write(Mat(mat_), var, MAT_COMPRESSION_NONE);
+  if (var != nullptr) Lib().var_free(var);
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
@@ -267,18 +309,18 @@ void MatFile::WriteStrings(const std::string& name, const std::vector<std::strin
     return;
   }
   std::size_t dims[2] = {values.size(), 1};
-  matvar_t* cell = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
+  matvar_t* cell = Lib().var_create(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
   if (cell == nullptr) throw MatFailure(path_, "libmatio failed creating variable " + name);
   for (std::size_t i = 0; i < values.size(); ++i) {
     std::size_t text_dims[2] = {1, values[i].size()};
     // Copied: the cell frees its elements with it.
-    matvar_t* text = Mat_VarCreate(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, text_dims,
-                                   const_cast<char*>(values[i].data()), 0);
-    Mat_VarSetCell(cell, static_cast<int>(i), text);
+    matvar_t* text = Lib().var_create(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, text_dims,
+                                      const_cast<char*>(values[i].data()), 0);
+    Lib().var_set_cell(cell, static_cast<int>(i), text);
   }
   errno = 0;
-  const int failed = Mat_VarWrite(Mat(mat_), cell, MAT_COMPRESSION_NONE);
-  Mat_VarFree(cell);
+  const int failed = Lib().var_write(Mat(mat_), cell, MAT_COMPRESSION_NONE);
+  Lib().var_free(cell);
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
@@ -289,7 +331,7 @@ void MatFile::Commit(Durability durability) {
     failed = std::fclose(file_);
     file_ = nullptr;
   } else {
-    failed = Mat_Close(Mat(mat_));
+    failed = Lib().close(Mat(mat_));
     mat_ = nullptr;
   }
   if (failed) throw MatFailure(path_, "closing the file failed");
