@@ -2,6 +2,7 @@
 // (the oracle here: libmatio itself), and results.mat reads results.csv as CsvReader and
 // strtod do.
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -138,6 +139,38 @@ TEST(MatFileTest, ResultsMatReadsTheCsvAsCsvReaderAndStrtod) {
                   Strings("text", {"a \"quoted\" word", "line\nbreak", "multi", "with,comma", "", ""}),
                   Strings("columns", {"plain", "quoted", "signs", "turns", "text"})});
   EXPECT_TRUE(ReadText(dir.File("results.mat")) == ReadText(dir.File("expected.mat")));
+}
+
+// Tests that a file whose largest variable is over version 5's 2 GiB is version 7.3, written
+// by libmatio loaded then (not linked), and reads back: a column of doubles and of strings.
+TEST(MatFileTest, OverVersion5sLimitIsVersion73ThroughLibmatio) {
+  ScratchDir dir;
+  const std::string path = dir.File("large.mat");
+  {
+    MatFile mat(path, std::uint64_t{3} << 30);
+    mat.WriteColumn("values", {1.5, -2.0});
+    mat.WriteStrings("names", {"ok", ""});
+    mat.Commit(Durability::kUnsynced);
+  }
+  mat_t* mat = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
+  ASSERT_NE(mat, nullptr);
+  EXPECT_EQ(Mat_GetVersion(mat), MAT_FT_MAT73);
+  matvar_t* values = Mat_VarRead(mat, "values");
+  ASSERT_NE(values, nullptr);
+  ASSERT_EQ(values->class_type, MAT_C_DOUBLE);
+  EXPECT_EQ(values->dims[0], 2u);
+  EXPECT_EQ(static_cast<const double*>(values->data)[0], 1.5);
+  EXPECT_EQ(static_cast<const double*>(values->data)[1], -2.0);
+  Mat_VarFree(values);
+  matvar_t* names = Mat_VarRead(mat, "names");
+  ASSERT_NE(names, nullptr);
+  EXPECT_EQ(names->class_type, MAT_C_CELL);
+  matvar_t* first = Mat_VarGetCell(names, 0);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(first->class_type, MAT_C_CHAR);
+  EXPECT_EQ(first->dims[1], 2u);  // "ok" (read back as 16-bit characters)
+  Mat_VarFree(names);
+  Mat_Close(mat);
 }
 
 }  // namespace
