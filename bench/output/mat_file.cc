@@ -167,8 +167,7 @@ class CsvRecords {
 };
 
 // Columns [first, first + count) of results.csv, read through once: each as numbers when
-// every field is one. The texts are kept (back to back) until a column proves numeric: a
-// column can turn to text at its last row.
+// every field is one, else as texts (back to back).
 struct CsvColumn {
   bool numeric = true;
   std::vector<double> numbers;
@@ -185,32 +184,48 @@ struct CsvColumn {
     return out;
   }
 };
-std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
+// The texts of `columns` (of out, from `first` on) read again from every row: columns that
+// turned to text after their first row, whose earlier fields were read as numbers only.
+void ReadTurnedTexts(const std::string& path, std::size_t first, const std::vector<std::size_t>& columns,
+                     std::vector<CsvColumn>* out) {
+  for (const std::size_t j : columns) {
+    (*out)[j].text.clear();
+    (*out)[j].ends.clear();
+  }
   CsvRecords records(path);
   records.Next();  // the header
-  std::vector<CsvColumn> out(count);
   while (records.Next()) {
+    for (const std::size_t j : columns) {
+      CsvColumn& into = (*out)[j];
+      into.text.append(records.field(first + j));
+      into.ends.push_back(into.text.size());
+    }
+  }
+}
+std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
+  std::vector<CsvColumn> out(count);
+  std::vector<std::size_t> turned;
+  CsvRecords records(path);
+  records.Next();  // the header
+  for (std::size_t row = 0; records.Next(); ++row) {
     for (std::size_t j = 0; j < count; ++j) {
       const std::string_view field = records.field(first + j);
       CsvColumn& into = out[j];
       double value = 0.0;
-      if (into.numeric && !FieldNumber(field, &value)) {
+      if (into.numeric) {
+        if (FieldNumber(field, &value)) {
+          into.numbers.push_back(value);
+          continue;
+        }
         into.numeric = false;
         std::vector<double>().swap(into.numbers);
+        if (row > 0) turned.push_back(j);
       }
-      if (into.numeric) into.numbers.push_back(value);
       into.text.append(field);
       into.ends.push_back(into.text.size());
     }
   }
-  for (CsvColumn& column : out) {
-    if (column.numeric) {
-      std::string().swap(column.text);
-      std::vector<std::size_t>().swap(column.ends);
-    } else {
-      std::vector<double>().swap(column.numbers);
-    }
-  }
+  if (!turned.empty()) ReadTurnedTexts(path, first, turned, &out);
   return out;
 }
 
