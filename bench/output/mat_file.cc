@@ -2,6 +2,7 @@
 #include "bench/output/mat_file.h"
 
 #include <cctype>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -11,9 +12,12 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 
+#include <dlfcn.h>
 #include <matio.h>
 
+#include "bench/output/mat5_bytes.h"
 #include "bench/output/report.h"
 #include "common/csv.h"
 
@@ -30,45 +34,198 @@ std::runtime_error MatFailure(const std::string& path, const std::string& what) 
                             (errno != 0 ? std::string(" (") + std::strerror(errno) + ")" : std::string()));
 }
 
+// libmatio's functions, the library loaded when a file is to be version 7.3 (HDF5) and only
+// then: linked, it brought HDF5 and libcurl's TLS stack (32 of the 75 shared libraries, half
+// the dynamic loader's symbol lookups) into every start of every command.
+struct Matio {
+  decltype(&Mat_CreateVer) create_ver = nullptr;
+  decltype(&Mat_Close) close = nullptr;
+  decltype(&Mat_VarCreate) var_create = nullptr;
+  decltype(&Mat_VarSetCell) var_set_cell = nullptr;
+  decltype(&Mat_VarWrite) var_write = nullptr;
+  decltype(&Mat_VarFree) var_free = nullptr;
+};
+Matio& Lib() {
+  static Matio matio;
+  return matio;
+}
+template <typename Function>
+bool Resolve(void* library, const char* name, Function* function) {
+  *function = reinterpret_cast<Function>(dlsym(library, name));
+  return *function != nullptr;
+}
+// Loaded once (kept for the process); throws naming what is missing.
+const Matio& LoadMatio(const std::string& path) {
+  static const std::string failure = [] {
+    void* library = dlopen(SHAPEBENCH_MATIO_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (library == nullptr) return std::string(dlerror());
+    Matio& m = Lib();
+    if (!Resolve(library, "Mat_CreateVer", &m.create_ver) || !Resolve(library, "Mat_Close", &m.close) ||
+        !Resolve(library, "Mat_VarCreate", &m.var_create) || !Resolve(library, "Mat_VarSetCell", &m.var_set_cell) ||
+        !Resolve(library, "Mat_VarWrite", &m.var_write) || !Resolve(library, "Mat_VarFree", &m.var_free)) {
+      return std::string(dlerror());
+    }
+    return std::string();
+  }();
+  if (!failure.empty()) {
+    errno = 0;
+    throw MatFailure(path, std::string("a MAT file of version 7.3 (a variable over 2 GiB) needs libmatio (") +
+                               SHAPEBENCH_MATIO_SONAME + "): " + failure);
+  }
+  return Lib();
+}
+
 // A field of results.csv as a number: the whole text, or NaN when empty; false for text.
-bool FieldNumber(const std::string& field, double* value) {
+// What strtod reads (with no leading space): a plain decimal number goes through
+// std::from_chars, which rounds the same text to the same double (both round correctly) at
+// a tenth of the cost; anything else (a sign '+', hex, inf, nan, out of range) through strtod.
+bool FieldNumber(std::string_view field, double* value) {
   if (field.empty()) {
     *value = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
+  const char* first = field.data();
+  const char* last = first + field.size();
+  const char lead = field.size() > 1 && field.front() == '-' ? field[1] : field.front();
+  if ((lead >= '0' && lead <= '9') || lead == '.') {
+    const std::from_chars_result read = std::from_chars(first, last, *value);
+    if (read.ec == std::errc() && read.ptr == last) return true;
+  }
+  const std::string text(field);  // strtod wants a terminated string
   char* end = nullptr;
-  *value = std::strtod(field.c_str(), &end);
-  return end == field.c_str() + field.size() && !std::isspace(static_cast<unsigned char>(field.front()));
+  *value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && !std::isspace(static_cast<unsigned char>(text.front()));
 }
 
+// results.csv's records, as CsvReader reads them (common/csv.h: quotes, doubled quotes,
+// '\r' dropped outside quotes, a torn last record not returned), read in blocks with each
+// record's fields in one reused buffer: no allocation a field.
+class CsvRecords {
+ public:
+  explicit CsvRecords(const std::string& path) : in_(path, std::ios::binary), block_(1 << 16) {
+    if (!in_) throw std::runtime_error("cannot read " + path + " for results.mat");
+  }
+  // The next complete record; false at the end (or at a torn record).
+  bool Next() {
+    text_.clear();
+    ends_.clear();
+    bool quoted = false;
+    while (true) {
+      if (at_ == end_ && !Refill()) return false;
+      if (quoted) {
+        // A run up to the next quote as it is.
+        const char* run = at_;
+        while (at_ != end_ && *at_ != '"') ++at_;
+        text_.append(run, static_cast<std::size_t>(at_ - run));
+        if (at_ == end_) continue;
+        ++at_;  // the quote: doubled, it is one; else the quoted part ends
+        if (at_ == end_ && !Refill()) return false;  // torn: the record has no end
+        if (*at_ == '"') {
+          text_ += '"';
+          ++at_;
+        } else {
+          quoted = false;
+        }
+        continue;
+      }
+      const char* run = at_;
+      while (at_ != end_ && *at_ != '"' && *at_ != ',' && *at_ != '\n' && *at_ != '\r') ++at_;
+      text_.append(run, static_cast<std::size_t>(at_ - run));
+      if (at_ == end_) continue;
+      const char c = *at_++;
+      if (c == '"') {
+        quoted = true;
+      } else if (c == ',') {
+        ends_.push_back(text_.size());
+      } else if (c == '\n') {
+        ends_.push_back(text_.size());
+        return true;
+      }  // '\r' outside quotes is dropped
+    }
+  }
+  std::size_t size() const { return ends_.size(); }
+  // Field i of the record, or "" past its last field.
+  std::string_view field(std::size_t i) const {
+    if (i >= ends_.size()) return {};
+    const std::size_t begin = i == 0 ? 0 : ends_[i - 1];
+    return std::string_view(text_).substr(begin, ends_[i] - begin);
+  }
+
+ private:
+  bool Refill() {
+    in_.read(block_.data(), static_cast<std::streamsize>(block_.size()));
+    at_ = block_.data();
+    end_ = at_ + in_.gcount();
+    return at_ != end_;
+  }
+  std::ifstream in_;
+  std::vector<char> block_;
+  const char* at_ = nullptr;
+  const char* end_ = nullptr;
+  std::string text_;               // the record's fields, unquoted, back to back
+  std::vector<std::size_t> ends_;  // where each field ends in text_
+};
+
 // Columns [first, first + count) of results.csv, read through once: each as numbers when
-// every field is one.
+// every field is one, else as texts (back to back).
 struct CsvColumn {
   bool numeric = true;
   std::vector<double> numbers;
-  std::vector<std::string> texts;
+  std::string text;               // the fields back to back
+  std::vector<std::size_t> ends;  // where each ends in text
+  std::vector<std::string_view> Texts() const {
+    std::vector<std::string_view> out;
+    out.reserve(ends.size());
+    std::size_t begin = 0;
+    for (const std::size_t end : ends) {
+      out.push_back(std::string_view(text).substr(begin, end - begin));
+      begin = end;
+    }
+    return out;
+  }
 };
-std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path + " for results.mat");
-  CsvReader reader(in);
-  std::vector<std::string> fields;
-  reader.Next(&fields);  // the header
-  std::vector<CsvColumn> out(count);
-  while (reader.Next(&fields)) {
-    for (std::size_t j = 0; j < count; ++j) {
-      const std::size_t column = first + j;
-      std::string field = column < fields.size() ? std::move(fields[column]) : std::string();
-      double value = 0.0;
-      CsvColumn& into = out[j];
-      if (into.numeric && !FieldNumber(field, &value)) into.numeric = false;
-      if (into.numeric) into.numbers.push_back(value);
-      into.texts.push_back(std::move(field));
+// The texts of `columns` (of out, from `first` on) read again from every row: columns that
+// turned to text after their first row, whose earlier fields were read as numbers only.
+void ReadTurnedTexts(const std::string& path, std::size_t first, const std::vector<std::size_t>& columns,
+                     std::vector<CsvColumn>* out) {
+  for (const std::size_t j : columns) {
+    (*out)[j].text.clear();
+    (*out)[j].ends.clear();
+  }
+  CsvRecords records(path);
+  records.Next();  // the header
+  while (records.Next()) {
+    for (const std::size_t j : columns) {
+      CsvColumn& into = (*out)[j];
+      into.text.append(records.field(first + j));
+      into.ends.push_back(into.text.size());
     }
   }
-  for (CsvColumn& column : out) {
-    if (column.numeric) std::vector<std::string>().swap(column.texts);
+}
+std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
+  std::vector<CsvColumn> out(count);
+  std::vector<std::size_t> turned;
+  CsvRecords records(path);
+  records.Next();  // the header
+  for (std::size_t row = 0; records.Next(); ++row) {
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::string_view field = records.field(first + j);
+      CsvColumn& into = out[j];
+      double value = 0.0;
+      if (into.numeric) {
+        if (FieldNumber(field, &value)) {
+          into.numbers.push_back(value);
+          continue;
+        }
+        into.numeric = false;
+        std::vector<double>().swap(into.numbers);
+        if (row > 0) turned.push_back(j);
+      }
+      into.text.append(field);
+      into.ends.push_back(into.text.size());
+    }
   }
+  if (!turned.empty()) ReadTurnedTexts(path, first, turned, &out);
   return out;
 }
 
@@ -113,48 +270,86 @@ std::size_t TraceSamples(const Trace& trace) {
 
 MatFile::MatFile(const std::string& path, std::uint64_t largest_variable_bytes) : path_(path), temp_(path) {
   errno = 0;
-  const mat_ft version = largest_variable_bytes > kMat5VariableBytes ? MAT_FT_MAT73 : MAT_FT_MAT5;
-  mat_ = Mat_CreateVer(temp_.path().c_str(), "shapebench", version);
-  if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
+  if (largest_variable_bytes > kMat5VariableBytes) {
+    mat_ = LoadMatio(path_).create_ver(temp_.path().c_str(), "shapebench", MAT_FT_MAT73);
+    if (mat_ == nullptr) throw MatFailure(path_, "libmatio could not create the file");
+    return;
+  }
+  file_ = std::fopen(temp_.path().c_str(), "wb");
+  if (file_ == nullptr) throw MatFailure(path_, "cannot create the file");
+  const std::string header = mat5::FileHeader("shapebench");
+  Write(header.data(), header.size());
 }
 
 MatFile::~MatFile() {
-  if (mat_ != nullptr) Mat_Close(Mat(mat_));
+  if (mat_ != nullptr) Lib().close(Mat(mat_));
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void MatFile::Write(const char* bytes, std::size_t size) {
+  errno = 0;
+  if (size > 0 && std::fwrite(bytes, 1, size, file_) != size) throw MatFailure(path_, "write failed");
+}
+
+void MatFile::Name(const std::string& name) {
+  // As libmatio refuses a second variable of a name.
+  errno = 0;
+  if (!names_.insert(name).second) throw MatFailure(path_, "two variables named " + name);
 }
 
 void MatFile::WriteColumn(const std::string& name, const std::vector<double>& values) {
+  Name(name);
+  if (file_ != nullptr) {
+    const std::string head = mat5::DoubleColumnHead(name, values.size());
+    Write(head.data(), head.size());
+    Write(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+    return;
+  }
   std::size_t dims[2] = {values.size(), 1};
   // matio reads the data through a non-const pointer; it does not write to it.
-  matvar_t* var = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
-                                const_cast<double*>(values.data()), MAT_F_DONT_COPY_DATA);
+  matvar_t* var = Lib().var_create(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                                   const_cast<double*>(values.data()), MAT_F_DONT_COPY_DATA);
   errno = 0;
-  const int failed = var == nullptr ? 1 : Mat_VarWrite(Mat(mat_), var, MAT_COMPRESSION_NONE);
-  if (var != nullptr) Mat_VarFree(var);
+  const int failed = var == nullptr ? 1 : Lib().var_write(Mat(mat_), var, MAT_COMPRESSION_NONE);
+  if (var != nullptr) Lib().var_free(var);
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
-void MatFile::WriteStrings(const std::string& name, const std::vector<std::string>& values) {
+void MatFile::WriteStrings(const std::string& name, const std::vector<std::string_view>& values) {
+  Name(name);
+  if (file_ != nullptr) {
+    std::string bytes;
+    mat5::AppendStringColumn(name, values, &bytes);
+    Write(bytes.data(), bytes.size());
+    return;
+  }
   std::size_t dims[2] = {values.size(), 1};
-  matvar_t* cell = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
+  matvar_t* cell = Lib().var_create(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, dims, nullptr, 0);
   if (cell == nullptr) throw MatFailure(path_, "libmatio failed creating variable " + name);
   for (std::size_t i = 0; i < values.size(); ++i) {
     std::size_t text_dims[2] = {1, values[i].size()};
     // Copied: the cell frees its elements with it.
-    matvar_t* text = Mat_VarCreate(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, text_dims,
-                                   const_cast<char*>(values[i].data()), 0);
-    Mat_VarSetCell(cell, static_cast<int>(i), text);
+    matvar_t* text = Lib().var_create(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, text_dims,
+                                      const_cast<char*>(values[i].data()), 0);
+    Lib().var_set_cell(cell, static_cast<int>(i), text);
   }
   errno = 0;
-  const int failed = Mat_VarWrite(Mat(mat_), cell, MAT_COMPRESSION_NONE);
-  Mat_VarFree(cell);
+  const int failed = Lib().var_write(Mat(mat_), cell, MAT_COMPRESSION_NONE);
+  Lib().var_free(cell);
   if (failed) throw MatFailure(path_, "libmatio failed writing variable " + name);
 }
 
 void MatFile::Commit(Durability durability) {
   errno = 0;
-  const int failed = Mat_Close(Mat(mat_));
-  mat_ = nullptr;
-  if (failed) throw MatFailure(path_, "libmatio failed closing the file");
+  int failed = 0;
+  if (file_ != nullptr) {
+    failed = std::fclose(file_);
+    file_ = nullptr;
+  } else {
+    failed = Lib().close(Mat(mat_));
+    mat_ = nullptr;
+  }
+  if (failed) throw MatFailure(path_, "closing the file failed");
   temp_.Commit(durability);
 }
 
@@ -196,7 +391,7 @@ void WriteResultsMat(const std::string& results_csv, const std::string& path, Du
   }
   const std::size_t per_pass = ColumnsPerPass(results_csv, header.size());
   std::vector<CsvColumn> batch = ReadCsvColumns(results_csv, 0, std::min(per_pass, header.size()));
-  const std::size_t rows = batch.empty() ? 0 : std::max(batch.front().numbers.size(), batch.front().texts.size());
+  const std::size_t rows = batch.empty() ? 0 : std::max(batch.front().numbers.size(), batch.front().ends.size());
   MatFile mat(path, rows * sizeof(double));
   for (std::size_t first = 0; first < header.size(); first += per_pass) {
     if (first > 0) batch = ReadCsvColumns(results_csv, first, std::min(per_pass, header.size() - first));
@@ -205,11 +400,11 @@ void WriteResultsMat(const std::string& results_csv, const std::string& path, Du
       if (batch[j].numeric) {
         mat.WriteColumn(name, batch[j].numbers);
       } else {
-        mat.WriteStrings(name, batch[j].texts);
+        mat.WriteStrings(name, batch[j].Texts());
       }
     }
   }
-  mat.WriteStrings("columns", header);
+  mat.WriteStrings("columns", std::vector<std::string_view>(header.begin(), header.end()));
   mat.Commit(durability);
 }
 

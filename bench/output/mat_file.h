@@ -1,11 +1,15 @@
-// MAT files (MATLAB's format, which scipy.io.loadmat and Octave read too) through libmatio:
-// run --out's trace.mat and a sweep's results.mat (docs/views.md#matlab-files). Variables
-// are written one at a time, so a writer holds one column in memory, not the table.
+// MAT files (MATLAB's format, which scipy.io.loadmat and Octave read too): run --out's
+// trace.mat and a sweep's results.mat (docs/views.md#matlab-files). Variables are written one
+// at a time, so a writer holds one column in memory, not the table. Version 5 written
+// directly as libmatio writes it (bench/output/mat5_bytes.h), version 7.3 through libmatio.
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <memory>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bench/run/run_result.h"
@@ -26,13 +30,18 @@ class MatFile {
   // An N x 1 double column; NaN stays NaN.
   void WriteColumn(const std::string& name, const std::vector<double>& values);
   // An N x 1 cell array of char row vectors.
-  void WriteStrings(const std::string& name, const std::vector<std::string>& values);
+  void WriteStrings(const std::string& name, const std::vector<std::string_view>& values);
   void Commit(Durability durability = Durability::kSynced);  // TempFile::Commit's
 
  private:
+  void Write(const char* bytes, std::size_t size);  // version 5
+  void Name(const std::string& name);  // throws when a variable has the name already
+
   std::string path_;
   TempFile temp_;
-  void* mat_ = nullptr;  // mat_t*
+  void* mat_ = nullptr;         // mat_t*, version 7.3
+  std::FILE* file_ = nullptr;   // version 5
+  std::set<std::string> names_;
 };
 
 // A column name as a MATLAB variable name: letters, digits and '_' (every other character
