@@ -26,9 +26,11 @@ std::string CsvRecord(const std::vector<std::string>& fields) {
   return line + "\n";
 }
 
-bool CsvReader::Next(std::vector<std::string>* fields) {
-  fields->clear();
-  std::string field;
+bool CsvReader::Next(CsvFields* fields) {
+  std::string& text = fields->text_;
+  std::vector<std::size_t>& ends = fields->ends_;
+  text.clear();
+  ends.clear();
   bool quoted = false;       // inside a quoted field
   bool any = false;          // anything read for this record
   std::uint64_t consumed = 0;
@@ -47,28 +49,34 @@ bool CsvReader::Next(std::vector<std::string>* fields) {
         if (buffer->sgetc() == '"') {
           buffer->sbumpc();
           ++consumed;
-          field += '"';
+          text += '"';
         } else {
           quoted = false;
         }
       } else {
-        field += static_cast<char>(c);
+        text += static_cast<char>(c);
       }
       continue;
     }
     if (c == '"') {
       quoted = true;
     } else if (c == ',') {
-      fields->push_back(field);
-      field.clear();
+      ends.push_back(text.size());
     } else if (c == '\n') {
-      fields->push_back(field);
+      ends.push_back(text.size());
       offset_ += consumed;
       return true;
     } else if (c != '\r') {
-      field += static_cast<char>(c);
+      text += static_cast<char>(c);
     }
   }
+}
+
+bool CsvReader::Next(std::vector<std::string>* fields) {
+  fields->clear();
+  if (!Next(&scratch_)) return false;
+  for (std::size_t i = 0; i < scratch_.size(); ++i) fields->emplace_back(scratch_[i]);
+  return true;
 }
 
 std::string ShortestDouble(double value) {

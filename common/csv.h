@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <istream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shapebench {
@@ -15,6 +16,24 @@ std::string CsvField(const std::string& text);
 // Fields joined by ',' and ended by '\n'.
 std::string CsvRecord(const std::vector<std::string>& fields);
 
+// One record's fields, unquoted, back to back in one buffer that the next record read
+// into it reuses (no allocation a field: results.mat reads every row of a sweep).
+class CsvFields {
+ public:
+  std::size_t size() const { return ends_.size(); }
+  // Field i, or "" past the record's last field.
+  std::string_view operator[](std::size_t i) const {
+    if (i >= ends_.size()) return {};
+    const std::size_t begin = i == 0 ? 0 : ends_[i - 1];
+    return std::string_view(text_).substr(begin, ends_[i] - begin);
+  }
+
+ private:
+  friend class CsvReader;
+  std::string text_;
+  std::vector<std::size_t> ends_;  // where each field ends in text_
+};
+
 // Reads records one by one from a stream.
 class CsvReader {
  public:
@@ -23,6 +42,7 @@ class CsvReader {
   // The next record into *fields. False at the end of the stream, or when the stream
   // ends inside a record (no final '\n' outside quotes): `torn()` then says so and the
   // partial record is not returned.
+  bool Next(CsvFields* fields);
   bool Next(std::vector<std::string>* fields);
   bool torn() const { return torn_; }
   // Bytes consumed by the complete records read so far.
@@ -32,6 +52,7 @@ class CsvReader {
   std::istream* in_;
   bool torn_ = false;
   std::uint64_t offset_ = 0;
+  CsvFields scratch_;  // Next(vector)'s record
 };
 
 // Formats a double so that strtod gives it back exactly, in as few digits as possible

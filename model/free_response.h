@@ -48,6 +48,10 @@ double PairPeak(double y0, double y0dot, double sigma, double wd);
 // e^{pi z / sqrt(1 - z^2)}, z = min(zeta, 1 - zeta): the decay over half a damped period up to
 // zeta = 1/2, mirrored above it so that it falls to 1 at zeta = 1; times 1 + 1e-9 (rounding).
 double ResidualCap(double damping_ratio);
+// Whether CappedResidual can return less than the envelope at this damping: not up to
+// zeta = 1/2 (above; bit for bit: ModalDecomposition.CapNeverActsUpToHalfDamping), where a
+// caller may take the envelope without PairPeak's atan2, exp, cos and sin.
+inline bool ResidualCapCanAct(double damping_ratio) { return !(damping_ratio <= 0.5); }
 // min(envelope, cap x peak); NaN for a NaN envelope.
 inline double CappedResidual(double envelope, double peak, double cap) {
   return envelope > cap * peak ? cap * peak : envelope;

@@ -97,74 +97,13 @@ bool FieldNumber(std::string_view field, double* value) {
   return end == text.c_str() + text.size() && !std::isspace(static_cast<unsigned char>(text.front()));
 }
 
-// results.csv's records, as CsvReader reads them (common/csv.h: quotes, doubled quotes,
-// '\r' dropped outside quotes, a torn last record not returned), read in blocks with each
-// record's fields in one reused buffer: no allocation a field.
-class CsvRecords {
- public:
-  explicit CsvRecords(const std::string& path) : in_(path, std::ios::binary), block_(1 << 16) {
-    if (!in_) throw std::runtime_error("cannot read " + path + " for results.mat");
-  }
-  // The next complete record; false at the end (or at a torn record).
-  bool Next() {
-    text_.clear();
-    ends_.clear();
-    bool quoted = false;
-    while (true) {
-      if (at_ == end_ && !Refill()) return false;
-      if (quoted) {
-        // A run up to the next quote as it is.
-        const char* run = at_;
-        while (at_ != end_ && *at_ != '"') ++at_;
-        text_.append(run, static_cast<std::size_t>(at_ - run));
-        if (at_ == end_) continue;
-        ++at_;  // the quote: doubled, it is one; else the quoted part ends
-        if (at_ == end_ && !Refill()) return false;  // torn: the record has no end
-        if (*at_ == '"') {
-          text_ += '"';
-          ++at_;
-        } else {
-          quoted = false;
-        }
-        continue;
-      }
-      const char* run = at_;
-      while (at_ != end_ && *at_ != '"' && *at_ != ',' && *at_ != '\n' && *at_ != '\r') ++at_;
-      text_.append(run, static_cast<std::size_t>(at_ - run));
-      if (at_ == end_) continue;
-      const char c = *at_++;
-      if (c == '"') {
-        quoted = true;
-      } else if (c == ',') {
-        ends_.push_back(text_.size());
-      } else if (c == '\n') {
-        ends_.push_back(text_.size());
-        return true;
-      }  // '\r' outside quotes is dropped
-    }
-  }
-  std::size_t size() const { return ends_.size(); }
-  // Field i of the record, or "" past its last field.
-  std::string_view field(std::size_t i) const {
-    if (i >= ends_.size()) return {};
-    const std::size_t begin = i == 0 ? 0 : ends_[i - 1];
-    return std::string_view(text_).substr(begin, ends_[i] - begin);
-  }
-
- private:
-  bool Refill() {
-    in_.read(block_.data(), static_cast<std::streamsize>(block_.size()));
-    at_ = block_.data();
-    end_ = at_ + in_.gcount();
-    return at_ != end_;
-  }
-  std::ifstream in_;
-  std::vector<char> block_;
-  const char* at_ = nullptr;
-  const char* end_ = nullptr;
-  std::string text_;               // the record's fields, unquoted, back to back
-  std::vector<std::size_t> ends_;  // where each field ends in text_
-};
+// results.csv opened for CsvReader (its records into one reused CsvFields: no allocation
+// a field).
+std::ifstream OpenResultsCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path + " for results.mat");
+  return in;
+}
 
 // Columns [first, first + count) of results.csv, read through once: each as numbers when
 // every field is one, else as texts (back to back).
@@ -192,12 +131,14 @@ void ReadTurnedTexts(const std::string& path, std::size_t first, const std::vect
     (*out)[j].text.clear();
     (*out)[j].ends.clear();
   }
-  CsvRecords records(path);
-  records.Next();  // the header
-  while (records.Next()) {
+  std::ifstream in = OpenResultsCsv(path);
+  CsvReader reader(in);
+  CsvFields record;
+  reader.Next(&record);  // the header
+  while (reader.Next(&record)) {
     for (const std::size_t j : columns) {
       CsvColumn& into = (*out)[j];
-      into.text.append(records.field(first + j));
+      into.text.append(record[first + j]);
       into.ends.push_back(into.text.size());
     }
   }
@@ -205,11 +146,13 @@ void ReadTurnedTexts(const std::string& path, std::size_t first, const std::vect
 std::vector<CsvColumn> ReadCsvColumns(const std::string& path, std::size_t first, std::size_t count) {
   std::vector<CsvColumn> out(count);
   std::vector<std::size_t> turned;
-  CsvRecords records(path);
-  records.Next();  // the header
-  for (std::size_t row = 0; records.Next(); ++row) {
+  std::ifstream in = OpenResultsCsv(path);
+  CsvReader reader(in);
+  CsvFields record;
+  reader.Next(&record);  // the header
+  for (std::size_t row = 0; reader.Next(&record); ++row) {
     for (std::size_t j = 0; j < count; ++j) {
-      const std::string_view field = records.field(first + j);
+      const std::string_view field = record[first + j];
       CsvColumn& into = out[j];
       double value = 0.0;
       if (into.numeric) {

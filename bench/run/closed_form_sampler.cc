@@ -360,9 +360,7 @@ std::size_t ClosedFormSampler::UnreadTicks(std::size_t k) {
     ++deferred_;
     ++k;
     if (k >= motion || k == probe || (k >= inner_from_ && k <= inner_to_)) break;
-    if (!NotQuiet(k)) {
-      if (QuietStretchEnd(k) > k) break;
-    }
+    if (!NotQuiet(k) && QuietStretchEnd(k) > k) break;
   }
   tally_.peak = peak;
   start_abs_ = end;
@@ -377,7 +375,7 @@ std::size_t ClosedFormSampler::UnreadTicks(std::size_t k) {
 inline bool ClosedFormSampler::NotQuiet(std::size_t k) const {
   const CommandSamples& s = kernel_.s_;
   const int ax = kernel_.axis_;
-  const double margin = 1e-9 * kernel_.length_ + 1e-12;
+  const double margin = kernel_.StretchMargin();
   const double bound = kernel_.ExtremumBoundBelow(kernel_.q(), kernel_.v(), s.accel[k](ax));
   const double low = (std::abs(s.velocity[k - 1](ax)) * kernel_.dt_ + bound + margin) * (1.0 - 1e-12);
   const double along = (s.positions[k - 1](ax) - kernel_.start_) * kernel_.direction_;
@@ -407,7 +405,7 @@ std::size_t ClosedFormSampler::QuietStretchEnd(std::size_t k) const {
   const double dt = kernel_.dt_;
   const double a = s.accel[k](ax);
   const double speed = std::max(std::abs(s.velocity[k - 1](ax)), std::abs(s.velocity[stop - 1](ax)));
-  const double margin = 1e-9 * kernel_.length_ + 1e-12;
+  const double margin = kernel_.StretchMargin();
   const double bound = kernel_.ExtremumBound(kernel_.q(), kernel_.v(), a);
   const double keep = speed * dt + 0.5 * std::abs(a) * dt * dt + bound * (1.0 + 1e-9) + margin;
   const auto along = [&](std::size_t i) { return (s.positions[i](ax) - kernel_.start_) * kernel_.direction_; };

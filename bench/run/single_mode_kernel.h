@@ -42,7 +42,7 @@ class SingleModeKernel {
     wd_ = w * std::sqrt(1.0 - mode.damping_ratio * mode.damping_ratio);
     gain_ = mode.gain;
     cap_ = model::ResidualCap(mode.damping_ratio);
-    cap_never_acts_ = mode.damping_ratio <= 0.5;
+    cap_can_act_ = model::ResidualCapCanAct(mode.damping_ratio);
     start_ = line.start_m(axis);
     direction_ = line.direction(axis);
     length_ = line.length_m;
@@ -71,10 +71,7 @@ class SingleModeKernel {
   // times the free response's largest |value| (model/free_response.h, CappedResidual).
   double ModalAmplitude() const {
     const double envelope = std::abs(gain_) * std::hypot(q_, (v_ + sigma_ * q_) / wd_);
-    // Up to zeta = 1/2 the cap never acts (model/free_response.h; bit for bit:
-    // ModalDecomposition.CapNeverActsUpToHalfDamping): the envelope, without PairPeak's
-    // atan2, exp, cos and sin.
-    if (cap_never_acts_) return envelope;
+    if (!cap_can_act_) return envelope;
     return model::CappedResidual(envelope, std::abs(gain_) * model::PairPeak(q_, v_, sigma_, wd_), cap_);
   }
   double StaticGain() const { return -gain_ / w2_; }  // deflection per m/s^2
@@ -243,20 +240,19 @@ class SingleModeKernel {
   // amplitude about the equilibrium (which decays) plus the equilibrium's distance from 0,
   // with a margin for the rounding of both (1e-12: a bound, not a value).
   double ExtremumBound(double q0, double v0, double a) const {
-    const double q_eq = -a / w2_;
-    const double x0 = q0 - q_eq;
-    const double b = (v0 + sigma_ * x0) / wd_;
-    return std::abs(gain_) * (std::sqrt(x0 * x0 + b * b) + std::abs(q_eq)) * (1.0 + 1e-12);
+    const FreeOscillation o = About(q0, v0, a);
+    return std::abs(gain_) * (std::sqrt(o.x0 * o.x0 + o.b * o.b) + std::abs(o.q_eq)) * (1.0 + 1e-12);
   }
-
   // ExtremumBound from below (the larger of |x0| and |b| for their hypotenuse, less a
   // relative 1e-12), for tests that only refuse where the bound is certainly large.
   double ExtremumBoundBelow(double q0, double v0, double a) const {
-    const double q_eq = -a / w2_;
-    const double x0 = q0 - q_eq;
-    const double b = (v0 + sigma_ * x0) / wd_;
-    return std::abs(gain_) * (std::max(std::abs(x0), std::abs(b)) + std::abs(q_eq)) * (1.0 - 1e-12);
+    const FreeOscillation o = About(q0, v0, a);
+    return std::abs(gain_) * (std::max(std::abs(o.x0), std::abs(o.b)) + std::abs(o.q_eq)) * (1.0 - 1e-12);
   }
+
+  // The margin QuietStretchEnd adds to what a stretch may keep off the line's ends (and
+  // NotQuiet's lower bound of it: the same one, or the bound would not be one).
+  double StretchMargin() const { return 1e-9 * length_ + 1e-12; }
 
   const CommandSamples& s_;
   const int axis_;
@@ -266,6 +262,16 @@ class SingleModeKernel {
   std::vector<double> taus_;
 
  private:
+  // The free oscillation about the equilibrium of a held a: q_eq = -a / w^2, x0 = q0 -
+  // q_eq, and b = (v0 + sigma x0) / w_d, its amplitude sqrt(x0^2 + b^2).
+  struct FreeOscillation {
+    double q_eq, x0, b;
+  };
+  FreeOscillation About(double q0, double v0, double a) const {
+    const double q_eq = -a / w2_;
+    const double x0 = q0 - q_eq;
+    return {q_eq, x0, (v0 + sigma_ * x0) / wd_};
+  }
   Transition At(double tau) const {
     const double e = std::exp(-sigma_ * tau);
     const double c = std::cos(wd_ * tau);
@@ -293,7 +299,7 @@ class SingleModeKernel {
   }
 
   double w2_ = 0.0, sigma_ = 0.0, wd_ = 0.0, gain_ = 1.0, cap_ = 1.0;
-  bool cap_never_acts_ = false;
+  bool cap_can_act_ = true;
   Transition period_;
   double g_q_ = 0.0, g_v_ = 0.0;  // the period's response to a held a = 1 from rest
   Transition twice_;               // over two periods

@@ -226,6 +226,7 @@ TEST(ModalDecomposition, CapNeverActsUpToHalfDamping) {
       const double sigma = zeta * w;
       const double wd = w * std::sqrt(1.0 - zeta * zeta);
       const double cap = ResidualCap(zeta);
+      EXPECT_FALSE(ResidualCapCanAct(zeta)) << zeta;
       for (int k = 0; k < 97; ++k) {
         const double alpha = kTwoPi * k / 97.0;
         for (const double scale : {1e-9, 3.7e-6, 1e-3}) {
