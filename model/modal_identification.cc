@@ -426,8 +426,10 @@ ModalModel FitModes(const BandData& band, int derivative_order, const Identifica
   }
   AddMissed(band, derivative_order, options, x, &model, result, budget);
   SortByFrequency(&model, &result->modes);
-  // Each narrow mode's golden section (62 LSFDs of one mode) on its neighbourhood, then one refit.
-  budget->Charge(2.0 * 62.0 * LsfdWork(lines, frfs, 1) + LsfdWork(lines, frfs, static_cast<int>(model.poles.size())),
+  // Each narrow mode's golden section (its steps and two to start, an LSFD of one mode each)
+  // on its neighbourhood, then one refit.
+  budget->Charge(2.0 * (kGoldenSectionSteps + 2) * LsfdWork(lines, frfs, 1) +
+                     LsfdWork(lines, frfs, static_cast<int>(model.poles.size())),
                  "fitting narrow peaks' damping on their neighbourhoods");
   const std::vector<bool> local = LocalDampingOfNarrowPeaks(x, band.frfs, derivative_order, options.max_damping_ratio,
                                                             kLocalDampingErrorGrowth, &model);
@@ -547,8 +549,7 @@ ModalIdentification IdentifyWithin(const std::vector<double>& frequency_hz,
   // An order's polynomial has 2 order + 1 coefficients per FRF; keep it under the lines.
   const int cap = std::max(1, std::min(options.max_order, (lines - 2) / 4));
   const int count = static_cast<int>(frfs.size());
-  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, options.max_work,
-                    options.max_work_key, budget->used());
+  RequireWithinWork(lines, count, options.auto_order ? std::min(kFirstAutoOrder, cap) : cap, *budget);
   const double band_lo = std::max(options.min_frequency_hz, result.frequency_hz.front());
   const double band_hi = std::min(options.max_frequency_hz, result.frequency_hz.back());
   const double ts = kPi / band.omega.back();  // the band's top line maps to theta = pi

@@ -55,7 +55,7 @@ double BestLocalDamping(const Neighbourhood& local, int d, Complex pole, double 
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   double c = b - g * (b - a), e = a + g * (b - a);
   double fc = error(c), fe = error(e);
-  for (int i = 0; i < 60 && b - a > 1e-6; ++i) {
+  for (int i = 0; i < kGoldenSectionSteps && b - a > 1e-6; ++i) {
     if (fc < fe) {
       b = e, e = c, fe = fc, c = b - g * (b - a), fc = error(c);
     } else {

@@ -14,6 +14,10 @@
 
 namespace shapebench::model {
 
+// The golden-section search's steps on one narrow peak's damping (its charge in the
+// identification's work: two evaluations to start, one a step).
+inline constexpr int kGoldenSectionSteps = 60;
+
 // For each such mode of `model` (poles ascending in frequency): the damping ratio that
 // fits best the lines between the midpoints to its neighbouring modes (the band's ends
 // for the outer ones), by the mode alone with lower and upper residuals (LSFD at each

@@ -23,6 +23,14 @@ double RefinementWork(int lines, int frfs, int modes) {
   return 50.0 * 2.0 * lines * frfs * unknowns * unknowns;
 }
 
+namespace {
+
+// The limit a WORK_LIMIT message suggests: the power of ten at or above `work`, `decades`
+// higher.
+double PowerOfTenAbove(double work, double decades) { return std::pow(10.0, std::ceil(std::log10(work)) + decades); }
+
+}  // namespace
+
 double LsfdWork(int lines, int frfs, int modes) {
   const double unknowns = 2.0 * modes + 2.0;
   return 2.0 * lines * unknowns * (unknowns + frfs) + 2.0 * lines * frfs * (modes + 1.0);
@@ -33,7 +41,7 @@ void WorkBudget::Charge(double work, const std::string& what) {
     used_ += work;
     return;
   }
-  const double suggested = std::pow(10.0, std::ceil(std::log10(used_ + work)) + 1.0);
+  const double suggested = PowerOfTenAbove(used_ + work, 1.0);
   throw SolverError("WORK_LIMIT", what + " would bring the identification's work to about " +
                                       FormatNumber(used_ + work, 3) + " multiply-adds, more than " + key_ + " (" +
                                       FormatNumber(limit_, 3) + "; " + FormatNumber(used_, 3) +
@@ -44,10 +52,13 @@ void WorkBudget::Charge(double work, const std::string& what) {
 // Refused before the fit starts when its work exceeds max_work (ten copies of a
 // record at order 200 took 40 s; a thousand records an estimated hour); in a sub-band,
 // max_work is what the sub-bands below left.
-void RequireWithinWork(int lines, int frfs, int max_order, double max_work, const std::string& key, double spent) {
+void RequireWithinWork(int lines, int frfs, int max_order, const WorkBudget& budget) {
+  const double max_work = budget.remaining();
+  const double spent = budget.used();
+  const std::string& key = budget.key();
   const double work = IdentificationWork(lines, frfs, max_order);
   if (!(work > max_work)) return;
-  const double suggested = std::pow(10.0, std::ceil(std::log10(work + spent)));
+  const double suggested = PowerOfTenAbove(work + spent, 0.0);
   throw SolverError("WORK_LIMIT", "identifying " + std::to_string(frfs) + " FRF" + (frfs == 1 ? "" : "s") + " of " +
                                       std::to_string(lines) + " lines up to order " + std::to_string(max_order) +
                                       " would take about " + FormatNumber(work, 3) +

@@ -19,10 +19,12 @@ double RefinementWork(int lines, int frfs, int modes);
 // One LSFD of `modes` poles (FitLinear) and its squared error.
 double LsfdWork(int lines, int frfs, int modes);
 
+class WorkBudget;
+
 // Throws SolverError("WORK_LIMIT") before a fit when its diagram of `lines` lines up to
-// `max_order` exceeds `max_work` (in a sub-band, what the sub-bands below left after
-// spending `spent`), naming `key`.
-void RequireWithinWork(int lines, int frfs, int max_order, double max_work, const std::string& key, double spent);
+// `max_order` exceeds what `budget` has left (in a sub-band, what the sub-bands below
+// left), naming its key.
+void RequireWithinWork(int lines, int frfs, int max_order, const WorkBudget& budget);
 
 // The identification's budget: each part is charged before it runs; past the limit,
 // SolverError("WORK_LIMIT") naming `key`, the part and the work spent.

@@ -157,7 +157,6 @@ double* ModalFieldOf(model::ModalMachineConfig& modal, const StructureKey& key) 
     if (key.modal_number != nullptr) {
       return mode.coupled() && key.modal_number == &model::ModalMode::gain ? nullptr : &(mode.*key.modal_number);
     }
-    if (mode.coupled() && key.field == FieldName(&model::ModalMode::gain)) return nullptr;
     return ListNumberField(&modal, key.list, key.index, key.field);
   }
   std::optional<model::AxisVector>& vector =
