@@ -321,6 +321,29 @@ std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine
   return result;
 }
 
+namespace {
+// LowestModeHz where every modelled axis is an uncoupled modal form, else NaN.
+double LowestModalFormHz(const MultiAxisMachineConfig& machine) {
+  if (machine.CoupledModes() != nullptr) return NAN;
+  double lowest_hz = std::numeric_limits<double>::infinity();
+  for (const auto& axis : machine.axes) {
+    if (!axis.has_value()) continue;
+    const auto* modal = std::get_if<ModalMachineConfig>(&axis->form);
+    if (modal == nullptr || modal->coupled()) return NAN;
+    for (const ModalMode& mode : modal->modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
+  }
+  return lowest_hz;
+}
+}  // namespace
+
+double LowestModeHz(const MultiAxisMachineConfig& machine) {
+  const double lowest_hz = LowestModalFormHz(machine);
+  if (!std::isnan(lowest_hz)) return lowest_hz;
+  MachineDynamics dynamics;
+  dynamics.axes = AnalyzeMachineModes(machine);
+  return dynamics.LowestHz();
+}
+
 bool ConservesEnergy(const MultiAxisMachineConfig& machine) {
   for (const auto& axis : machine.axes) {
     if (axis && !ConservesEnergy(*axis)) return false;

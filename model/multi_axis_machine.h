@@ -92,6 +92,11 @@ struct AxisModes {
 // The modes of every modelled axis, in axis order (a coupled machine: all three axes, each
 // mode's share from model/coupled_modes.h AnalyzeCoupledAxis).
 std::vector<AxisModes> AnalyzeMachineModes(const MultiAxisMachineConfig& machine);
+// The lowest frequency of AnalyzeMachineModes' modes (infinity without any), read from the
+// modes themselves where every modelled axis is an uncoupled modal form (the analysis
+// copies their frequencies; a sweep point asks this at every point, and the analysis
+// builds vectors); the analysis (and its validation) elsewhere.
+double LowestModeHz(const MultiAxisMachineConfig& machine);
 
 // True when no modelled axis has any damping: under the kinematic drive such a structure
 // keeps the vibration the motion leaves in it for ever (each mode's energy is conserved).

@@ -168,33 +168,11 @@ double MinimumRunSeconds(const Scenario& scenario, std::string* breakdown) {
   return motion_s + tail_s;
 }
 
-// The lowest frequency of the modes AnalyzeMachineModes would give, read from the modes
-// themselves where every modelled axis is an uncoupled modal form (the analysis copies
-// their frequencies; a sweep point asks this, and the analysis builds vectors); NaN
-// where the analysis must answer.
 namespace {
-double LowestModalFormHz(const model::MultiAxisMachineConfig& machine) {
-  if (machine.CoupledModes() != nullptr) return NAN;
-  double lowest_hz = std::numeric_limits<double>::infinity();
-  for (const auto& axis : machine.axes) {
-    if (!axis.has_value()) continue;
-    const auto* modal = std::get_if<model::ModalMachineConfig>(&axis->form);
-    if (modal == nullptr || modal->coupled()) return NAN;
-    for (const model::ModalMode& mode : modal->modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
-  }
-  return lowest_hz;
-}
-
 // ResidualWindowSeconds of a machine validated already (MachineChecksPass: a sweep point
 // validated it a line before).
 double ResidualWindowOfValidMachine(const Scenario& scenario) {
-  double lowest_hz = LowestModalFormHz(scenario.machine);
-  if (std::isnan(lowest_hz)) {
-    lowest_hz = std::numeric_limits<double>::infinity();
-    for (const model::AxisModes& axis : model::AnalyzeMachineModes(scenario.machine)) {
-      for (const model::ModeInfo& mode : axis.analysis.modes) lowest_hz = std::min(lowest_hz, mode.frequency_hz);
-    }
-  }
+  const double lowest_hz = model::LowestModeHz(scenario.machine);
   return 3.0 * (std::isfinite(lowest_hz) && lowest_hz > 0.0 ? 1.0 / lowest_hz : 0.1);
 }
 }  // namespace
